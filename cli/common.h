@@ -1,0 +1,43 @@
+// What every fb89 subcommand shares: exit codes, errors, output helpers.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+namespace fb89::cli {
+
+// DESIGN.md "Command line": 0 success, 1 a check failed, 2 usage, I/O or corrupt input.
+enum ExitCode : int { kSuccess = 0, kCheckFailed = 1, kBadInput = 2 };
+
+// A usage mistake found after parsing (e.g. an unknown method); exits with 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct ImageSize {
+    int width = 0, height = 0;
+};
+// "WxH", e.g. "1024x780"; throws UsageError.
+ImageSize parse_size(const std::string& text);
+
+// Writes JSON (indented) to a path, or to stdout for "-". Throws std::runtime_error
+// naming the path on failure.
+void write_json(const std::string& path, const nlohmann::json& value);
+
+// Creates the parent folder of an output path if needed.
+void make_parent_dirs(const std::string& path);
+
+// Messages for humans go to stderr; --quiet silences them.
+struct Console {
+    bool quiet = false;
+    void note(const std::string& text) const;
+};
+
+void register_render(CLI::App& app, int& exit_code);
+
+}  // namespace fb89::cli

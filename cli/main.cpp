@@ -1,0 +1,41 @@
+// fb89: one executable, one subcommand per file in cli/.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/common.h"
+#include "controller_sim/profile.h"
+#include "host/scene/scene_error.h"
+#include "protocol/stream_reader.h"
+
+int main(int argc, char** argv) {
+    using namespace fb89::cli;
+    CLI::App app{
+        "fb89: image and intervisibility coherence in rendering, on an emulated 1989 "
+        "graphics pipeline (Marks, Walsh, Christensen & Friedell, GI '90)"};
+    app.set_version_flag("--version", std::string("fb89 ") + FB89_VERSION);
+    app.require_subcommand(1);
+    app.fallthrough();
+
+    int exit_code = kSuccess;
+    register_render(app, exit_code);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);  // --help, --version
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return kBadInput;
+    } catch (const UsageError& e) {
+        std::cerr << "fb89: usage: " << e.what() << "\n";
+        return kBadInput;
+    } catch (const fb89::host::SceneError& e) {
+        std::cerr << "fb89: error: " << e.what() << "\n";
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "fb89: error: " << e.what() << "\n";
+        return kBadInput;
+    }
+    return exit_code;
+}

@@ -1,0 +1,160 @@
+// fb89 render SCENE: load, project, run one hidden-surface method into the in-memory
+// buffer (timed), then hand the commands to the simulated controller (modelled), and write
+// what was asked for: PNG, face-id PNG, command stream, stats JSON.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/common.h"
+#include "controller_sim/controller.h"
+#include "controller_sim/png_io.h"
+#include "host/raster/renderer.h"
+#include "host/scene/projection.h"
+#include "host/scene/scene_loader.h"
+#include "protocol/memory_buffer.h"
+#include "protocol/stream_writer.h"
+
+namespace fb89::cli {
+
+namespace {
+
+struct RenderArgs {
+    std::string scene;
+    std::string method = "zbuffer";
+    std::string size;
+    std::string png, ids, stream, stats;
+    std::string profile = std::string(controller::kDefaultProfile);
+    bool quiet = false;
+};
+
+struct HostRun {
+    host::Scene scene;
+    host::ScreenScene screen;
+    protocol::MemoryBuffer commands;
+    host::HostStats stats;
+};
+
+// Everything the paper times: load, set-up, hidden-surface, end to end.
+HostRun run_host(const RenderArgs& args, host::Renderer& renderer) {
+    HostRun run;
+    host::Stopwatch end_to_end;
+    host::Stopwatch stage;
+    run.scene = host::load_scene(args.scene);
+    if (!args.size.empty()) {
+        ImageSize size = parse_size(args.size);
+        run.scene.width = size.width;
+        run.scene.height = size.height;
+    }
+    run.stats.load = stage.elapsed();
+
+    stage.restart();
+    run.screen = host::project_scene(run.scene, host::ColorMode::Shaded, run.stats.counters);
+    run.stats.setup = stage.elapsed();
+
+    host::render_frame(renderer, run.screen, run.commands, run.stats);
+    run.stats.end_to_end = end_to_end.elapsed();
+    return run;
+}
+
+// The face-id pass: the same method through the same sink and controller, every face
+// coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer.
+void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Renderer& renderer,
+                     const controller::CostProfile& profile) {
+    host::HostStats stats;
+    host::ScreenScene ids = host::project_scene(scene, host::ColorMode::FaceId, stats.counters);
+    protocol::MemoryBuffer commands;
+    host::render_frame(renderer, ids, commands, stats);
+    controller::Controller id_controller(profile);
+    commands.replay_into(id_controller);
+    make_parent_dirs(args.ids);
+    controller::write_png(args.ids, id_controller.framebuffer());
+}
+
+void write_stream(const RenderArgs& args, const HostRun& run) {
+    protocol::Properties properties{
+        {"scene", args.scene},
+        {"method", args.method},
+        {"resolution", fmt::format("{}x{}", run.screen.width, run.screen.height)},
+        {"tool", std::string("fb89 ") + FB89_VERSION}};
+    make_parent_dirs(args.stream);
+    protocol::StreamWriter writer(args.stream, properties);
+    run.commands.replay_into(writer);
+    writer.close();
+}
+
+nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
+                          const controller::Controller& ctl) {
+    nlohmann::json j;
+    j["tool"] = std::string("fb89 ") + FB89_VERSION;
+    j["scene"] = {{"file", args.scene},
+                  {"faces", run.scene.face_count},
+                  {"triangulated", run.scene.triangulated},
+                  {"dropped", run.scene.dropped},
+                  {"width", run.screen.width},
+                  {"height", run.screen.height}};
+    j["method"] = args.method;
+    j["host"] = run.stats.to_json();
+    j["host"]["commands"] = run.commands.size();
+    j["controller"] = ctl.stats().to_json();
+    return j;
+}
+
+int run_render(const RenderArgs& args) {
+    Console console{args.quiet};
+    host::RenderOptions options;
+    options.method = args.method;
+    std::unique_ptr<host::Renderer> renderer;
+    try {
+        renderer = host::make_renderer(options);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(fmt::format("--method: {}", e.what()));
+    }
+    controller::CostProfile profile = controller::load_profile(args.profile);
+
+    HostRun run = run_host(args, *renderer);
+    for (const auto& note : run.scene.notes) console.note("note: " + note);
+
+    // the controller tiles what the host decided; its cost is modelled, never timed
+    controller::Controller ctl(profile);
+    run.commands.replay_into(ctl);
+
+    if (!args.png.empty()) {
+        make_parent_dirs(args.png);
+        controller::write_png(args.png, ctl.framebuffer());
+    }
+    if (!args.ids.empty()) write_id_buffer(args, run.scene, *renderer, profile);
+    if (!args.stream.empty()) write_stream(args, run);
+    if (!args.stats.empty()) write_json(args.stats, stats_json(args, run, ctl));
+
+    const bool stdout_taken = args.stats == "-" || args.stream == "-";
+    if (!args.quiet && !stdout_taken) {
+        fmt::print("scene {}: {} faces ({} pieces on screen), {}x{}, method {}\n", args.scene,
+                   run.scene.face_count, run.screen.faces.size(), run.screen.width,
+                   run.screen.height, args.method);
+        fmt::print("{}", run.stats.summary());
+        fmt::print("controller ({}):\n{}", profile.name, ctl.stats().summary());
+    }
+    return kSuccess;
+}
+
+}  // namespace
+
+void register_render(CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* sub = app.add_subcommand("render", "Render a scene with one hidden-surface method");
+    sub->add_option("scene", args->scene, "Scene file (.json, or .tri screen-space triangles)")
+        ->required();
+    sub->add_option("--method,-m", args->method, "Hidden-surface method")
+        ->capture_default_str();
+    sub->add_option("--size", args->size, "Image size WxH, overriding the scene's");
+    sub->add_option("--png", args->png, "Write the controller's framebuffer as PNG");
+    sub->add_option("--ids", args->ids,
+                    "Write the face-id buffer as PNG (id + 1 as 24-bit RGB, 0 = background)");
+    sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
+    sub->add_option("--stats", args->stats, "Write host and controller figures as JSON ('-' for stdout)");
+    sub->add_option("--profile", args->profile, "Controller cost profile: a built-in name or a .json file")
+        ->capture_default_str();
+    sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+    sub->callback([args, &exit_code] { exit_code = run_render(*args); });
+}
+
+}  // namespace fb89::cli

@@ -1,0 +1,130 @@
+// The simulated frame-buffer controller: a CommandSink that tiles commands into a
+// framebuffer and counts what that would cost the modelled hardware.
+//
+// Shaped like a MAME device (controller.cpp): an opcode table, one exec_* per opcode and a
+// list of what is not modelled. It reports only controller figures; host times are
+// measured and reported elsewhere, always apart.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "controller_sim/cost_model.h"
+#include "controller_sim/framebuffer.h"
+#include "controller_sim/profile.h"
+#include "protocol/command_sink.h"
+
+namespace fb89::controller {
+
+// What one opcode did: summed over its commands.
+struct OpcodeCounters {
+    uint64_t commands = 0;
+    uint64_t pixels = 0;   // pixels written (after clipping)
+    uint64_t bytes = 0;    // modelled bytes on the bus
+    uint64_t cycles = 0;   // modelled controller cycles
+    uint64_t clipped = 0;  // commands cut by the framebuffer's edges
+    uint64_t outside = 0;  // commands that wrote nothing (wholly outside, empty, or no frame)
+
+    OpcodeCounters& operator+=(const OpcodeCounters& o);
+    friend bool operator==(const OpcodeCounters&, const OpcodeCounters&) = default;
+};
+
+using PerOpcode = std::array<OpcodeCounters, protocol::kOpcodeCount>;  // by opcode_index
+OpcodeCounters sum(const PerOpcode& ops);
+
+// One frame, from its FRAME_BEGIN to its FRAME_END.
+struct FrameResult {
+    uint32_t frame = 0;  // the number FRAME_BEGIN carried
+    uint32_t width = 0, height = 0;
+    uint64_t first_command = 0;  // stream number of its FRAME_BEGIN
+    uint64_t checksum = 0;       // Framebuffer::checksum() at FRAME_END
+    // False when the next FRAME_BEGIN arrived before this frame's FRAME_END: the frame was
+    // closed there, and its checksum taken then.
+    bool complete = true;
+    PerOpcode ops{};
+    double bus_busy_us = 0;
+    double controller_busy_us = 0;
+    double end_us = 0;  // when its last command finished, from its first command's start
+
+    OpcodeCounters total() const { return sum(ops); }
+};
+
+struct ControllerStats {
+    CostProfile profile;
+    std::vector<FrameResult> frames;  // closed frames, in order
+    PerOpcode totals{};               // every command, in frames or not
+    PerOpcode unframed{};             // commands outside any frame (before the first, between)
+    double bus_busy_us = 0;           // every command
+    double controller_busy_us = 0;    // every command
+    double frames_end_us = 0;         // sum of the closed frames' end_us
+
+    nlohmann::json to_json() const;
+    // A table for humans: opcode, commands, pixels, bytes, cycles, modelled time, bus time.
+    std::string summary() const;
+};
+
+class Controller final : public protocol::CommandSink {
+  public:
+    explicit Controller(CostProfile profile = default_profile());
+
+    void frame_begin(const protocol::FrameBegin& c) override;
+    void fill_rect(const protocol::FillRect& c) override;
+    void draw_span(const protocol::DrawSpan& c) override;
+    void marker(const protocol::Marker& c) override;
+    void frame_end(const protocol::FrameEnd& c) override;
+
+    // Executes any command through the opcode table.
+    void execute(const protocol::Command& c);
+
+    const CostProfile& profile() const { return m_stats.profile; }
+    const Framebuffer& framebuffer() const { return m_fb; }
+    const ControllerStats& stats() const { return m_stats; }
+    const std::vector<FrameResult>& frames() const { return m_stats.frames; }
+    bool in_frame() const { return m_in_frame; }
+    // The frame being drawn so far (meaningful only while in_frame()).
+    FrameResult open_frame() const;
+    uint64_t commands_executed() const { return m_next_command; }
+
+  private:
+    // What an exec_* function did; execute() turns it into counters and time.
+    struct Executed {
+        uint64_t cycles = 0;
+        uint64_t pixels = 0;
+        bool clipped = false;
+        bool outside = false;
+    };
+    using ExecFn = Executed (Controller::*)(const protocol::Command&);
+    struct OpcodeEntry {
+        const char* name;
+        int param_count;  // fields on the wire, as in docs/PROTOCOL.md
+        uint32_t bytes;   // modelled bytes, from the profile
+        double bus_us;    // bus time of one command
+        ExecFn exec;
+    };
+    static std::array<OpcodeEntry, protocol::kOpcodeCount> make_opcode_table(const CostProfile& p);
+
+    Executed exec_frame_begin(const protocol::Command& c);
+    Executed exec_fill_rect(const protocol::Command& c);
+    Executed exec_draw_span(const protocol::Command& c);
+    Executed exec_marker(const protocol::Command& c);
+    Executed exec_frame_end(const protocol::Command& c);
+
+    void account(int opcode, const OpcodeEntry& e, const Executed& x);
+    void close_frame(bool complete);
+
+    std::array<OpcodeEntry, protocol::kOpcodeCount> m_opcodes;
+    double m_us_per_cycle;
+    Framebuffer m_fb;
+    ControllerStats m_stats;
+    bool m_in_frame = false;
+    FrameResult m_frame;  // the open frame's counters
+    Pipeline m_frame_pipe;
+    Pipeline m_unframed_pipe;
+    uint64_t m_next_command = 0;
+};
+
+}  // namespace fb89::controller

@@ -1,0 +1,137 @@
+// Reporting the controller's counters: JSON for --stats and a table for humans.
+//
+// One set of counters feeds both. Only controller figures appear here; host times are
+// reported elsewhere, apart. Modelled time = cycles / f_cyc; bus time = commands x
+// (bytes / B_bus + t_handshake) for opcodes that are sent.
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "controller_sim/controller.h"
+
+namespace fb89::controller {
+
+namespace {
+
+using nlohmann::json;
+
+const char* opcode_name(int i) {
+    return protocol::to_string(static_cast<protocol::Opcode>(i + 1));
+}
+
+double modelled_us(const CostProfile& p, uint64_t cycles) {
+    return cycles_to_seconds(p, cycles) * 1e6;
+}
+
+double bus_us(const CostProfile& p, int opcode, uint64_t commands) {
+    return static_cast<double>(commands) * bus_seconds(p, p.bytes[opcode]) * 1e6;
+}
+
+json counters_json(const OpcodeCounters& c) {
+    return json{{"commands", c.commands}, {"pixels", c.pixels},   {"bytes", c.bytes},
+                {"cycles", c.cycles},     {"clipped", c.clipped}, {"outside", c.outside}};
+}
+
+// {"FRAME_BEGIN": {...}, ..., "all": {...}} with modelled and bus time per opcode.
+json per_opcode_json(const CostProfile& p, const PerOpcode& ops) {
+    json out = json::object();
+    double all_bus_us = 0;
+    for (int i = 0; i < protocol::kOpcodeCount; ++i) {
+        json j = counters_json(ops[i]);
+        j["modelled_us"] = modelled_us(p, ops[i].cycles);
+        j["bus_us"] = bus_us(p, i, ops[i].commands);
+        all_bus_us += bus_us(p, i, ops[i].commands);
+        out[opcode_name(i)] = std::move(j);
+    }
+    const OpcodeCounters all = sum(ops);
+    json j = counters_json(all);
+    j["modelled_us"] = modelled_us(p, all.cycles);
+    j["bus_us"] = all_bus_us;
+    out["all"] = std::move(j);
+    return out;
+}
+
+json frame_json(const CostProfile& p, const FrameResult& f) {
+    return json{{"frame", f.frame},
+                {"width", f.width},
+                {"height", f.height},
+                {"first_command", f.first_command},
+                {"checksum", fmt::format("{:016x}", f.checksum)},
+                {"complete", f.complete},
+                {"opcodes", per_opcode_json(p, f.ops)},
+                {"bus_busy_us", f.bus_busy_us},
+                {"controller_busy_us", f.controller_busy_us},
+                {"end_us", f.end_us}};
+}
+
+// 1234567 -> "1,234,567"
+std::string grouped(uint64_t v) {
+    std::string digits = std::to_string(v);
+    std::string out;
+    const std::size_t n = digits.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i > 0 && (n - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
+void append_row(std::string& out, const char* name, const OpcodeCounters& c, double model_ms,
+                double bus_ms) {
+    out += fmt::format("{:<12} {:>12} {:>15} {:>13} {:>15} {:>13.3f} {:>11.3f} {:>9} {:>9}\n", name,
+                       grouped(c.commands), grouped(c.pixels), grouped(c.bytes), grouped(c.cycles),
+                       model_ms, bus_ms, grouped(c.clipped), grouped(c.outside));
+}
+
+}  // namespace
+
+nlohmann::json ControllerStats::to_json() const {
+    json frames_json = json::array();
+    std::size_t incomplete = 0;
+    for (const FrameResult& f : frames) {
+        frames_json.push_back(frame_json(profile, f));
+        if (!f.complete) ++incomplete;
+    }
+    return json{{"profile", profile.to_json()},
+                {"frames_closed", frames.size()},
+                {"frames_incomplete", incomplete},
+                {"totals", per_opcode_json(profile, totals)},
+                {"unframed", per_opcode_json(profile, unframed)},
+                {"bus_busy_us", bus_busy_us},
+                {"controller_busy_us", controller_busy_us},
+                {"frames_end_us", frames_end_us},
+                {"frames", std::move(frames_json)}};
+}
+
+std::string ControllerStats::summary() const {
+    std::string out = fmt::format("controller: {}\n", profile.to_string());
+    out += fmt::format("{:<12} {:>12} {:>15} {:>13} {:>15} {:>13} {:>11} {:>9} {:>9}\n", "opcode",
+                       "commands", "pixels", "bytes", "cycles", "modelled ms", "bus ms", "clipped",
+                       "outside");
+    double all_bus_ms = 0;
+    for (int i = 0; i < protocol::kOpcodeCount; ++i) {
+        const double bus_ms = bus_us(profile, i, totals[i].commands) / 1e3;
+        all_bus_ms += bus_ms;
+        append_row(out, opcode_name(i), totals[i], modelled_us(profile, totals[i].cycles) / 1e3,
+                   bus_ms);
+    }
+    const OpcodeCounters all = sum(totals);
+    append_row(out, "total", all, modelled_us(profile, all.cycles) / 1e3, all_bus_ms);
+
+    std::size_t incomplete = 0;
+    for (const FrameResult& f : frames)
+        incomplete += f.complete ? 0 : 1;
+    out += fmt::format(
+        "frames: {} closed ({} incomplete); frame time {:.3f} ms (sum of frame end times), "
+        "controller busy {:.3f} ms, bus busy {:.3f} ms\n",
+        frames.size(), incomplete, frames_end_us / 1e3, controller_busy_us / 1e3,
+        bus_busy_us / 1e3);
+    const OpcodeCounters loose = sum(unframed);
+    if (loose.commands > 0)
+        out +=
+            fmt::format("commands outside any frame: {} (drew nothing)\n", grouped(loose.commands));
+    return out;
+}
+
+}  // namespace fb89::controller

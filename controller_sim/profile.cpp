@@ -1,0 +1,231 @@
+// Loading and checking cost profiles (see profile.h and docs/COST_MODEL.md).
+//
+// Every field is required except "name" (defaults to the file stem), "description" and
+// "sources". Unknown keys are errors, so a misspelt field cannot silently fall back to a
+// default. Errors name the file and the field.
+#include "controller_sim/profile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+namespace fb89::controller {
+
+namespace {
+
+using nlohmann::json;
+
+// Cycle figures above this are rejected: they are typos, and they keep every per-command
+// cycle count of a 16384x16384 frame far inside 64 bits.
+constexpr uint64_t kMaxCycleFigure = 1'000'000;
+
+constexpr std::array<std::string_view, 15> kKnownKeys = {
+    "name",          "description", "f_cyc_hz", "bpp",          "C_cmd",      "C_setup",
+    "C_op",          "C_row",       "span_as",  "C_line_setup", "C_line_pix", "B_bus_bytes_per_s",
+    "t_handshake_s", "bytes",       "sources"};
+
+bool is_known_key(std::string_view key) {
+    return std::find(kKnownKeys.begin(), kKnownKeys.end(), key) != kKnownKeys.end();
+}
+
+// Reads one profile object, naming `origin` and the field in every error.
+class FieldReader {
+  public:
+    FieldReader(const json& j, std::string_view origin) : m_json(j), m_origin(origin) {}
+
+    [[noreturn]] void fail(std::string_view field, std::string_view what) const {
+        throw std::runtime_error(
+            fmt::format("profile {}: field \"{}\": {}", m_origin, field, what));
+    }
+
+    const json& require(std::string_view field) const {
+        auto it = m_json.find(field);
+        if (it == m_json.end()) fail(field, "missing");
+        return *it;
+    }
+
+    uint32_t count(const json& v, std::string_view field, uint64_t max) const {
+        if (!v.is_number_integer())
+            fail(field, fmt::format("expected an integer, got {}", v.dump()));
+        if (!v.is_number_unsigned() && v.get<int64_t>() < 0)
+            fail(field, fmt::format("must not be negative, got {}", v.dump()));
+        const uint64_t value = v.get<uint64_t>();
+        if (value > max) fail(field, fmt::format("{} is larger than the limit {}", value, max));
+        return static_cast<uint32_t>(value);
+    }
+    uint32_t cycles(std::string_view field) const {
+        return count(require(field), field, kMaxCycleFigure);
+    }
+
+    double number(std::string_view field, bool allow_zero) const {
+        const json& v = require(field);
+        if (!v.is_number()) fail(field, fmt::format("expected a number, got {}", v.dump()));
+        const double value = v.get<double>();
+        if (!std::isfinite(value)) fail(field, "must be finite");
+        if (value < 0) fail(field, fmt::format("must not be negative, got {}", v.dump()));
+        if (value == 0 && !allow_zero) fail(field, "must be greater than zero");
+        return value;
+    }
+
+    std::string text(std::string_view field, std::string fallback) const {
+        auto it = m_json.find(field);
+        if (it == m_json.end()) return fallback;
+        if (!it->is_string()) fail(field, fmt::format("expected a string, got {}", it->dump()));
+        return it->get<std::string>();
+    }
+
+  private:
+    const json& m_json;
+    std::string_view m_origin;
+};
+
+void read_bytes(const FieldReader& r, CostProfile& p) {
+    const json& bytes = r.require("bytes");
+    if (!bytes.is_object()) r.fail("bytes", "expected an object of opcode name -> bytes");
+    for (const auto& [key, value] : bytes.items()) {
+        bool known = false;
+        for (int i = 0; i < protocol::kOpcodeCount; ++i)
+            known = known || key == protocol::to_string(static_cast<protocol::Opcode>(i + 1));
+        if (!known) r.fail("bytes." + key, "not an opcode (FRAME_BEGIN, FILL_RECT, ...)");
+    }
+    for (int i = 0; i < protocol::kOpcodeCount; ++i) {
+        const std::string key = protocol::to_string(static_cast<protocol::Opcode>(i + 1));
+        auto it = bytes.find(key);
+        if (it == bytes.end()) r.fail("bytes." + key, "missing");
+        p.bytes[i] = r.count(*it, "bytes." + key, 1'000'000);
+    }
+}
+
+void read_sources(const FieldReader& r, const json& j, CostProfile& p) {
+    auto it = j.find("sources");
+    if (it == j.end()) return;
+    if (!it->is_object()) r.fail("sources", "expected an object of field name -> source");
+    for (const auto& [key, value] : it->items()) {
+        if (!is_known_key(key) && key.rfind("bytes.", 0) != 0)
+            r.fail("sources." + key, "names no profile field");
+        if (!value.is_string()) r.fail("sources." + key, "expected a string");
+        p.sources[key] = value.get<std::string>();
+    }
+}
+
+std::string read_text_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw std::runtime_error(fmt::format("profile {}: cannot open the file", path.string()));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw std::runtime_error(fmt::format("profile {}: read error", path.string()));
+    return text.str();
+}
+
+}  // namespace
+
+const char* to_string(SpanAs s) {
+    return s == SpanAs::Line ? "line" : "fill";
+}
+
+CostProfile parse_profile(std::string_view json_text, std::string_view origin,
+                          std::string_view default_name) {
+    json j;
+    try {
+        j = json::parse(json_text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const json::parse_error& e) {
+        throw std::runtime_error(fmt::format("profile {}: not valid JSON: {}", origin, e.what()));
+    }
+    if (!j.is_object())
+        throw std::runtime_error(fmt::format("profile {}: expected an object", origin));
+    const FieldReader r(j, origin);
+    for (const auto& [key, value] : j.items())
+        if (!is_known_key(key)) r.fail(key, "unknown field");
+
+    CostProfile p;
+    p.name = r.text("name", std::string(default_name));
+    if (p.name.empty()) r.fail("name", "missing");
+    p.description = r.text("description", "");
+    p.f_cyc_hz = r.number("f_cyc_hz", false);
+    p.bpp = r.count(r.require("bpp"), "bpp", 16);
+    if (p.bpp == 0 || 16 % p.bpp != 0 || (p.bpp & (p.bpp - 1)) != 0)
+        r.fail("bpp", fmt::format("must be 1, 2, 4, 8 or 16, got {}", p.bpp));
+    p.c_cmd = r.cycles("C_cmd");
+    p.c_setup = r.cycles("C_setup");
+    p.c_op = r.cycles("C_op");
+    p.c_row = r.cycles("C_row");
+    const std::string span_as = r.text("span_as", "");
+    if (span_as == "line")
+        p.span_as = SpanAs::Line;
+    else if (span_as == "fill")
+        p.span_as = SpanAs::Fill;
+    else
+        r.fail("span_as", span_as.empty() ? "missing" : "expected \"line\" or \"fill\"");
+    p.c_line_setup = r.cycles("C_line_setup");
+    p.c_line_pix = r.cycles("C_line_pix");
+    p.b_bus_bytes_per_s = r.number("B_bus_bytes_per_s", false);
+    p.t_handshake_s = r.number("t_handshake_s", true);
+    read_bytes(r, p);
+    read_sources(r, j, p);
+    return p;
+}
+
+nlohmann::json CostProfile::to_json() const {
+    json bytes_json = json::object();
+    for (int i = 0; i < protocol::kOpcodeCount; ++i)
+        bytes_json[protocol::to_string(static_cast<protocol::Opcode>(i + 1))] = bytes[i];
+    return json{{"name", name},
+                {"description", description},
+                {"f_cyc_hz", f_cyc_hz},
+                {"bpp", bpp},
+                {"C_cmd", c_cmd},
+                {"C_setup", c_setup},
+                {"C_op", c_op},
+                {"C_row", c_row},
+                {"span_as", controller::to_string(span_as)},
+                {"C_line_setup", c_line_setup},
+                {"C_line_pix", c_line_pix},
+                {"B_bus_bytes_per_s", b_bus_bytes_per_s},
+                {"t_handshake_s", t_handshake_s},
+                {"bytes", bytes_json},
+                {"sources", sources}};
+}
+
+std::string CostProfile::to_string() const {
+    return fmt::format(
+        "{} ({:g} MHz, {} bpp, C_cmd {}, C_setup {}, C_op {}, C_row {}, spans as {}, "
+        "C_line_setup {}, C_line_pix {}, bus {:g} MB/s + {:g} us/command)",
+        name, f_cyc_hz / 1e6, bpp, c_cmd, c_setup, c_op, c_row, controller::to_string(span_as),
+        c_line_setup, c_line_pix, b_bus_bytes_per_s / 1e6, t_handshake_s * 1e6);
+}
+
+std::vector<std::string> list_profiles() {
+    std::vector<std::string> names;
+    for (const BuiltinProfile& b : builtin_profiles())
+        names.emplace_back(b.name);
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+CostProfile load_profile_file(const std::filesystem::path& path) {
+    return parse_profile(read_text_file(path), path.string(), path.stem().string());
+}
+
+CostProfile load_profile(std::string_view name_or_path) {
+    const bool looks_like_path =
+        name_or_path.find('/') != std::string_view::npos || name_or_path.ends_with(".json");
+    if (!looks_like_path) {
+        for (const BuiltinProfile& b : builtin_profiles())
+            if (b.name == name_or_path)
+                return parse_profile(b.json, fmt::format("{}.json (built-in)", b.name), b.name);
+    }
+    const std::filesystem::path path{std::string(name_or_path)};
+    if (looks_like_path || std::filesystem::exists(path)) return load_profile_file(path);
+    throw std::runtime_error(fmt::format(
+        "unknown profile \"{}\": the built-in profiles are {}; or give the path of a JSON file",
+        name_or_path, fmt::join(list_profiles(), ", ")));
+}
+
+}  // namespace fb89::controller

@@ -1,0 +1,29 @@
+#include "host/raster/renderer.h"
+
+#include <stdexcept>
+
+#include "host/raster/zbuffer.h"
+
+namespace fb89::host {
+
+std::vector<std::string> renderer_names() { return {"zbuffer"}; }
+
+std::unique_ptr<Renderer> make_renderer(const RenderOptions& options) {
+    if (options.method == "zbuffer") return std::make_unique<ZBuffer>();
+    std::string known;
+    for (const auto& n : renderer_names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown method '" + options.method + "' (known: " + known + ")");
+}
+
+void render_frame(Renderer& renderer, const ScreenScene& scene, protocol::CommandSink& sink,
+                  HostStats& stats, uint32_t frame_number) {
+    Stopwatch clock;
+    sink.frame_begin({frame_number, static_cast<uint32_t>(scene.width),
+                      static_cast<uint32_t>(scene.height), scene.background});
+    sink.marker({std::string(renderer.name())});
+    renderer.render(scene, sink, stats);
+    sink.frame_end({});
+    stats.hidden_surface += clock.elapsed();
+}
+
+}  // namespace fb89::host

@@ -1,0 +1,37 @@
+// The interface every hidden-surface method implements. A renderer decides what is
+// visible and sends only what is not background to a CommandSink; FRAME_BEGIN and
+// FRAME_END are sent by render_frame(), which also times the method.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "host/scene/screen_scene.h"
+#include "host/stats.h"
+#include "protocol/command_sink.h"
+
+namespace fb89::host {
+
+class Renderer {
+public:
+    virtual ~Renderer() = default;
+    virtual std::string_view name() const = 0;
+    virtual void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) = 0;
+};
+
+struct RenderOptions {
+    std::string method = "zbuffer";
+};
+
+// Throws std::invalid_argument naming the known methods when `method` is unknown.
+std::unique_ptr<Renderer> make_renderer(const RenderOptions& options);
+std::vector<std::string> renderer_names();
+
+// One frame: FRAME_BEGIN (size, background), a MARKER naming the method, the method's
+// commands, FRAME_END. Adds the time taken to stats.hidden_surface.
+void render_frame(Renderer& renderer, const ScreenScene& scene, protocol::CommandSink& sink,
+                  HostStats& stats, uint32_t frame_number = 0);
+
+}  // namespace fb89::host

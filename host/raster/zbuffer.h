@@ -1,0 +1,63 @@
+// Z-buffer hidden-surface removal (Catmull 1974), the point-sampling half of the paper's
+// §3 hybrid.
+//
+// Ours differs from a textbook Z-buffer in two ways that keep every method's face-id
+// buffer identical: coverage comes from the shared edge-function rule one row at a time
+// (coverage.h), and depth is the shared plane evaluated directly at each pixel centre in
+// double precision with exact ties to the lower id (depth.h). Faces are drawn into a
+// buffer of face indices; the result leaves as DRAW_SPAN runs of equal colour per row.
+// It can render any subset of faces restricted to any window, which is how the
+// Warnock/Z-buffer hybrid hands it windows.
+//
+// Faces are drawn in ascending id order, so the shared rule's tie case (equal depth, lower
+// id wins) is met by keeping the first face at equal depth: the inner loop needs only a
+// strict less-than. The window is worked in bands of rows: each band's faces are
+// depth-tested and its spans sent while its rows are still in cache. The face buffer doubles as the depth buffer's "empty" mark, and each
+// row is zeroed again as its spans leave, so no frame pays for clearing either buffer.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "host/raster/renderer.h"
+
+namespace fb89::host {
+
+struct ZBufferCounts {
+    uint64_t depth_tests = 0;     // pixel centres a face covered and tested
+    uint64_t pixels_written = 0;  // tests that won
+    uint64_t spans = 0;           // DRAW_SPAN commands sent
+    uint64_t faces = 0;           // faces (pieces) that met the window
+};
+
+class ZBuffer final : public Renderer {
+public:
+    std::string_view name() const override { return "zbuffer"; }
+    void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
+
+    // Renders scene.faces[i] for each i in `faces` (ascending), only inside `window`, and
+    // sends that window's spans. Buffers outside the window are left alone.
+    void render_window(const ScreenScene& scene, std::span<const uint32_t> faces,
+                       const PixelRect& window, protocol::CommandSink& sink, ZBufferCounts& counts);
+
+    // Keeps the resolved face buffer of each render (scene.faces index + 1 per pixel,
+    // 0 = none) for inspection, at the cost of a clear per frame.
+    void keep_face_buffer(bool keep) { m_keep = keep; }
+    const std::vector<uint32_t>& face_buffer() const { return m_face; }
+
+private:
+    void prepare(const ScreenScene& scene, const PixelRect& window);
+    uint64_t emit(const ScreenScene& scene, const PixelRect& window, protocol::CommandSink& sink);
+    void draw_face(const ScreenScene& scene, uint32_t index, const PixelRect& window,
+                   ZBufferCounts& counts);
+
+    int m_width = 0, m_height = 0;
+    std::vector<double> m_depth;
+    std::vector<uint32_t> m_face;  // all zero between renders unless m_keep
+    bool m_keep = false;
+    static constexpr int kBandRows = 16;       // rows resolved together, kept in cache
+    std::vector<std::vector<uint32_t>> m_bands;  // faces meeting each band, ascending
+    std::vector<uint32_t> m_all;
+};
+
+}  // namespace fb89::host

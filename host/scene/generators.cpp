@@ -1,0 +1,186 @@
+#include "host/scene/generators.h"
+
+#include <cmath>
+#include <random>
+
+#include <glm/vec2.hpp>
+
+#include <fmt/format.h>
+
+#include "host/scene/scene_error.h"
+
+namespace fb89::host {
+
+namespace {
+
+// A pleasant, deterministic colour for face k of a mosaic.
+glm::dvec3 mosaic_color(uint32_t k) {
+    uint32_t h = k * 2654435761u;
+    double hue = static_cast<double>(h >> 8) / static_cast<double>(1u << 24);
+    double r = 0.5 + 0.4 * std::cos(6.2831853 * (hue + 0.0));
+    double g = 0.5 + 0.4 * std::cos(6.2831853 * (hue + 0.33));
+    double b = 0.5 + 0.4 * std::cos(6.2831853 * (hue + 0.67));
+    return {r, g, b};
+}
+
+GeneratedPolygons ideal_from_json(const JsonFields& o, const Scene& scene) {
+    if (scene.projection != Projection::Screen)
+        throw SceneError(o.where("generator") +
+                         ": the ideal scene is built in screen space; set "
+                         "\"camera\": {\"projection\": \"screen\"}");
+    int layers = o.integer_in("layers", 1, 64);
+    double gap = o.number_or("gap", 0.5, 0, 1e6);
+    double cell_w = 0, cell_h = 0;
+    if (o.has("faces_per_layer")) {
+        int fv = o.integer_in("faces_per_layer", 1, 1 << 22);
+        int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(fv))));
+        if (n * n != fv) o.fail("faces_per_layer", "a perfect square (n x n faces per layer)");
+        cell_w = static_cast<double>(scene.width) / n;
+        cell_h = static_cast<double>(scene.height) / n;
+    } else {
+        cell_w = cell_h = o.number_in("cell", 1, 1 << 16);
+    }
+    if (cell_w <= gap || cell_h <= gap)
+        o.fail("gap", fmt::format("less than the cell size ({} x {} px)", cell_w, cell_h));
+    return generate_ideal(scene.width, scene.height, layers, cell_w, cell_h, gap);
+}
+
+}  // namespace
+
+GeneratedPolygons generate_box(const glm::dvec3& lo, const glm::dvec3& hi) {
+    glm::dvec3 c[8];
+    for (int i = 0; i < 8; ++i)
+        c[i] = {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z};
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    GeneratedPolygons out;
+    for (const auto& q : quads) out.push_back({{c[q[0]], c[q[1]], c[q[2]], c[q[3]]}, {}});
+    return out;
+}
+
+GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u,
+                                const glm::dvec3& v, int nu, int nv, bool triangles) {
+    GeneratedPolygons out;
+    auto at = [&](int i, int j) {
+        return origin + u * (static_cast<double>(i) / nu) + v * (static_cast<double>(j) / nv);
+    };
+    for (int j = 0; j < nv; ++j) {
+        for (int i = 0; i < nu; ++i) {
+            glm::dvec3 a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+            if (triangles) {
+                out.push_back({{a, b, c}, {}});
+                out.push_back({{a, c, d}, {}});
+            } else {
+                out.push_back({{a, b, c, d}, {}});
+            }
+        }
+    }
+    return out;
+}
+
+GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_w,
+                                 double cell_h, double gap) {
+    int cols = static_cast<int>(std::floor(width / cell_w + 1e-9));
+    int rows = static_cast<int>(std::floor(height / cell_h + 1e-9));
+    GeneratedPolygons out;
+    out.reserve(static_cast<size_t>(layers) * cols * rows);
+    uint32_t k = 0;
+    for (int layer = 0; layer < layers; ++layer) {
+        double z = static_cast<double>(layer + 1) / (layers + 1);
+        for (int r = 0; r < rows; ++r) {
+            for (int c = 0; c < cols; ++c, ++k) {
+                double x0 = c * cell_w + gap, x1 = (c + 1) * cell_w;
+                double y0 = r * cell_h + gap, y1 = (r + 1) * cell_h;
+                out.push_back({{{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}},
+                               mosaic_color(k) * (1.0 - 0.5 * layer / layers)});
+            }
+        }
+    }
+    return out;
+}
+
+GeneratedPolygons generate_random_triangles(int width, int height, int count, double area,
+                                            uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    auto uniform = [&rng](double lo, double hi) {
+        return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
+    };
+    GeneratedPolygons out;
+    out.reserve(static_cast<size_t>(count));
+    for (int i = 0; i < count; ++i) {
+        double cx = uniform(0, width), cy = uniform(0, height);
+        // three directions around the centre, then scaled to the wanted area
+        double a0 = uniform(0, 2.0944), a1 = a0 + uniform(1.5, 2.6), a2 = a1 + uniform(1.5, 2.6);
+        glm::dvec2 d[3] = {{std::cos(a0), std::sin(a0)}, {std::cos(a1), std::sin(a1)},
+                           {std::cos(a2), std::sin(a2)}};
+        double unit = 0.5 * std::abs((d[1].x - d[0].x) * (d[2].y - d[0].y) -
+                                     (d[2].x - d[0].x) * (d[1].y - d[0].y));
+        double r = std::sqrt(area / std::max(unit, 1e-3));
+        GeneratedPolygon t;
+        for (const auto& v : d)
+            t.vertices.emplace_back(std::round((cx + r * v.x) * 256) / 256,
+                                    std::round((cy + r * v.y) * 256) / 256, uniform(0, 1));
+        t.color = mosaic_color(static_cast<uint32_t>(i));
+        out.push_back(std::move(t));
+    }
+    return out;
+}
+
+GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
+    std::string kind = o.string("generator");
+    if (kind == "box") {
+        o.only_keys({"generator", "min", "max", "material", "transform"});
+        glm::dvec3 lo = o.vec3("min"), hi = o.vec3("max");
+        if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) o.fail("max", "every coordinate > min");
+        return generate_box(lo, hi);
+    }
+    if (kind == "quad") {
+        o.only_keys({"generator", "origin", "u", "v", "divisions", "triangles", "checker",
+                     "material", "transform"});
+        int nu = 1, nv = 1;
+        if (o.has("divisions")) {
+            JsonFields d = o.child("divisions");
+            if (d.size() != 2) o.fail("divisions", "[nu, nv]");
+            for (size_t i = 0; i < 2; ++i) {
+                const auto& n = d.node()[i];
+                if (!n.is_number_integer() || n.get<long long>() < 1 || n.get<long long>() > 4096)
+                    o.fail("divisions", "[nu, nv], integers in [1, 4096]");
+            }
+            nu = d.node()[0].get<int>();
+            nv = d.node()[1].get<int>();
+        }
+        bool triangles = o.has("triangles") && o.node().at("triangles").is_boolean() &&
+                         o.node().at("triangles").get<bool>();
+        GeneratedPolygons quad =
+            generate_quad(o.vec3("origin"), o.vec3("u"), o.vec3("v"), nu, nv, triangles);
+        if (o.has("checker")) {  // two colours alternating cell by cell
+            JsonFields checker = o.child("checker");
+            if (checker.size() != 2) o.fail("checker", "two colours [[r, g, b], [r, g, b]]");
+            glm::dvec3 colors[2] = {checker.element(0).vec3_of_node(), checker.element(1).vec3_of_node()};
+            size_t per_cell = triangles ? 2 : 1;
+            for (size_t k = 0; k < quad.size(); ++k) {
+                size_t cell = k / per_cell;
+                quad[k].color = colors[(cell % nu + cell / nu) % 2];
+            }
+        }
+        return quad;
+    }
+    if (kind == "ideal") {
+        o.only_keys({"generator", "layers", "faces_per_layer", "cell", "gap", "material"});
+        return ideal_from_json(o, scene);
+    }
+    if (kind == "random_triangles") {
+        o.only_keys({"generator", "count", "area", "seed", "material"});
+        if (scene.projection != Projection::Screen)
+            throw SceneError(o.where("generator") +
+                             ": random triangles are built in screen space; set "
+                             "\"camera\": {\"projection\": \"screen\"}");
+        return generate_random_triangles(scene.width, scene.height,
+                                         o.integer_in("count", 1, 10'000'000),
+                                         o.number_in("area", 0.01, 1e8),
+                                         static_cast<uint64_t>(o.integer_or("seed", 1, 0, 1 << 30)));
+    }
+    o.fail("generator", "one of \"box\", \"quad\", \"ideal\", \"random_triangles\"");
+}
+
+}  // namespace fb89::host

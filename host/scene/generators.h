@@ -1,0 +1,46 @@
+// Procedural scene objects: `box`, `quad` and the paper's ideal scene (§2, Fig. 2.3).
+// Later methods add their own (lathe, shell, rooms) beside these.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "host/scene/json_fields.h"
+#include "host/scene/scene.h"
+
+namespace fb89::host {
+
+struct GeneratedPolygon {
+    std::vector<glm::dvec3> vertices;
+    std::optional<glm::dvec3> color;  // overrides the object's material colour when set
+};
+using GeneratedPolygons = std::vector<GeneratedPolygon>;
+
+// Axis-aligned box between two corners: 6 quads.
+GeneratedPolygons generate_box(const glm::dvec3& lo, const glm::dvec3& hi);
+
+// Parallelogram origin, origin+u, origin+u+v, origin+v split into nu x nv cells, each one
+// quad or (with `triangles`) two triangles. Scene files may add "checker": two colours
+// alternating cell by cell.
+GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u,
+                                const glm::dvec3& v, int nu, int nv, bool triangles);
+
+// The ideal scene, in screen space: `layers` identical layers of square faces on a grid of
+// cell x cell pixel cells; each face is flush with the right and bottom borders of its cell
+// and leaves a `gap`-pixel gap on its left and top (the paper's ½ pixel). Layer k lies at
+// depth (k + 1) / (layers + 1). Faces are numbered layer by layer, row by row.
+GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_w,
+                                 double cell_h, double gap);
+
+// `count` random triangles in screen space, each of about `area` pixels, centres uniform
+// over the screen, vertex depths uniform in [0, 1] (so they slope and cut through each
+// other). The same seed gives the same triangles.
+GeneratedPolygons generate_random_triangles(int width, int height, int count, double area,
+                                            uint64_t seed);
+
+// Reads an object's generator fields and builds it. Errors name the field.
+GeneratedPolygons generate_from_json(const JsonFields& object, const Scene& scene);
+
+}  // namespace fb89::host

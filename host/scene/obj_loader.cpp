@@ -1,0 +1,57 @@
+#include "host/scene/obj_loader.h"
+
+#include <fstream>
+
+#include <fmt/format.h>
+#include <tiny_obj_loader.h>
+
+#include "host/scene/scene_error.h"
+
+namespace fb89::host {
+
+GeneratedPolygons load_obj(const std::filesystem::path& file) {
+    if (!std::ifstream(file).good())
+        throw SceneError(fmt::format("{}: cannot open the OBJ file", file.string()));
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = false;  // faces stay whole convex polygons
+    config.vertex_color = false;
+    config.mtl_search_path = file.parent_path().string();
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(file.string(), config)) {
+        std::string why = reader.Error();
+        while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+        throw SceneError(fmt::format("{}: {}", file.string(), why.empty() ? "unreadable" : why));
+    }
+    const auto& attrib = reader.GetAttrib();
+    const auto& materials = reader.GetMaterials();
+    const size_t vertex_count = attrib.vertices.size() / 3;
+
+    GeneratedPolygons out;
+    for (const auto& shape : reader.GetShapes()) {
+        size_t offset = 0;
+        const auto& mesh = shape.mesh;
+        for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+            size_t n = mesh.num_face_vertices[f];
+            GeneratedPolygon poly;
+            for (size_t k = 0; k < n; ++k) {
+                int vi = mesh.indices[offset + k].vertex_index;
+                if (vi < 0 || static_cast<size_t>(vi) >= vertex_count)
+                    throw SceneError(fmt::format("{}: shape '{}' face {} refers to vertex {} of {}",
+                                                 file.string(), shape.name, f, vi + 1,
+                                                 vertex_count));
+                const tinyobj::real_t* p = &attrib.vertices[3 * static_cast<size_t>(vi)];
+                poly.vertices.emplace_back(p[0], p[1], p[2]);
+            }
+            int mat = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+            if (mat >= 0 && static_cast<size_t>(mat) < materials.size()) {
+                const auto& kd = materials[static_cast<size_t>(mat)].diffuse;
+                poly.color = glm::dvec3(kd[0], kd[1], kd[2]);
+            }
+            out.push_back(std::move(poly));
+            offset += n;
+        }
+    }
+    return out;
+}
+
+}  // namespace fb89::host

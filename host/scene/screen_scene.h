@@ -1,0 +1,69 @@
+// Faces in screen space, ready for every raster method (DESIGN.md "Screen space, coverage
+// and depth").
+//
+// x right, y down, row 0 at the top; pixel (x, y) is sampled at (x + 0.5, y + 0.5).
+// Vertices are snapped to 1/256 pixel and kept as integers; every face is a convex polygon
+// wound so that its interior is on the left of each edge in these coordinates' own sense
+// (see coverage.h). Depth is a plane z = a*x + b*y + c computed before snapping.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "protocol/command.h"
+
+namespace fb89::host {
+
+inline constexpr int kSubpixelBits = 8;  // vertices on the 1/256-pixel grid
+inline constexpr int64_t kSubpixel = int64_t{1} << kSubpixelBits;
+
+struct SnappedPoint {
+    int64_t x = 0, y = 0;  // in 1/256 pixel
+};
+
+// The edge function of one polygon edge, evaluated at pixel centres:
+// E(x, y) = nx * 256 * x + ny * 256 * y + k0 for pixel (x, y); the centre is covered when
+// E >= bias, where bias is 0 for an edge the top-left rule gives the ties to, else 1.
+struct EdgeFunction {
+    int64_t nx = 0, ny = 0;
+    int64_t k0 = 0;
+    int64_t bias = 0;
+};
+
+struct DepthPlane {
+    double a = 0, b = 0, c = 0;  // z = a*x + b*y + c, x and y in pixels
+};
+
+// Pixel rectangle [x0, x1) x [y0, y1).
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    long long area() const { return empty() ? 0 : (long long)width() * height(); }
+};
+
+struct ScreenFace {
+    uint32_t id = 0;
+    protocol::Rgb color;
+    DepthPlane depth;
+    uint32_t first_point = 0;  // into ScreenScene::points and ScreenScene::edges
+    uint32_t point_count = 0;  // also the edge count
+    PixelRect bounds;  // pixels whose centres the face may cover, clamped to the screen
+};
+
+struct ScreenScene {
+    int width = 0;
+    int height = 0;
+    protocol::Rgb background;
+    std::vector<ScreenFace> faces;  // in id order (pieces of one face adjacent)
+    std::vector<SnappedPoint> points;
+    std::vector<EdgeFunction> edges;  // edge i runs from points[i] to the face's next point
+    uint32_t face_count = 0;  // distinct ids
+
+    PixelRect screen() const { return {0, 0, width, height}; }
+    const SnappedPoint* points_of(const ScreenFace& f) const { return &points[f.first_point]; }
+    const EdgeFunction* edges_of(const ScreenFace& f) const { return &edges[f.first_point]; }
+};
+
+}  // namespace fb89::host

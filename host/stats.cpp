@@ -1,0 +1,84 @@
+#include "host/stats.h"
+
+#include <time.h>
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace fb89::host {
+
+namespace {
+double process_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
+nlohmann::json timing_json(const Timing& t) {
+    return {{"wall_ms", t.wall_ms}, {"cpu_ms", t.cpu_ms}};
+}
+}  // namespace
+
+void Stopwatch::restart() {
+    m_wall = std::chrono::steady_clock::now();
+    m_cpu_s = process_cpu_seconds();
+}
+
+Timing Stopwatch::elapsed() const {
+    std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - m_wall;
+    return {wall.count(), (process_cpu_seconds() - m_cpu_s) * 1e3};
+}
+
+void Counters::add(std::string_view name, uint64_t value) {
+    auto it = std::find_if(m_items.begin(), m_items.end(),
+                           [&](const auto& item) { return item.first == name; });
+    if (it == m_items.end())
+        m_items.emplace_back(std::string(name), value);
+    else
+        it->second += value;
+}
+
+void Counters::set(std::string_view name, uint64_t value) {
+    auto it = std::find_if(m_items.begin(), m_items.end(),
+                           [&](const auto& item) { return item.first == name; });
+    if (it == m_items.end())
+        m_items.emplace_back(std::string(name), value);
+    else
+        it->second = value;
+}
+
+uint64_t Counters::get(std::string_view name) const {
+    for (const auto& [key, value] : m_items)
+        if (key == name) return value;
+    return 0;
+}
+
+nlohmann::json HostStats::to_json() const {
+    nlohmann::json counts = nlohmann::json::object();
+    for (const auto& [name, value] : counters.items()) counts[name] = value;
+    return {{"times",
+             {{"load", timing_json(load)},
+              {"setup", timing_json(setup)},
+              {"hidden_surface", timing_json(hidden_surface)},
+              {"end_to_end", timing_json(end_to_end)}}},
+            {"counters", counts}};
+}
+
+std::string HostStats::summary() const {
+    std::string out = "host (wall / CPU):\n";
+    auto line = [&](const char* name, const Timing& t) {
+        out += fmt::format("  {:<16} {:>10.3f} ms {:>10.3f} ms\n", name, t.wall_ms, t.cpu_ms);
+    };
+    line("load", load);
+    line("set-up", setup);
+    line("hidden-surface", hidden_surface);
+    line("end to end", end_to_end);
+    out += "host counted operations:\n";
+    for (const auto& [name, value] : counters.items())
+        out += fmt::format("  {:<24} {:>14}\n", name, value);
+    return out;
+}
+
+}  // namespace fb89::host

@@ -1,0 +1,65 @@
+// Host-side measurements: times of each stage (wall and CPU, kept apart) and counted
+// operations. One registry feeds both the --stats JSON and the human summary.
+//
+// Counters are machine-independent (window samples, depth tests, spans...). Kernels keep
+// their counts in locals inside hot loops and publish them here once per call.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace fb89::host {
+
+struct Timing {
+    double wall_ms = 0;
+    double cpu_ms = 0;
+    Timing& operator+=(const Timing& o) {
+        wall_ms += o.wall_ms;
+        cpu_ms += o.cpu_ms;
+        return *this;
+    }
+};
+
+// Measures one interval of wall-clock and process CPU time.
+class Stopwatch {
+public:
+    Stopwatch() { restart(); }
+    void restart();
+    Timing elapsed() const;
+
+private:
+    std::chrono::steady_clock::time_point m_wall;
+    double m_cpu_s = 0;
+};
+
+// Named counters in first-use order.
+class Counters {
+public:
+    void add(std::string_view name, uint64_t value);
+    void set(std::string_view name, uint64_t value);
+    uint64_t get(std::string_view name) const;  // 0 when never counted
+    const std::vector<std::pair<std::string, uint64_t>>& items() const { return m_items; }
+
+private:
+    std::vector<std::pair<std::string, uint64_t>> m_items;
+};
+
+// DESIGN.md "Measuring": load, set-up, hidden-surface and end-to-end host times.
+struct HostStats {
+    Timing load;            // reading and building the scene
+    Timing setup;           // projection, clipping, snapping
+    Timing hidden_surface;  // the method's work, including handing commands to the buffer
+    Timing end_to_end;      // from reading the scene to the last command delivered
+    Counters counters;
+
+    nlohmann::json to_json() const;
+    std::string summary() const;  // human-readable, several lines
+};
+
+}  // namespace fb89::host

@@ -1,0 +1,252 @@
+// Wire encoding of the fb89 command stream, version 1: byte-exact little-endian helpers,
+// record encoders and decoders, and the field checks shared by the writer and the reader.
+// The layout implemented here is the one docs/PROTOCOL.md specifies, field for field.
+#include "protocol/stream_format.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace fb89::protocol {
+
+std::optional<std::size_t> payload_size(uint8_t opcode) {
+    switch (opcode) {
+        case static_cast<uint8_t>(Opcode::FrameBegin):
+            return 15;  // u32 frame, w, h; RGB
+        case static_cast<uint8_t>(Opcode::FillRect):
+            return 19;  // i32 x, y; u32 w, h; RGB
+        case static_cast<uint8_t>(Opcode::DrawSpan):
+            return 15;  // i32 y, x0, x1; RGB
+        case static_cast<uint8_t>(Opcode::Marker):
+            return 2;  // u16 length; text follows
+        case static_cast<uint8_t>(Opcode::FrameEnd):
+            return 0;
+        default:
+            return std::nullopt;
+    }
+}
+
+// --- little-endian helpers -----------------------------------------------------------
+
+void put_u8(std::vector<uint8_t>& out, uint8_t v) {
+    out.push_back(v);
+}
+
+void put_u16(std::vector<uint8_t>& out, uint16_t v) {
+    out.push_back(static_cast<uint8_t>(v));
+    out.push_back(static_cast<uint8_t>(v >> 8));
+}
+
+void put_u32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int i = 0; i < 4; ++i)
+        out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+}
+
+void put_u64(std::vector<uint8_t>& out, uint64_t v) {
+    for (int i = 0; i < 8; ++i)
+        out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+}
+
+void put_i32(std::vector<uint8_t>& out, int32_t v) {
+    put_u32(out, static_cast<uint32_t>(v));
+}
+
+uint16_t get_u16(const uint8_t* p) {
+    return static_cast<uint16_t>(p[0] | (p[1] << 8));
+}
+
+uint32_t get_u32(const uint8_t* p) {
+    return static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) |
+           (static_cast<uint32_t>(p[2]) << 16) | (static_cast<uint32_t>(p[3]) << 24);
+}
+
+uint64_t get_u64(const uint8_t* p) {
+    return static_cast<uint64_t>(get_u32(p)) | (static_cast<uint64_t>(get_u32(p + 4)) << 32);
+}
+
+int32_t get_i32(const uint8_t* p) {
+    return static_cast<int32_t>(get_u32(p));
+}
+
+// --- encoders ------------------------------------------------------------------------
+
+namespace {
+
+void put_rgb(std::vector<uint8_t>& out, Rgb c) {
+    out.push_back(c.r);
+    out.push_back(c.g);
+    out.push_back(c.b);
+}
+
+Rgb get_rgb(const uint8_t* p) {
+    return Rgb{p[0], p[1], p[2]};
+}
+
+struct EncodePayload {
+    std::vector<uint8_t>& out;
+    void operator()(const FrameBegin& c) const {
+        put_u32(out, c.frame);
+        put_u32(out, c.width);
+        put_u32(out, c.height);
+        put_rgb(out, c.background);
+    }
+    void operator()(const FillRect& c) const {
+        put_i32(out, c.x);
+        put_i32(out, c.y);
+        put_u32(out, c.w);
+        put_u32(out, c.h);
+        put_rgb(out, c.color);
+    }
+    void operator()(const DrawSpan& c) const {
+        put_i32(out, c.y);
+        put_i32(out, c.x0);
+        put_i32(out, c.x1);
+        put_rgb(out, c.color);
+    }
+    void operator()(const Marker& c) const {
+        put_u16(out, static_cast<uint16_t>(c.text.size()));
+        out.insert(out.end(), c.text.begin(), c.text.end());
+    }
+    void operator()(const FrameEnd&) const {}
+};
+
+}  // namespace
+
+void encode_header(std::vector<uint8_t>& out, const Properties& properties) {
+    if (auto problem = check_properties(properties)) throw std::invalid_argument(*problem);
+    out.insert(out.end(), kMagic.begin(), kMagic.end());
+    put_u16(out, kFormatVersion);
+    put_u16(out, 0);  // flags: reserved, zero in version 1
+    put_u32(out, static_cast<uint32_t>(properties.size()));
+    for (const auto& [key, value] : properties) {  // std::map: ascending key order
+        put_u16(out, static_cast<uint16_t>(key.size()));
+        out.insert(out.end(), key.begin(), key.end());
+        put_u32(out, static_cast<uint32_t>(value.size()));
+        out.insert(out.end(), value.begin(), value.end());
+    }
+}
+
+void encode_command(std::vector<uint8_t>& out, const Command& c) {
+    if (auto problem = check_command(c)) {
+        throw std::invalid_argument(
+            fmt::format("cannot encode {}: {}", to_string(opcode_of(c)), *problem));
+    }
+    put_u8(out, static_cast<uint8_t>(opcode_of(c)));
+    std::visit(EncodePayload{out}, c);
+}
+
+void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Footer& footer) {
+    put_u8(out, kIndexOpcode);
+    put_u32(out, static_cast<uint32_t>(index.size()));
+    for (const FrameIndexEntry& e : index) {
+        put_u32(out, e.frame);
+        put_u64(out, e.command);
+        put_u64(out, e.offset);
+    }
+    put_u64(out, footer.index_offset);
+    put_u64(out, footer.command_count);
+    out.insert(out.end(), kFooterMagic.begin(), kFooterMagic.end());
+}
+
+// --- decoders ------------------------------------------------------------------------
+
+Command decode_fixed_payload(Opcode op, const uint8_t* p) {
+    switch (op) {
+        case Opcode::FrameBegin:
+            return FrameBegin{get_u32(p), get_u32(p + 4), get_u32(p + 8), get_rgb(p + 12)};
+        case Opcode::FillRect:
+            return FillRect{get_i32(p), get_i32(p + 4), get_u32(p + 8), get_u32(p + 12),
+                            get_rgb(p + 16)};
+        case Opcode::DrawSpan:
+            return DrawSpan{get_i32(p), get_i32(p + 4), get_i32(p + 8), get_rgb(p + 12)};
+        case Opcode::FrameEnd:
+            return FrameEnd{};
+        case Opcode::Marker:
+            break;
+    }
+    throw std::logic_error("decode_fixed_payload: MARKER has no fixed payload");
+}
+
+FrameIndexEntry decode_index_entry(const uint8_t* p) {
+    return FrameIndexEntry{get_u32(p), get_u64(p + 4), get_u64(p + 12)};
+}
+
+std::optional<Footer> decode_footer(const uint8_t* p) {
+    if (!std::equal(kFooterMagic.begin(), kFooterMagic.end(), p + 16)) return std::nullopt;
+    return Footer{get_u64(p), get_u64(p + 8)};
+}
+
+// --- validation ----------------------------------------------------------------------
+
+namespace {
+
+std::optional<std::string> check_dimension(const char* name, uint32_t v) {
+    if (v == 0 || v > kMaxFrameDimension) {
+        return fmt::format("{} {} is outside 1..{}", name, v, kMaxFrameDimension);
+    }
+    return std::nullopt;
+}
+
+struct CheckCommand {
+    std::optional<std::string> operator()(const FrameBegin& c) const {
+        if (auto problem = check_dimension("width", c.width)) return problem;
+        return check_dimension("height", c.height);
+    }
+    std::optional<std::string> operator()(const FillRect&) const { return std::nullopt; }
+    std::optional<std::string> operator()(const DrawSpan& c) const {
+        if (c.x1 < c.x0) return fmt::format("x1 {} < x0 {}", c.x1, c.x0);
+        return std::nullopt;
+    }
+    std::optional<std::string> operator()(const Marker& c) const {
+        if (c.text.size() > kMaxMarkerLength) {
+            return fmt::format("text of {} bytes is longer than {}", c.text.size(),
+                               kMaxMarkerLength);
+        }
+        return std::nullopt;
+    }
+    std::optional<std::string> operator()(const FrameEnd&) const { return std::nullopt; }
+};
+
+}  // namespace
+
+std::optional<std::string> check_command(const Command& c) {
+    return std::visit(CheckCommand{}, c);
+}
+
+std::optional<std::string> check_properties(const Properties& properties) {
+    if (properties.size() > kMaxPropertyCount) {
+        return fmt::format("{} properties, more than {}", properties.size(), kMaxPropertyCount);
+    }
+    for (const auto& [key, value] : properties) {
+        if (key.empty() || key.size() > kMaxPropertyKeyLength) {
+            return fmt::format("property key \"{}\" of {} bytes is outside 1..{}", key, key.size(),
+                               kMaxPropertyKeyLength);
+        }
+        if (value.size() > kMaxPropertyValueLength) {
+            return fmt::format("property \"{}\" has a value of {} bytes, more than {}", key,
+                               value.size(), kMaxPropertyValueLength);
+        }
+    }
+    return std::nullopt;
+}
+
+std::optional<std::string> check_index(const FrameIndex& index, uint64_t first_record,
+                                       const Footer& footer) {
+    for (std::size_t i = 0; i < index.size(); ++i) {
+        const FrameIndexEntry& e = index[i];
+        if (e.offset < first_record || e.offset >= footer.index_offset) {
+            return fmt::format("entry {} points at byte {}, outside the commands {}..{}", i,
+                               e.offset, first_record, footer.index_offset);
+        }
+        if (e.command >= footer.command_count) {
+            return fmt::format("entry {} names command {} of {}", i, e.command,
+                               footer.command_count);
+        }
+        if (i > 0 && (e.offset <= index[i - 1].offset || e.command <= index[i - 1].command)) {
+            return fmt::format("entry {} is not after entry {}", i, i - 1);
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace fb89::protocol

@@ -1,0 +1,119 @@
+// Wire encoding of the fb89 command stream, version 1 (normative spec: docs/PROTOCOL.md).
+//
+// Little-endian throughout. A stream is a header (magic "FB89", u16 version, u16 flags,
+// u32 property count, properties), then one record per command (u8 opcode + a fixed
+// payload; MARKER carries a u16 length and its text), then optionally a trailing frame
+// index record (opcode 0xFE) ending in a fixed-size footer. This file holds the constants,
+// the byte-exact helpers and the per-record encoders/decoders that StreamWriter and
+// StreamReader share; it does no I/O.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "protocol/command.h"
+
+namespace fb89::protocol {
+
+// --- header --------------------------------------------------------------------------
+inline constexpr std::array<uint8_t, 4> kMagic = {'F', 'B', '8', '9'};
+inline constexpr std::size_t kFixedHeaderSize = 12;  // magic, version, flags, property count
+inline constexpr uint32_t kMaxPropertyCount = 1024;
+inline constexpr std::size_t kMaxPropertyKeyLength = 256;      // bytes, at least 1
+inline constexpr std::size_t kMaxPropertyValueLength = 65536;  // bytes, may be 0
+
+// Header properties, written in ascending key order; keys are unique.
+using Properties = std::map<std::string, std::string>;
+
+// Conventional property keys (writers may add others).
+inline constexpr const char* kPropertyTool = "tool";  // e.g. "fb89 0.1.0"
+inline constexpr const char* kPropertyScene = "scene";
+inline constexpr const char* kPropertyMethod = "method";
+inline constexpr const char* kPropertyThreshold = "threshold";
+inline constexpr const char* kPropertyResolution = "resolution";  // e.g. "1024x780"
+
+// --- records -------------------------------------------------------------------------
+inline constexpr uint8_t kIndexOpcode = 0xFE;  // trailing frame index; not a command
+inline constexpr uint32_t kMaxFrameDimension = 16384;
+
+// Bytes after the opcode byte of each command record. For MARKER this is the u16 length
+// prefix only; its text follows.
+std::optional<std::size_t> payload_size(uint8_t opcode);  // nullopt: not a command opcode
+inline constexpr std::size_t kFrameBeginRecordSize = 16;  // opcode + 15-byte payload
+inline constexpr std::size_t kMaxRecordSize = 1 + 2 + kMaxMarkerLength;
+
+// --- trailing index ------------------------------------------------------------------
+struct FrameIndexEntry {
+    uint32_t frame = 0;    // frame number of the FRAME_BEGIN
+    uint64_t command = 0;  // command number of the FRAME_BEGIN
+    uint64_t offset = 0;   // byte offset of the FRAME_BEGIN record's opcode byte
+    friend bool operator==(const FrameIndexEntry&, const FrameIndexEntry&) = default;
+};
+using FrameIndex = std::vector<FrameIndexEntry>;
+
+inline constexpr std::size_t kIndexEntrySize = 20;  // u32 frame, u64 command, u64 offset
+inline constexpr std::size_t kIndexPrefixSize = 5;  // opcode 0xFE, u32 entry count
+inline constexpr std::size_t kFooterSize = 20;      // u64 index offset, u64 commands, magic
+inline constexpr std::array<uint8_t, 4> kFooterMagic = {'F', 'B', 'I', 'X'};
+
+struct Footer {
+    uint64_t index_offset = 0;   // byte offset of the 0xFE opcode byte
+    uint64_t command_count = 0;  // commands in the stream
+};
+
+// --- errors --------------------------------------------------------------------------
+// A truncated or corrupt stream. The message names the stream, the byte offset and the
+// command number; offset() and command() give them to programs. command() is the number
+// of commands delivered before the error.
+class StreamError : public std::runtime_error {
+  public:
+    StreamError(const std::string& message, uint64_t offset, uint64_t command)
+        : std::runtime_error(message), m_offset(offset), m_command(command) {}
+    uint64_t offset() const { return m_offset; }
+    uint64_t command() const { return m_command; }
+
+  private:
+    uint64_t m_offset;
+    uint64_t m_command;
+};
+
+// --- little-endian helpers -----------------------------------------------------------
+void put_u8(std::vector<uint8_t>& out, uint8_t v);
+void put_u16(std::vector<uint8_t>& out, uint16_t v);
+void put_u32(std::vector<uint8_t>& out, uint32_t v);
+void put_u64(std::vector<uint8_t>& out, uint64_t v);
+void put_i32(std::vector<uint8_t>& out, int32_t v);  // two's complement
+uint16_t get_u16(const uint8_t* p);
+uint32_t get_u32(const uint8_t* p);
+uint64_t get_u64(const uint8_t* p);
+int32_t get_i32(const uint8_t* p);
+
+// --- encoders (append to out) --------------------------------------------------------
+// Throw std::invalid_argument for what version 1 cannot carry (see check_*).
+void encode_header(std::vector<uint8_t>& out, const Properties& properties);
+void encode_command(std::vector<uint8_t>& out, const Command& c);
+void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Footer& footer);
+
+// --- decoders ------------------------------------------------------------------------
+// Decodes a fixed-size command record's payload (not MARKER); p points after the opcode
+// and holds payload_size(opcode) bytes.
+Command decode_fixed_payload(Opcode op, const uint8_t* p);
+FrameIndexEntry decode_index_entry(const uint8_t* p);
+// nullopt when the footer magic is absent.
+std::optional<Footer> decode_footer(const uint8_t* p);
+
+// --- validation ----------------------------------------------------------------------
+// What is wrong with a command in version 1 ("x1 -3 < x0 0"), or nullopt if it is valid.
+std::optional<std::string> check_command(const Command& c);
+std::optional<std::string> check_properties(const Properties& properties);
+// Whether entries are in stream order and point inside [first_record, index_offset) at
+// command numbers below command_count.
+std::optional<std::string> check_index(const FrameIndex& index, uint64_t first_record,
+                                       const Footer& footer);
+
+}  // namespace fb89::protocol

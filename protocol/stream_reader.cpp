@@ -1,0 +1,380 @@
+// StreamReader: incremental decoder of fb89 streams (docs/PROTOCOL.md). Files and stdin
+// are read with POSIX read() into a bounded buffer that grows only to the largest record
+// or header property version 1 allows, so a corrupt length field can never make it
+// allocate more; a pipe delivers commands as soon as they arrive.
+#include "protocol/stream_reader.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+namespace fb89::protocol {
+
+namespace {
+constexpr std::size_t kReadChunk = 64 * 1024;
+}  // namespace
+
+StreamReader::StreamReader(const std::string& path) : m_name(path) {
+    if (path == "-") {
+        m_name = "<stdin>";
+        m_fd = STDIN_FILENO;  // never seekable, even when redirected from a file
+    } else {
+        m_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (m_fd < 0) {
+            throw std::runtime_error(
+                fmt::format("cannot open stream {}: {}", path, std::strerror(errno)));
+        }
+        m_owns_fd = true;
+        struct stat st {};
+        if (::fstat(m_fd, &st) == 0 && S_ISREG(st.st_mode)) {
+            m_size = static_cast<uint64_t>(st.st_size);
+        }
+    }
+    m_buf.resize(kReadChunk);
+    try {
+        read_header();
+    } catch (...) {
+        if (m_owns_fd) ::close(m_fd);
+        throw;
+    }
+}
+
+StreamReader::StreamReader(std::vector<uint8_t> bytes, std::string name)
+    : m_name(std::move(name)), m_size(bytes.size()), m_buf(std::move(bytes)) {
+    m_end = m_buf.size();
+    m_eof = true;
+    read_header();
+}
+
+StreamReader::~StreamReader() {
+    if (m_owns_fd) ::close(m_fd);
+}
+
+// --- byte source ---------------------------------------------------------------------
+
+// Makes n unread bytes available at m_buf[m_pos]; false if the stream ends first.
+bool StreamReader::fill(std::size_t n) {
+    if (m_end - m_pos >= n) return true;
+    if (m_fd < 0 || m_eof) return false;
+    if (m_pos > 0) {
+        std::memmove(m_buf.data(), m_buf.data() + m_pos, m_end - m_pos);
+        m_buf_offset += m_pos;
+        m_end -= m_pos;
+        m_pos = 0;
+    }
+    if (m_buf.size() < n) m_buf.resize(n);  // n is bounded by the format's limits
+    while (m_end < n && !m_eof) {
+        const ssize_t got = ::read(m_fd, m_buf.data() + m_end, m_buf.size() - m_end);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) fail("read error", stream_end(), "", std::strerror(errno));
+        if (got == 0) m_eof = true;
+        m_end += static_cast<std::size_t>(got);
+    }
+    return m_end - m_pos >= n;
+}
+
+bool StreamReader::read_at(uint64_t at, uint8_t* dst, std::size_t n) {
+    if (!m_size || at > *m_size || n > *m_size - at) return false;
+    if (m_fd < 0) {
+        std::memcpy(dst, m_buf.data() + at, n);
+        return true;
+    }
+    std::size_t done = 0;
+    while (done < n) {
+        const ssize_t got = ::pread(m_fd, dst + done, n - done, static_cast<off_t>(at + done));
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return false;
+        done += static_cast<std::size_t>(got);
+    }
+    return true;
+}
+
+void StreamReader::reposition(uint64_t at) {
+    if (m_fd < 0) {
+        m_pos = static_cast<std::size_t>(at);
+        return;
+    }
+    if (::lseek(m_fd, static_cast<off_t>(at), SEEK_SET) < 0) {
+        fail("cannot seek", at, "", std::strerror(errno));
+    }
+    m_buf_offset = at;
+    m_pos = m_end = 0;
+    m_eof = false;
+}
+
+// --- errors --------------------------------------------------------------------------
+
+void StreamReader::fail(const std::string& what, uint64_t at, const std::string& where,
+                        const std::string& detail) {
+    std::string message = fmt::format("{}: {} at byte {}", m_name, what, at);
+    if (!where.empty()) message += fmt::format(" ({})", where);
+    if (!detail.empty()) message += ": " + detail;
+    m_error.emplace(message, at, m_next_command);
+    m_done = true;
+    throw *m_error;
+}
+
+void StreamReader::fail_header(const std::string& what, uint64_t at, const std::string& detail) {
+    fail(what, at, "header, before command 0", detail);
+}
+
+void StreamReader::fail_command(const std::string& what, uint64_t at, const std::string& detail) {
+    fail(what, at, fmt::format("command {}", m_next_command), detail);
+}
+
+void StreamReader::fail_index(const std::string& what, uint64_t at, const std::string& detail) {
+    fail(what, at, fmt::format("frame index, after {} commands", m_next_command), detail);
+}
+
+// --- header --------------------------------------------------------------------------
+
+void StreamReader::read_header() {
+    // magic and version first: a newer version may lay out the rest differently
+    fill(6);
+    const std::size_t present = std::min(m_end - m_pos, kMagic.size());
+    if (!std::equal(m_buf.begin() + m_pos, m_buf.begin() + m_pos + present, kMagic.begin())) {
+        fail_header(
+            "bad magic", 0,
+            fmt::format("expected \"FB89\", found {:02x}; not an fb89 stream",
+                        fmt::join(m_buf.begin() + m_pos, m_buf.begin() + m_pos + present, " ")));
+    }
+    const auto ends = [&] { return fmt::format("the stream ends at byte {}", stream_end()); };
+    if (!fill(6)) fail_header("truncated header", 0, ends());
+    m_version = get_u16(&m_buf[m_pos + 4]);
+    if (m_version > kFormatVersion) {
+        m_error.emplace(fmt::format("{}: stream is format version {}; this fb89 reads versions "
+                                    "up to {}",
+                                    m_name, m_version, kFormatVersion),
+                        4, 0);
+        throw *m_error;
+    }
+    if (m_version == 0) fail_header("format version 0", 4, "no fb89 writes version 0");
+    if (!fill(kFixedHeaderSize)) fail_header("truncated header", 0, ends());
+    const uint16_t flags = get_u16(&m_buf[m_pos + 6]);
+    if (flags != 0) fail_header("header flags", 6, fmt::format("{:#06x} is not 0", flags));
+    const uint32_t count = get_u32(&m_buf[m_pos + 8]);
+    if (count > kMaxPropertyCount) {
+        fail_header("property count", 8,
+                    fmt::format("{} is more than {}", count, kMaxPropertyCount));
+    }
+    m_pos += kFixedHeaderSize;
+    for (uint32_t i = 0; i < count; ++i)
+        read_property(i);
+    m_header_size = offset();
+}
+
+void StreamReader::read_property(uint32_t i) {
+    const uint64_t at = offset();
+    const std::string what = fmt::format("property {}", i);
+    const auto need = [&](std::size_t n) {
+        if (!fill(n)) {
+            fail_header("truncated " + what, at,
+                        fmt::format("the stream ends at byte {}", stream_end()));
+        }
+    };
+    need(2);
+    const std::size_t key_length = get_u16(&m_buf[m_pos]);
+    if (key_length == 0 || key_length > kMaxPropertyKeyLength) {
+        fail_header(
+            what, at,
+            fmt::format("key length {} is outside 1..{}", key_length, kMaxPropertyKeyLength));
+    }
+    need(2 + key_length + 4);
+    const std::size_t value_length = get_u32(&m_buf[m_pos + 2 + key_length]);
+    if (value_length > kMaxPropertyValueLength) {
+        fail_header(
+            what, at,
+            fmt::format("value length {} is more than {}", value_length, kMaxPropertyValueLength));
+    }
+    need(2 + key_length + 4 + value_length);
+    const char* key = reinterpret_cast<const char*>(&m_buf[m_pos + 2]);
+    const char* value = key + key_length + 4;
+    std::string key_text(key, key_length);
+    if (!m_properties.emplace(key_text, std::string(value, value_length)).second) {
+        fail_header(what, at, fmt::format("key \"{}\" appears twice", key_text));
+    }
+    m_pos += 2 + key_length + 4 + value_length;
+}
+
+// --- commands ------------------------------------------------------------------------
+
+bool StreamReader::next(Command& out) {
+    if (m_error) throw *m_error;
+    if (m_done) return false;
+    const uint64_t at = offset();
+    if (!fill(1)) {  // a clean cut after a complete command: no index
+        m_done = true;
+        return false;
+    }
+    const uint8_t opcode = m_buf[m_pos];
+    if (opcode == kIndexOpcode) {
+        read_index(at);
+        m_done = true;
+        return false;
+    }
+    Command c = read_record(opcode, at);
+    if (auto problem = check_command(c)) fail_command(to_string(opcode_of(c)), at, *problem);
+    if (const auto* begin = std::get_if<FrameBegin>(&c); begin && m_seen_all) {
+        m_seen.push_back(FrameIndexEntry{begin->frame, m_next_command, at});
+    }
+    out = std::move(c);
+    m_last_offset = at;
+    m_last_number = m_next_command++;
+    return true;
+}
+
+// Decodes the record at m_pos (its opcode byte) and moves past it.
+Command StreamReader::read_record(uint8_t opcode, uint64_t at) {
+    const std::optional<std::size_t> payload = payload_size(opcode);
+    if (!payload) fail_command(fmt::format("unknown opcode {:#04x}", opcode), at, "");
+    const auto op = static_cast<Opcode>(opcode);
+    const auto need = [&](std::size_t n) {
+        if (!fill(n)) {
+            fail_command("truncated " + std::string(to_string(op)), at,
+                         fmt::format("the stream ends at byte {}", stream_end()));
+        }
+    };
+    need(1 + *payload);
+    if (op != Opcode::Marker) {
+        Command c = decode_fixed_payload(op, &m_buf[m_pos + 1]);
+        m_pos += 1 + *payload;
+        return c;
+    }
+    const std::size_t length = get_u16(&m_buf[m_pos + 1]);
+    if (length > kMaxMarkerLength) {
+        fail_command("MARKER", at,
+                     fmt::format("length {} is longer than {}", length, kMaxMarkerLength));
+    }
+    need(3 + length);
+    Marker m{std::string(reinterpret_cast<const char*>(&m_buf[m_pos + 3]), length)};
+    m_pos += 3 + length;
+    return m;
+}
+
+uint64_t StreamReader::replay_into(CommandSink& sink) {
+    uint64_t delivered = 0;
+    Command c;
+    while (next(c)) {
+        sink.submit(c);
+        ++delivered;
+    }
+    return delivered;
+}
+
+// --- frame index ---------------------------------------------------------------------
+
+// Reads the trailing index record at m_pos (its 0xFE byte), checks it against the frames
+// seen and the footer against the stream, and requires the stream to end there.
+void StreamReader::read_index(uint64_t at) {
+    const auto need = [&](std::size_t n) {
+        if (!fill(n)) {
+            fail_index("truncated frame index", at,
+                       fmt::format("the stream ends at byte {}", stream_end()));
+        }
+    };
+    need(kIndexPrefixSize);
+    const uint32_t count = get_u32(&m_buf[m_pos + 1]);
+    const uint64_t index_end = at + kIndexPrefixSize + uint64_t{count} * kIndexEntrySize;
+    if (m_seen_all && count != m_seen.size()) {
+        fail_index("frame index", at,
+                   fmt::format("lists {} frames; the stream has {}", count, m_seen.size()));
+    }
+    if (!m_seen_all && (!m_size || index_end + kFooterSize != *m_size)) {
+        fail_index("frame index", at, fmt::format("{} entries do not end the stream", count));
+    }
+    m_pos += kIndexPrefixSize;
+    FrameIndex index;
+    index.reserve(count);  // bounded: by the frames seen, or by the stream's size
+    for (uint32_t i = 0; i < count; ++i) {
+        need(kIndexEntrySize);
+        const FrameIndexEntry e = decode_index_entry(&m_buf[m_pos]);
+        if (m_seen_all && e != m_seen[i]) {
+            const FrameIndexEntry& s = m_seen[i];
+            fail_index("frame index", at,
+                       fmt::format("entry {} says frame {}, command {}, byte {}; the stream "
+                                   "has frame {}, command {}, byte {}",
+                                   i, e.frame, e.command, e.offset, s.frame, s.command, s.offset));
+        }
+        index.push_back(e);
+        m_pos += kIndexEntrySize;
+    }
+    need(kFooterSize);
+    const std::optional<Footer> footer = decode_footer(&m_buf[m_pos]);
+    if (!footer) fail_index("footer", index_end, "magic \"FBIX\" missing");
+    if (footer->index_offset != at || footer->command_count != m_next_command) {
+        fail_index("footer", index_end,
+                   fmt::format("says index at byte {} after {} commands; it is at byte {} "
+                               "after {}",
+                               footer->index_offset, footer->command_count, at, m_next_command));
+    }
+    if (auto problem = check_index(index, m_header_size, *footer)) {
+        fail_index("frame index", at, *problem);
+    }
+    m_pos += kFooterSize;
+    if (fill(1)) fail_index("unexpected data after the footer", offset(), "");
+    m_index = std::move(index);
+}
+
+std::optional<FrameIndex> StreamReader::read_trailing_index() {
+    if (m_index) return m_index;
+    const uint64_t tail = kIndexPrefixSize + kFooterSize;
+    if (!m_size || *m_size < m_header_size + tail) return std::nullopt;
+    uint8_t bytes[kFooterSize];
+    if (!read_at(*m_size - kFooterSize, bytes, kFooterSize)) return std::nullopt;
+    const std::optional<Footer> footer = decode_footer(bytes);
+    if (!footer || footer->index_offset < m_header_size || footer->index_offset > *m_size - tail) {
+        return std::nullopt;
+    }
+    // the entry count must fill the space exactly, and there is at most one frame per
+    // FRAME_BEGIN record: both bound what is read and allocated
+    const uint64_t space = *m_size - tail - footer->index_offset;
+    const uint64_t count = space / kIndexEntrySize;
+    const uint64_t most = (footer->index_offset - m_header_size) / kFrameBeginRecordSize;
+    if (space % kIndexEntrySize != 0 || count > most || count > footer->command_count) {
+        return std::nullopt;
+    }
+    uint8_t prefix[kIndexPrefixSize];
+    if (!read_at(footer->index_offset, prefix, kIndexPrefixSize) || prefix[0] != kIndexOpcode ||
+        get_u32(prefix + 1) != count) {
+        return std::nullopt;
+    }
+    FrameIndex index(static_cast<std::size_t>(count));
+    uint8_t entry[kIndexEntrySize];
+    for (uint64_t i = 0; i < count; ++i) {
+        if (!read_at(footer->index_offset + kIndexPrefixSize + i * kIndexEntrySize, entry,
+                     kIndexEntrySize)) {
+            return std::nullopt;
+        }
+        index[i] = decode_index_entry(entry);
+    }
+    if (check_index(index, m_header_size, *footer)) return std::nullopt;
+    return index;
+}
+
+void StreamReader::seek(const FrameIndexEntry& entry) {
+    if (!m_size) throw std::logic_error(fmt::format("stream {} cannot seek", m_name));
+    m_error.reset();
+    m_next_command = entry.command;
+    if (entry.offset < m_header_size || entry.offset >= *m_size) {
+        fail_command("frame index entry", entry.offset,
+                     fmt::format("byte {} is outside the commands {}..{}", entry.offset,
+                                 m_header_size, *m_size));
+    }
+    reposition(entry.offset);
+    if (!fill(kFrameBeginRecordSize) || m_buf[m_pos] != static_cast<uint8_t>(Opcode::FrameBegin) ||
+        get_u32(&m_buf[m_pos + 1]) != entry.frame) {
+        fail_command("frame index entry", entry.offset,
+                     fmt::format("no FRAME_BEGIN of frame {} there", entry.frame));
+    }
+    m_seen.clear();
+    m_seen_all = false;
+    m_done = false;
+}
+
+}  // namespace fb89::protocol

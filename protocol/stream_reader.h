@@ -1,0 +1,106 @@
+// StreamReader: reads an fb89 stream (any version up to kFormatVersion, docs/PROTOCOL.md)
+// from a file, stdin ("-") or a byte buffer, one command at a time.
+//
+// The header is read on construction. next() then returns the commands in order with
+// their command numbers and byte offsets, without loading the stream into memory. A
+// stream may end after any complete command (cut, or piped and stopped): that is a clean
+// end without a frame index. A stream closed by a writer ends with the trailing frame
+// index, which the reader checks against the frames it saw and then exposes. Anything
+// else -- bad magic, a newer version, an unknown opcode, a field out of range, a record
+// cut short, an inconsistent index -- throws StreamError naming the stream, the byte
+// offset and the command number, after every complete command before it was delivered.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "protocol/command_sink.h"
+#include "protocol/stream_format.h"
+
+namespace fb89::protocol {
+
+class StreamReader {
+  public:
+    // Opens path ("-" is stdin) and reads the header. Throws std::runtime_error naming the
+    // path if it cannot be opened, StreamError if the header is corrupt, cut short or of a
+    // newer version.
+    explicit StreamReader(const std::string& path);
+    // Reads a stream held in memory; name stands for it in messages.
+    explicit StreamReader(std::vector<uint8_t> bytes, std::string name = "<memory>");
+    ~StreamReader();
+    StreamReader(const StreamReader&) = delete;
+    StreamReader& operator=(const StreamReader&) = delete;
+
+    const std::string& name() const { return m_name; }  // path, "<stdin>" or the buffer's
+    uint16_t version() const { return m_version; }
+    const Properties& properties() const { return m_properties; }
+    uint64_t header_size() const { return m_header_size; }  // byte offset of the first record
+
+    // Reads the next command into out. Returns false at the end of the stream (after the
+    // frame index, or where a cut stream stops at a record boundary). Throws StreamError on
+    // corrupt or truncated input, and again on every call after that.
+    bool next(Command& out);
+    uint64_t command_number() const { return m_last_number; }  // of the last command read
+    uint64_t command_offset() const { return m_last_offset; }  // byte offset of its record
+    uint64_t next_command_number() const { return m_next_command; }
+
+    // Reads every remaining command into sink; returns how many were delivered. Throws
+    // StreamError as next() does, after delivering every complete command before it.
+    uint64_t replay_into(CommandSink& sink);
+
+    // The trailing frame index, once next() has reached and checked it; nullopt before, and
+    // for a stream without one.
+    const std::optional<FrameIndex>& frame_index() const { return m_index; }
+
+    // For files and buffers (not stdin): reads the frame index through the footer without
+    // reading the commands. nullopt if the source cannot seek or the stream ends in no
+    // well-formed index (cut streams have none). The position of next() does not change.
+    std::optional<FrameIndex> read_trailing_index();
+    // For files and buffers: continues reading at an index entry, so that next() returns
+    // its FRAME_BEGIN numbered entry.command. Throws StreamError if the entry does not point
+    // at that frame's FRAME_BEGIN, std::logic_error if the source cannot seek.
+    void seek(const FrameIndexEntry& entry);
+
+  private:
+    bool fill(std::size_t n);
+    uint64_t offset() const { return m_buf_offset + m_pos; }
+    uint64_t stream_end() const { return m_buf_offset + m_end; }
+    bool read_at(uint64_t at, uint8_t* dst, std::size_t n);
+    void reposition(uint64_t at);
+    void read_header();
+    void read_property(uint32_t i);
+    Command read_record(uint8_t opcode, uint64_t at);
+    void read_index(uint64_t at);
+    [[noreturn]] void fail(const std::string& what, uint64_t at, const std::string& where,
+                           const std::string& detail);
+    [[noreturn]] void fail_header(const std::string& what, uint64_t at, const std::string& detail);
+    [[noreturn]] void fail_command(const std::string& what, uint64_t at, const std::string& detail);
+    [[noreturn]] void fail_index(const std::string& what, uint64_t at, const std::string& detail);
+
+    std::string m_name;
+    int m_fd = -1;  // -1: the stream is m_buf
+    bool m_owns_fd = false;
+    std::optional<uint64_t> m_size;  // known for buffers and regular files: they can seek
+
+    std::vector<uint8_t> m_buf;
+    std::size_t m_pos = 0, m_end = 0;  // unread bytes are m_buf[m_pos, m_end)
+    uint64_t m_buf_offset = 0;         // stream offset of m_buf[0]
+    bool m_eof = false;
+
+    uint16_t m_version = 0;
+    Properties m_properties;
+    uint64_t m_header_size = 0;
+
+    uint64_t m_next_command = 0;
+    uint64_t m_last_number = 0;
+    uint64_t m_last_offset = 0;
+    FrameIndex m_seen;       // FRAME_BEGINs read, to check the trailing index against
+    bool m_seen_all = true;  // false after seek(): m_seen misses frames
+    bool m_done = false;
+    std::optional<StreamError> m_error;
+    std::optional<FrameIndex> m_index;
+};
+
+}  // namespace fb89::protocol

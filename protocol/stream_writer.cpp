@@ -1,0 +1,144 @@
+// StreamWriter: encodes commands as an fb89 stream, version 1, into a file, stdout or
+// memory, and closes it with the trailing frame index and footer (docs/PROTOCOL.md).
+// Files are written with POSIX write() from our own buffer, so every error (bad path,
+// disk full, closed pipe) surfaces here with the path and the system's reason.
+#include "protocol/stream_writer.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace fb89::protocol {
+
+namespace {
+constexpr std::size_t kFlushThreshold = 64 * 1024;
+constexpr const char* kMemoryName = "<memory>";
+}  // namespace
+
+StreamWriter::StreamWriter(const std::string& path, const Properties& properties) : m_path(path) {
+    // encode the header first: bad properties must not leave an empty file behind
+    encode_header(m_buffer, properties);
+    m_byte_count = m_buffer.size();
+    if (path == "-") {
+        m_path = "<stdout>";
+        m_fd = STDOUT_FILENO;
+    } else {
+        m_fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+        if (m_fd < 0) {
+            throw std::runtime_error(
+                fmt::format("cannot open stream {} for writing: {}", path, std::strerror(errno)));
+        }
+        m_owns_fd = true;
+    }
+}
+
+StreamWriter::StreamWriter(const Properties& properties) : m_path(kMemoryName) {
+    encode_header(m_buffer, properties);
+    m_byte_count = m_buffer.size();
+}
+
+StreamWriter::~StreamWriter() {
+    if (m_closed || m_fd < 0) return;
+    // abandoned without close(): keep what was written, as a stream cut after it
+    if (m_error.empty()) {
+        try {
+            flush_buffer();
+        } catch (const std::exception&) {  // nothing to report to from a destructor
+        }
+    }
+    close_file();
+}
+
+void StreamWriter::frame_begin(const FrameBegin& c) {
+    write_command(c);
+}
+void StreamWriter::fill_rect(const FillRect& c) {
+    write_command(c);
+}
+void StreamWriter::draw_span(const DrawSpan& c) {
+    write_command(c);
+}
+void StreamWriter::marker(const Marker& c) {
+    write_command(c);
+}
+
+void StreamWriter::frame_end(const FrameEnd& c) {
+    write_command(c);
+    if (m_fd >= 0) flush_buffer();  // a reader at the other end of a pipe gets the frame
+}
+
+void StreamWriter::write_command(const Command& c) {
+    if (!m_error.empty()) throw std::runtime_error(m_error);
+    if (m_closed) {
+        throw std::logic_error(
+            fmt::format("stream {}: {} after close()", m_path, to_string(opcode_of(c))));
+    }
+    if (auto problem = check_command(c)) {
+        throw std::invalid_argument(fmt::format("stream {}: refusing to write command {}: {}",
+                                                m_path, m_command_count, *problem));
+    }
+    if (const auto* begin = std::get_if<FrameBegin>(&c)) {
+        m_index.push_back(FrameIndexEntry{begin->frame, m_command_count, m_byte_count});
+    }
+    const std::size_t before = m_buffer.size();
+    encode_command(m_buffer, c);
+    m_byte_count += m_buffer.size() - before;
+    ++m_command_count;
+    if (m_fd >= 0 && m_buffer.size() >= kFlushThreshold) flush_buffer();
+}
+
+void StreamWriter::close() {
+    if (!m_error.empty()) throw std::runtime_error(m_error);
+    if (m_closed) return;
+    const std::size_t before = m_buffer.size();
+    encode_index(m_buffer, m_index, Footer{m_byte_count, m_command_count});
+    m_byte_count += m_buffer.size() - before;
+    if (m_fd < 0) {
+        m_closed = true;
+        return;
+    }
+    flush_buffer();
+    m_closed = true;
+    if (m_owns_fd) {
+        const int fd = m_fd;
+        m_fd = -1;
+        if (::close(fd) != 0) fail("close failed");
+    }
+}
+
+void StreamWriter::flush_buffer() {
+    std::size_t done = 0;
+    while (done < m_buffer.size()) {
+        const ssize_t n = ::write(m_fd, m_buffer.data() + done, m_buffer.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) fail(n < 0 ? std::strerror(errno) : "write made no progress");
+        done += static_cast<std::size_t>(n);
+    }
+    m_buffer.clear();
+}
+
+void StreamWriter::close_file() noexcept {
+    if (m_owns_fd && m_fd >= 0) ::close(m_fd);
+    m_fd = -1;
+}
+
+void StreamWriter::fail(const std::string& what) {
+    m_error = fmt::format("cannot write stream {}: {}", m_path, what);
+    close_file();
+    m_closed = true;
+    throw std::runtime_error(m_error);
+}
+
+std::vector<uint8_t> encode_stream(const std::vector<Command>& commands,
+                                   const Properties& properties, bool with_index) {
+    StreamWriter writer(properties);
+    for (const Command& c : commands)
+        writer.submit(c);
+    if (with_index) writer.close();
+    return writer.take_bytes();
+}
+
+}  // namespace fb89::protocol

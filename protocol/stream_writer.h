@@ -1,0 +1,77 @@
+// StreamWriter: a CommandSink that encodes the commands it receives as an fb89 stream
+// (version 1, docs/PROTOCOL.md) into a file, stdout ("-") or memory.
+//
+// The header (with its properties) is written on construction, each command as it
+// arrives. close() appends the trailing frame index and footer and flushes; a writer
+// destroyed without close() flushes what it has but writes no index, so the stream reads
+// as one cut after its last command. Bytes reach the file at least at every FRAME_END,
+// so a reader on the other end of a pipe sees whole frames as they are finished.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "protocol/command_sink.h"
+#include "protocol/stream_format.h"
+
+namespace fb89::protocol {
+
+class StreamWriter final : public CommandSink {
+  public:
+    // Writes to path ("-" is stdout), replacing the file. Throws std::runtime_error naming
+    // the path if it cannot be opened or written, std::invalid_argument for properties
+    // version 1 cannot carry.
+    StreamWriter(const std::string& path, const Properties& properties);
+    // Encodes into memory; read the bytes with bytes() or take_bytes().
+    explicit StreamWriter(const Properties& properties);
+    ~StreamWriter() override;
+    StreamWriter(const StreamWriter&) = delete;
+    StreamWriter& operator=(const StreamWriter&) = delete;
+
+    // Each throws std::invalid_argument for a command version 1 cannot carry (e.g. a span
+    // with x1 < x0), std::runtime_error naming the path on a write error (disk full...),
+    // std::logic_error after close().
+    void frame_begin(const FrameBegin& c) override;
+    void fill_rect(const FillRect& c) override;
+    void draw_span(const DrawSpan& c) override;
+    void marker(const Marker& c) override;
+    void frame_end(const FrameEnd& c) override;
+
+    // Writes the frame index and footer, flushes and closes the file. Does nothing if
+    // already closed. Throws std::runtime_error naming the path on a write error.
+    void close();
+
+    // The path, "<stdout>" for "-", "<memory>" in memory: the name used in messages.
+    const std::string& path() const { return m_path; }
+    uint64_t command_count() const { return m_command_count; }
+    uint64_t byte_count() const { return m_byte_count; }  // bytes encoded so far
+    const FrameIndex& frame_index() const { return m_index; }
+
+    // The encoded stream, in-memory writers only (empty for a file).
+    const std::vector<uint8_t>& bytes() const { return m_buffer; }
+    std::vector<uint8_t> take_bytes() { return std::move(m_buffer); }
+
+  private:
+    void write_command(const Command& c);
+    void flush_buffer();
+    void close_file() noexcept;
+    [[noreturn]] void fail(const std::string& what);
+
+    std::string m_path;
+    int m_fd = -1;  // -1: in memory
+    bool m_owns_fd = false;
+    bool m_closed = false;
+    std::string m_error;            // set after a write error; later calls repeat it
+    std::vector<uint8_t> m_buffer;  // bytes not yet written (all of them in memory)
+    uint64_t m_byte_count = 0;
+    uint64_t m_command_count = 0;
+    FrameIndex m_index;
+};
+
+// Encodes a whole stream in memory: header, commands, and (if with_index) the trailing
+// frame index and footer.
+std::vector<uint8_t> encode_stream(const std::vector<Command>& commands,
+                                   const Properties& properties = {}, bool with_index = true);
+
+}  // namespace fb89::protocol

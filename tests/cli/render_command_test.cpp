@@ -1,0 +1,132 @@
+// `fb89 render` as a user runs it: outputs, exit codes and messages.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "controller_sim/png_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// A folder of this test's own: ctest runs tests in parallel processes.
+fs::path test_dir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    fs::path dir = fs::temp_directory_path() / "fb89_cli_test" /
+                   (std::string(info->test_suite_name()) + "." + info->name());
+    fs::create_directories(dir);
+    return dir;
+}
+
+CliRun fb89(const std::string& args) {
+    fs::path dir = test_dir();
+    std::string cmd = std::string(FB89_CLI_PATH) + " " + args + " >" + (dir / "out").string() +
+                      " 2>" + (dir / "err").string() + " </dev/null";
+    int status = std::system(cmd.c_str());
+    CliRun r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir / "out");
+    r.err = slurp(dir / "err");
+    return r;
+}
+
+fs::path scratch(const std::string& name) { return test_dir() / name; }
+
+const std::string kScenes = FB89_SCENES_DIR;
+
+TEST(RenderCommand, WritesImageIdsStreamAndStats) {
+    fs::path png = scratch("demo.png"), ids = scratch("demo.ids.png"), stream = scratch("demo.fb89"),
+             stats = scratch("demo.json");
+    CliRun r = fb89("render " + kScenes + "/demo.json --png " + png.string() + " --ids " + ids.string() +
+                 " --stream " + stream.string() + " --stats " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("hidden-surface"), std::string::npos);
+    EXPECT_NE(r.out.find("DRAW_SPAN"), std::string::npos);
+    auto image = fb89::controller::read_png(png);
+    EXPECT_EQ(image.width, 1024u);
+    EXPECT_EQ(image.height, 780u);
+    EXPECT_GT(fs::file_size(stream), 1000u);
+    nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    EXPECT_EQ(j["method"], "zbuffer");
+    EXPECT_GT(j["host"]["counters"]["depth_tests"].get<uint64_t>(), 0u);
+    EXPECT_TRUE(j["host"]["times"]["hidden_surface"].contains("cpu_ms"));
+    EXPECT_TRUE(j["controller"].is_object());
+}
+
+TEST(RenderCommand, SizeOverridesTheScene) {
+    fs::path png = scratch("small.png");
+    CliRun r = fb89("render " + kScenes + "/cornell_box.json --size 256x195 -q --png " + png.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+    auto image = fb89::controller::read_png(png);
+    EXPECT_EQ(image.width, 256u);
+    EXPECT_EQ(image.height, 195u);
+}
+
+TEST(RenderCommand, ReportsTriangulatedPolygons) {
+    CliRun r = fb89("render " + kScenes + "/cornell_box.json --size 64x48");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("triangulated"), std::string::npos) << r.err;
+}
+
+TEST(RenderCommand, VersionAndHelpExitZero) {
+    EXPECT_EQ(fb89("--version").exit_code, 0);
+    CliRun help = fb89("render --help");
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.out.find("--ids"), std::string::npos);
+}
+
+TEST(RenderCommand, UsageErrorsExitTwo) {
+    EXPECT_EQ(fb89("").exit_code, 2);
+    EXPECT_EQ(fb89("render").exit_code, 2);
+    EXPECT_EQ(fb89("frobnicate").exit_code, 2);
+    CliRun method = fb89("render " + kScenes + "/demo.json --method painter");
+    EXPECT_EQ(method.exit_code, 2);
+    EXPECT_NE(method.err.find("unknown method 'painter'"), std::string::npos) << method.err;
+    CliRun size = fb89("render " + kScenes + "/demo.json --size 12by7");
+    EXPECT_EQ(size.exit_code, 2);
+    EXPECT_NE(size.err.find("--size"), std::string::npos) << size.err;
+}
+
+TEST(RenderCommand, BadInputExitsTwoNamingTheFile) {
+    CliRun missing = fb89("render /nonexistent/scene.json");
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_NE(missing.err.find("/nonexistent/scene.json"), std::string::npos) << missing.err;
+
+    fs::path bad = scratch("bad.json");
+    std::ofstream(bad) << "{ \"camera\": { \"eye\": [0, 0, 1], \"look_at\": [0, 0, 0], \"fovy\": 45,\n"
+                          "  \"near\": 1, \"far\": 10 }, \"objects\": [ { \"polygon\": 3 } ] }\n";
+    CliRun r = fb89("render " + bad.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("bad.json: objects[0].polygon: expected an array"), std::string::npos) << r.err;
+
+    CliRun profile = fb89("render " + kScenes + "/demo.json --profile no-such-profile");
+    EXPECT_EQ(profile.exit_code, 2);
+    EXPECT_NE(profile.err.find("no-such-profile"), std::string::npos) << profile.err;
+}
+
+TEST(RenderCommand, UnwritableOutputExitsTwo) {
+    CliRun r = fb89("render " + kScenes + "/demo.json -q --png /proc/no/such/dir/x.png");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("x.png"), std::string::npos) << r.err;
+}
+
+}  // namespace

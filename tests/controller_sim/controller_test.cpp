@@ -1,0 +1,277 @@
+// Tests of controller_sim/controller: execution into the framebuffer, per-opcode counters,
+// clipping, commands outside frames, per-frame results and pipeline timing.
+#include "controller_sim/controller.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "protocol/memory_buffer.h"
+
+namespace fb89::controller {
+namespace {
+
+using protocol::DrawSpan;
+using protocol::FillRect;
+using protocol::FrameBegin;
+using protocol::FrameEnd;
+using protocol::Marker;
+using protocol::Opcode;
+using protocol::Rgb;
+
+constexpr Rgb kGrey{50, 50, 50};
+constexpr Rgb kRed{255, 0, 0};
+
+const OpcodeCounters& totals(const Controller& c, Opcode op) {
+    return c.stats().totals[protocol::opcode_index(op)];
+}
+
+// Every pixel equals `inside` within r and `outside` elsewhere.
+void expect_only_rect(const Framebuffer& fb, const PixelRect& r, Rgb inside, Rgb outside) {
+    for (uint32_t y = 0; y < fb.height(); ++y)
+        for (uint32_t x = 0; x < fb.width(); ++x) {
+            const bool in = x >= r.x && x < r.x + r.w && y >= r.y && y < r.y + r.h;
+            ASSERT_EQ(fb.pixel(x, y), in ? inside : outside) << "(" << x << ", " << y << ")";
+        }
+}
+
+TEST(Controller, FrameBeginClearsAndIsChargedAsFullScreenFill) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 1024, 780, kGrey});
+    expect_only_rect(c.framebuffer(), PixelRect{}, kRed, kGrey);
+    const OpcodeCounters& fb = totals(c, Opcode::FrameBegin);
+    EXPECT_EQ(fb.commands, 1u);
+    EXPECT_EQ(fb.cycles, 798'753u);
+    EXPECT_EQ(fb.pixels, 1024u * 780u);
+    EXPECT_EQ(fb.bytes, 10u);
+}
+
+TEST(Controller, FillAndSpanCountCyclesPixelsAndBytes) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 64, 32, kGrey});
+    c.fill_rect(FillRect{5, 6, 1, 1, kRed});
+    c.draw_span(DrawSpan{10, 0, 59, kRed});  // 60 pixels, all inside
+    const OpcodeCounters& fill = totals(c, Opcode::FillRect);
+    EXPECT_EQ(fill.cycles, 35u);
+    EXPECT_EQ(fill.pixels, 1u);
+    EXPECT_EQ(fill.bytes, 12u);
+    const OpcodeCounters& span = totals(c, Opcode::DrawSpan);
+    EXPECT_EQ(span.cycles, 25u + 12u + 120u);
+    EXPECT_EQ(span.pixels, 60u);
+    EXPECT_EQ(span.bytes, 10u);
+    EXPECT_EQ(c.framebuffer().pixel(5, 6), kRed);
+    EXPECT_EQ(c.framebuffer().pixel(59, 10), kRed);
+    EXPECT_EQ(c.framebuffer().pixel(60, 10), kGrey);
+}
+
+TEST(Controller, ClippedFillIsCountedChargedForWhatIsLeftAndStaysInBounds) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 16, 8, kGrey});
+    c.fill_rect(FillRect{-4, -2, 8, 4, kRed});   // 4x2 left inside
+    c.fill_rect(FillRect{14, 7, 10, 10, kRed});  // 2x1 left, bottom-right corner
+    const OpcodeCounters& fill = totals(c, Opcode::FillRect);
+    EXPECT_EQ(fill.clipped, 2u);
+    EXPECT_EQ(fill.outside, 0u);
+    EXPECT_EQ(fill.pixels, 8u + 2u);
+    EXPECT_EQ(fill.cycles, (25u + 8u + 2u * 2u * 2u) + (25u + 8u + 1u * 2u * 1u));
+    const Framebuffer& fb = c.framebuffer();
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 16; ++x) {
+            const bool in = (x < 4 && y < 2) || (x >= 14 && y == 7);
+            ASSERT_EQ(fb.pixel(x, y), in ? kRed : kGrey) << "(" << x << ", " << y << ")";
+        }
+}
+
+TEST(Controller, WhollyOutsideCommandsCostCmdAndBusAndWriteNothing) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 16, 8, kGrey});
+    const uint64_t before = c.framebuffer().checksum();
+    c.fill_rect(FillRect{16, 0, 4, 4, kRed});
+    c.fill_rect(FillRect{0, -4, 4, 4, kRed});
+    c.fill_rect(FillRect{3, 3, 0, 4, kRed});  // empty
+    c.draw_span(DrawSpan{8, 0, 15, kRed});
+    c.draw_span(DrawSpan{2, 9, 3, kRed});  // x1 < x0
+    EXPECT_EQ(c.framebuffer().checksum(), before);
+    const OpcodeCounters& fill = totals(c, Opcode::FillRect);
+    EXPECT_EQ(fill.outside, 3u);
+    EXPECT_EQ(fill.cycles, 3u * 25u);
+    EXPECT_EQ(fill.pixels, 0u);
+    EXPECT_EQ(fill.bytes, 3u * 12u);
+    const OpcodeCounters& span = totals(c, Opcode::DrawSpan);
+    EXPECT_EQ(span.outside, 2u);
+    EXPECT_EQ(span.cycles, 2u * 25u);
+    EXPECT_DOUBLE_EQ(c.stats().bus_busy_us, 2.25 + 3 * 2.5 + 2 * 2.25);
+}
+
+TEST(Controller, ClippedSpanCostsSetUpPlusClippedPixels) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 16, 8, kGrey});
+    c.draw_span(DrawSpan{3, -5, 3, kRed});
+    const OpcodeCounters& span = totals(c, Opcode::DrawSpan);
+    EXPECT_EQ(span.clipped, 1u);
+    EXPECT_EQ(span.pixels, 4u);
+    EXPECT_EQ(span.cycles, 25u + 12u + 2u * 4u);
+    expect_only_rect(c.framebuffer(), PixelRect{0, 3, 4, 1}, kRed, kGrey);
+}
+
+TEST(Controller, CommandsBeforeAnyFrameAreUnframedOutsideAndDrawNothing) {
+    Controller c;
+    const uint64_t before = c.framebuffer().checksum();
+    c.fill_rect(FillRect{0, 0, 4, 4, kRed});
+    c.draw_span(DrawSpan{0, 0, 3, kRed});
+    c.frame_end(FrameEnd{});
+    EXPECT_EQ(c.framebuffer().checksum(), before);
+    EXPECT_TRUE(c.frames().empty());
+    EXPECT_FALSE(c.in_frame());
+    const OpcodeCounters loose = sum(c.stats().unframed);
+    EXPECT_EQ(loose.commands, 3u);
+    EXPECT_EQ(loose.outside, 3u);
+    EXPECT_EQ(loose.cycles, 3u * 25u);
+    EXPECT_EQ(sum(c.stats().totals), loose);
+}
+
+TEST(Controller, CommandsBetweenFramesDoNotChangeTheClosedFrame) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 8, 8, kGrey});
+    c.frame_end(FrameEnd{});
+    c.fill_rect(FillRect{0, 0, 8, 8, kRed});
+    EXPECT_EQ(c.framebuffer().checksum(), c.frames().at(0).checksum);
+    EXPECT_EQ(totals(c, Opcode::FillRect).outside, 1u);
+}
+
+TEST(Controller, FrameEndRecordsFrameResult) {
+    Controller c;
+    c.marker(Marker{"before"});
+    c.frame_begin(FrameBegin{7, 32, 16, kGrey});
+    c.fill_rect(FillRect{1, 1, 2, 2, kRed});
+    c.frame_end(FrameEnd{});
+    ASSERT_EQ(c.frames().size(), 1u);
+    const FrameResult& f = c.frames()[0];
+    EXPECT_EQ(f.frame, 7u);
+    EXPECT_EQ(f.width, 32u);
+    EXPECT_EQ(f.height, 16u);
+    EXPECT_EQ(f.first_command, 1u);
+    EXPECT_TRUE(f.complete);
+    EXPECT_EQ(f.checksum, c.framebuffer().checksum());
+    EXPECT_EQ(f.total().commands, 3u);
+    EXPECT_EQ(f.ops[protocol::opcode_index(Opcode::FillRect)].pixels, 4u);
+    EXPECT_EQ(c.commands_executed(), 4u);
+}
+
+TEST(Controller, FrameBeginInsideOpenFrameClosesItAsIncomplete) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 8, 8, kGrey});
+    c.fill_rect(FillRect{0, 0, 8, 8, kRed});
+    c.frame_begin(FrameBegin{1, 8, 8, kGrey});
+    ASSERT_EQ(c.frames().size(), 1u);
+    EXPECT_FALSE(c.frames()[0].complete);
+    Framebuffer red(8, 8);
+    red.clear(kRed);
+    EXPECT_EQ(c.frames()[0].checksum, red.checksum());
+    EXPECT_TRUE(c.in_frame());
+    EXPECT_EQ(c.open_frame().frame, 1u);
+}
+
+TEST(Controller, OversizedFrameBeginIsRefusedNamingTheCommand) {
+    Controller c;
+    try {
+        c.frame_begin(FrameBegin{0, 16385, 8, kGrey});
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("FRAME_BEGIN"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(c.framebuffer().width(), kDefaultWidth);
+}
+
+TEST(Controller, MarkerCostsNothingAndWritesNothing) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 8, 8, kGrey});
+    c.marker(Marker{"phase"});
+    const OpcodeCounters& m = totals(c, Opcode::Marker);
+    EXPECT_EQ(m.commands, 1u);
+    EXPECT_EQ(m.cycles, 0u);
+    EXPECT_EQ(m.bytes, 0u);
+    EXPECT_EQ(m.outside, 0u);
+}
+
+// FRAME_BEGIN 4x2: bus 2.25 us, 25+8+2*2*2 = 41 cycles = 6.56 us; FILL_RECT 1x1: bus
+// 2.5 us, 5.6 us; FRAME_END: bus 1.25 us, 25 cycles = 4 us. Arrivals 2.25, 4.75, 6.0;
+// executions 2.25-8.81, 8.81-14.41, 14.41-18.41.
+TEST(Controller, ControllerBoundFrameTimingMatchesHandComputation) {
+    Controller c;
+    c.frame_begin(FrameBegin{0, 4, 2, kGrey});
+    c.fill_rect(FillRect{0, 0, 1, 1, kRed});
+    c.frame_end(FrameEnd{});
+    const FrameResult& f = c.frames().at(0);
+    EXPECT_NEAR(f.bus_busy_us, 6.0, 1e-9);
+    EXPECT_NEAR(f.controller_busy_us, 6.56 + 5.6 + 4.0, 1e-9);
+    EXPECT_NEAR(f.end_us, 18.41, 1e-9);
+}
+
+// A 1 MB/s bus: FRAME_BEGIN 11 us, FILL_RECT 13 us, FRAME_END 3 us on the bus; execution
+// 5.6, 5.6 x 3 and 4 us. Arrivals 11, 24, 37, 50, 53; the last ends at 55.6 + 4 = 59.6.
+TEST(Controller, BusBoundFrameTimingMatchesHandComputation) {
+    CostProfile p = default_profile();
+    p.b_bus_bytes_per_s = 1e6;
+    Controller c(p);
+    c.frame_begin(FrameBegin{0, 2, 1, kGrey});  // 25 + 8 + 2 = 35 cycles
+    for (int i = 0; i < 3; ++i)
+        c.fill_rect(FillRect{0, 0, 1, 1, kRed});
+    c.frame_end(FrameEnd{});
+    const FrameResult& f = c.frames().at(0);
+    EXPECT_NEAR(f.bus_busy_us, 53.0, 1e-9);
+    EXPECT_NEAR(f.controller_busy_us, 4 * 5.6 + 4.0, 1e-9);
+    EXPECT_NEAR(f.end_us, 59.6, 1e-9);
+    EXPECT_NEAR(c.stats().frames_end_us, 59.6, 1e-9);
+}
+
+TEST(Controller, IdealProfileCountsWorkButChargesNoTime) {
+    Controller c(load_profile("ideal"));
+    c.frame_begin(FrameBegin{0, 1024, 780, kGrey});
+    c.fill_rect(FillRect{0, 0, 100, 100, kRed});
+    c.draw_span(DrawSpan{200, 0, 99, kRed});
+    c.frame_end(FrameEnd{});
+    const FrameResult& f = c.frames().at(0);
+    EXPECT_EQ(f.total().cycles, 0u);
+    EXPECT_EQ(f.total().pixels, 1024u * 780u + 10'000u + 100u);
+    EXPECT_EQ(f.bus_busy_us, 0.0);
+    EXPECT_EQ(f.controller_busy_us, 0.0);
+    EXPECT_EQ(f.end_us, 0.0);
+}
+
+TEST(Controller, ExecuteAndSinkCallsAndMemoryReplayAgree) {
+    protocol::MemoryBuffer buffer;
+    buffer.frame_begin(FrameBegin{0, 40, 30, kGrey});
+    buffer.fill_rect(FillRect{3, 4, 20, 10, kRed});
+    buffer.draw_span(DrawSpan{20, -3, 50, Rgb{1, 2, 3}});
+    buffer.marker(Marker{"x"});
+    buffer.frame_end(FrameEnd{});
+    Controller a, b;
+    buffer.replay_into(a);
+    for (const protocol::Command& cmd : buffer.commands())
+        b.execute(cmd);
+    EXPECT_EQ(a.frames().at(0).checksum, b.frames().at(0).checksum);
+    EXPECT_EQ(a.stats().totals, b.stats().totals);
+}
+
+TEST(Controller, StatsJsonAndSummaryReportEveryOpcode) {
+    Controller c;
+    c.frame_begin(FrameBegin{3, 1024, 780, kGrey});
+    c.fill_rect(FillRect{0, 0, 1, 1, kRed});
+    c.frame_end(FrameEnd{});
+    const nlohmann::json j = c.stats().to_json();
+    EXPECT_EQ(j["profile"]["name"], "tms34010-50mhz");
+    EXPECT_EQ(j["totals"]["FRAME_BEGIN"]["cycles"], 798'753u);
+    EXPECT_EQ(j["totals"]["all"]["commands"], 3u);
+    EXPECT_EQ(j["frames"][0]["frame"], 3u);
+    EXPECT_EQ(j["frames"][0]["checksum"].get<std::string>().size(), 16u);
+    const std::string s = c.stats().summary();
+    for (const char* text : {"FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN", "MARKER", "FRAME_END",
+                             "798,753", "127.800", "modelled ms"})
+        EXPECT_NE(s.find(text), std::string::npos) << text << " not in\n" << s;
+}
+
+}  // namespace
+}  // namespace fb89::controller

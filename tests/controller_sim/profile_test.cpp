@@ -1,0 +1,183 @@
+// Tests of controller_sim/profile: the built-in profiles hold the design's figures, every
+// figure carries its source, and a bad profile is refused with the file and field named.
+#include "controller_sim/profile.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace fb89::controller {
+namespace {
+
+using nlohmann::json;
+using protocol::Opcode;
+
+json default_profile_json() {
+    return load_profile("tms34010-50mhz").to_json();
+}
+
+// The message parse_profile throws for `j`, or "" when it loads.
+std::string load_error(const json& j) {
+    try {
+        parse_profile(j.dump(), "bad.json");
+    } catch (const std::runtime_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Profile, DefaultIsTms34010At50MhzWithTheDesignFigures) {
+    const CostProfile p = default_profile();
+    EXPECT_EQ(p.name, "tms34010-50mhz");
+    EXPECT_EQ(p.f_cyc_hz, 6.25e6);
+    EXPECT_EQ(p.bpp, 8u);
+    EXPECT_EQ(p.pixels_per_word(), 2u);
+    EXPECT_EQ(p.c_cmd, 25u);
+    EXPECT_EQ(p.c_setup, 8u);
+    EXPECT_EQ(p.c_op, 2u);
+    EXPECT_EQ(p.c_row, 0u);
+    EXPECT_EQ(p.span_as, SpanAs::Line);
+    EXPECT_EQ(p.c_line_setup, 12u);
+    EXPECT_EQ(p.c_line_pix, 2u);
+    EXPECT_EQ(p.b_bus_bytes_per_s, 8e6);
+    EXPECT_EQ(p.t_handshake_s, 1e-6);
+    EXPECT_EQ(p.bytes_of(Opcode::FillRect), 12u);
+    EXPECT_EQ(p.bytes_of(Opcode::DrawSpan), 10u);
+    EXPECT_EQ(p.bytes_of(Opcode::FrameBegin), 10u);
+    EXPECT_EQ(p.bytes_of(Opcode::FrameEnd), 2u);
+    EXPECT_EQ(p.bytes_of(Opcode::Marker), 0u);
+}
+
+TEST(Profile, Tms34020HasHundredNanosecondCycleAnd20MBPerSecondPort) {
+    const CostProfile p = load_profile("tms34020-40mhz");
+    EXPECT_EQ(p.f_cyc_hz, 10e6);
+    EXPECT_EQ(p.b_bus_bytes_per_s, 20e6);
+}
+
+TEST(Profile, ListsTheThreeBuiltInProfiles) {
+    EXPECT_EQ(list_profiles(),
+              (std::vector<std::string>{"ideal", "tms34010-50mhz", "tms34020-40mhz"}));
+}
+
+TEST(Profile, EveryBuiltInFigureCitesEmuOrEstSource) {
+    for (const std::string& name : list_profiles()) {
+        const CostProfile p = load_profile(name);
+        for (const auto& [field, source] : p.sources)
+            EXPECT_TRUE(source.rfind("[EMU]", 0) == 0 || source.rfind("[EST]", 0) == 0)
+                << name << " " << field << ": " << source;
+        if (name == "ideal") continue;
+        for (const char* field :
+             {"f_cyc_hz", "bpp", "C_cmd", "C_setup", "C_op", "C_row", "span_as", "C_line_setup",
+              "C_line_pix", "B_bus_bytes_per_s", "t_handshake_s", "bytes"})
+            EXPECT_TRUE(p.sources.contains(field)) << name << " has no source for " << field;
+    }
+}
+
+TEST(Profile, ToJsonLoadsBackToTheSameProfile) {
+    for (const std::string& name : list_profiles()) {
+        const CostProfile p = load_profile(name);
+        const CostProfile q = parse_profile(p.to_json().dump(), "round trip");
+        EXPECT_EQ(q.to_json(), p.to_json()) << name;
+    }
+}
+
+TEST(Profile, LoadsUserFileByPathWithCommentsAndNameFromStem) {
+    json j = default_profile_json();
+    j.erase("name");
+    j["C_cmd"] = 40;
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("fb89_profile_test_" + std::to_string(::getpid()) + "_mine.json");
+    std::ofstream(path) << "// a user profile\n" << j.dump(2) << "\n/* trailing comment */\n";
+    const CostProfile p = load_profile(path.string());
+    std::filesystem::remove(path);
+    EXPECT_EQ(p.name, path.stem().string());
+    EXPECT_EQ(p.c_cmd, 40u);
+}
+
+TEST(Profile, MissingFieldErrorNamesFileAndField) {
+    json j = default_profile_json();
+    j.erase("C_op");
+    const std::string e = load_error(j);
+    EXPECT_NE(e.find("bad.json"), std::string::npos) << e;
+    EXPECT_NE(e.find("\"C_op\""), std::string::npos) << e;
+    EXPECT_NE(e.find("missing"), std::string::npos) << e;
+}
+
+TEST(Profile, WrongTypeErrorNamesField) {
+    json j = default_profile_json();
+    j["C_setup"] = "eight";
+    EXPECT_NE(load_error(j).find("\"C_setup\": expected an integer"), std::string::npos);
+    j = default_profile_json();
+    j["C_setup"] = 8.5;
+    EXPECT_NE(load_error(j).find("\"C_setup\": expected an integer"), std::string::npos);
+    j = default_profile_json();
+    j["f_cyc_hz"] = "fast";
+    EXPECT_NE(load_error(j).find("\"f_cyc_hz\": expected a number"), std::string::npos);
+    j = default_profile_json();
+    j["span_as"] = "dots";
+    EXPECT_NE(load_error(j).find("\"span_as\""), std::string::npos);
+}
+
+TEST(Profile, NegativeValueErrorNamesField) {
+    json j = default_profile_json();
+    j["C_op"] = -2;
+    EXPECT_NE(load_error(j).find("\"C_op\": must not be negative"), std::string::npos);
+    j = default_profile_json();
+    j["t_handshake_s"] = -1e-6;
+    EXPECT_NE(load_error(j).find("\"t_handshake_s\": must not be negative"), std::string::npos);
+    j = default_profile_json();
+    j["B_bus_bytes_per_s"] = 0;
+    EXPECT_NE(load_error(j).find("\"B_bus_bytes_per_s\": must be greater than zero"),
+              std::string::npos);
+}
+
+TEST(Profile, BadBppAndOpcodeBytesAreNamed) {
+    json j = default_profile_json();
+    j["bpp"] = 3;
+    EXPECT_NE(load_error(j).find("\"bpp\": must be 1, 2, 4, 8 or 16"), std::string::npos);
+    j = default_profile_json();
+    j["bytes"].erase("DRAW_SPAN");
+    EXPECT_NE(load_error(j).find("\"bytes.DRAW_SPAN\": missing"), std::string::npos);
+    j = default_profile_json();
+    j["bytes"]["FILL_RECT"] = -12;
+    EXPECT_NE(load_error(j).find("\"bytes.FILL_RECT\": must not be negative"), std::string::npos);
+}
+
+TEST(Profile, UnknownFieldIsAnErrorNotASilentDefault) {
+    json j = default_profile_json();
+    j["C_ops"] = 2;
+    EXPECT_NE(load_error(j).find("\"C_ops\": unknown field"), std::string::npos);
+}
+
+TEST(Profile, InvalidJsonErrorNamesFile) {
+    try {
+        parse_profile("{ \"C_op\": ", "broken.json");
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("broken.json: not valid JSON"), std::string::npos);
+    }
+}
+
+TEST(Profile, UnknownNameListsBuiltInsAndMissingFileNamesPath) {
+    try {
+        load_profile("tms9918");
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("tms34010-50mhz"), std::string::npos) << e.what();
+    }
+    try {
+        load_profile("/nonexistent/dir/p.json");
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/p.json"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace fb89::controller

@@ -1,0 +1,182 @@
+// Tests of protocol/stream_writer.h: encode -> decode -> encode is byte for byte, header
+// properties survive, the frame index is written on close, files equal memory encodings,
+// and write errors name the path.
+#include "protocol/stream_writer.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "protocol/memory_buffer.h"
+#include "protocol/stream_reader.h"
+#include "sample_streams.h"
+
+namespace fb89::protocol {
+namespace {
+
+using Bytes = std::vector<uint8_t>;
+
+std::vector<Command> decode_all(const Bytes& bytes) {
+    StreamReader reader(bytes);
+    MemoryBuffer buffer;
+    reader.replay_into(buffer);
+    return buffer.commands();
+}
+
+Bytes read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::filesystem::path temp_path(const std::string& name) {
+    return std::filesystem::temp_directory_path() /
+           ("fb89_writer_test_" + std::to_string(::getpid()) + "_" + name);
+}
+
+TEST(StreamWriter, RoundTripIsByteForByte) {
+    const std::vector<Command> commands = testing::every_opcode();
+    const Bytes first = encode_stream(commands, testing::sample_properties());
+    const std::vector<Command> decoded = decode_all(first);
+    EXPECT_EQ(decoded, commands);
+    StreamReader reader(first);
+    const Bytes second = encode_stream(decoded, reader.properties());
+    EXPECT_EQ(second, first);
+}
+
+TEST(StreamWriter, EveryOpcodeByteRoundTripsAlone) {
+    for (const Command& c : testing::every_opcode()) {
+        const Bytes bytes = encode_stream({c}, {}, false);
+        ASSERT_EQ(decode_all(bytes), std::vector<Command>{c}) << to_string(c);
+        EXPECT_EQ(encode_stream(decode_all(bytes), {}, false), bytes) << to_string(c);
+    }
+}
+
+TEST(StreamWriter, HeaderPropertiesRoundTrip) {
+    Properties properties = testing::sample_properties();
+    properties["empty"] = "";
+    properties["binary"] = std::string("a\0b\xff", 4);
+    properties[std::string(kMaxPropertyKeyLength, 'k')] = std::string(kMaxPropertyValueLength, 'v');
+    StreamReader reader(encode_stream(testing::two_frames(), properties));
+    EXPECT_EQ(reader.version(), kFormatVersion);
+    EXPECT_EQ(reader.properties(), properties);
+}
+
+TEST(StreamWriter, CloseWritesTheFrameIndex) {
+    StreamWriter writer(testing::sample_properties());
+    for (const Command& c : testing::two_frames())
+        writer.submit(c);
+    const uint64_t index_offset = writer.byte_count();
+    writer.close();
+    writer.close();  // a second close does nothing
+    const FrameIndex expected = {{0, 0, writer.frame_index()[0].offset},
+                                 {1, 5, writer.frame_index()[1].offset}};
+    EXPECT_EQ(writer.frame_index(), expected);
+    EXPECT_EQ(writer.command_count(), 9u);
+    EXPECT_EQ(writer.bytes().size(),
+              index_offset + kIndexPrefixSize + 2 * kIndexEntrySize + kFooterSize);
+    EXPECT_EQ(writer.bytes()[index_offset], kIndexOpcode);
+    EXPECT_EQ(get_u64(&writer.bytes()[writer.bytes().size() - kFooterSize]), index_offset);
+}
+
+TEST(StreamWriter, FileBytesEqualMemoryBytes) {
+    const auto path = temp_path("file.fb89");
+    {
+        StreamWriter writer(path.string(), testing::sample_properties());
+        for (const Command& c : testing::two_frames())
+            writer.submit(c);
+        writer.close();
+        EXPECT_TRUE(writer.bytes().empty());
+    }
+    EXPECT_EQ(read_file(path), encode_stream(testing::two_frames(), testing::sample_properties()));
+    std::filesystem::remove(path);
+}
+
+TEST(StreamWriter, LargeStreamIsWrittenInFull) {
+    const auto path = temp_path("large.fb89");
+    std::vector<Command> commands = {FrameBegin{0, 1024, 780, Rgb{}}};
+    for (int32_t y = 0; y < 20000; ++y)
+        commands.push_back(DrawSpan{y, 0, y, Rgb{1, 2, 3}});
+    commands.push_back(FrameEnd{});
+    {
+        StreamWriter writer(path.string(), {});
+        for (const Command& c : commands)
+            writer.submit(c);
+        writer.close();
+    }
+    EXPECT_EQ(read_file(path), encode_stream(commands));
+    std::filesystem::remove(path);
+}
+
+TEST(StreamWriter, DestroyedWithoutCloseLeavesAStreamWithoutIndex) {
+    const auto path = temp_path("abandoned.fb89");
+    {
+        StreamWriter writer(path.string(), {});
+        for (const Command& c : testing::two_frames())
+            writer.submit(c);
+    }
+    EXPECT_EQ(read_file(path), encode_stream(testing::two_frames(), {}, false));
+    std::filesystem::remove(path);
+}
+
+TEST(StreamWriter, BadPathThrowsNamingThePath) {
+    const std::string path = "/nonexistent-fb89-dir/out.fb89";
+    try {
+        StreamWriter writer(path, {});
+        FAIL() << "opened " << path;
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("No such file or directory"), std::string::npos);
+    }
+}
+
+TEST(StreamWriter, DiskFullThrowsNamingThePath) {
+    if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    StreamWriter writer("/dev/full", {});
+    writer.frame_begin(FrameBegin{0, 4, 4, Rgb{}});
+    try {
+        writer.frame_end(FrameEnd{});  // FRAME_END flushes
+        FAIL() << "write to /dev/full succeeded";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()), "cannot write stream /dev/full: No space left on device");
+    }
+    EXPECT_THROW(writer.frame_begin(FrameBegin{1, 4, 4, Rgb{}}), std::runtime_error);
+    EXPECT_THROW(writer.close(), std::runtime_error);
+}
+
+TEST(StreamWriter, RefusesCommandsVersion1CannotCarry) {
+    StreamWriter writer(Properties{});
+    writer.frame_begin(FrameBegin{0, 4, 4, Rgb{}});
+    EXPECT_THROW(writer.frame_begin(FrameBegin{1, 0, 4, Rgb{}}), std::invalid_argument);
+    EXPECT_THROW(writer.frame_begin(FrameBegin{1, 4, kMaxFrameDimension + 1, Rgb{}}),
+                 std::invalid_argument);
+    EXPECT_THROW(writer.draw_span(DrawSpan{0, 3, 2, Rgb{}}), std::invalid_argument);
+    EXPECT_THROW(writer.marker(Marker{std::string(kMaxMarkerLength + 1, 'x')}),
+                 std::invalid_argument);
+    EXPECT_EQ(writer.command_count(), 1u);  // nothing refused was written
+    EXPECT_EQ(writer.frame_index().size(), 1u);
+    const Properties empty_key = {{"", "x"}};
+    EXPECT_THROW(StreamWriter{empty_key}, std::invalid_argument);
+}
+
+TEST(StreamWriter, CommandAfterCloseIsALogicError) {
+    StreamWriter writer(Properties{});
+    writer.close();
+    EXPECT_THROW(writer.frame_end(FrameEnd{}), std::logic_error);
+}
+
+TEST(StreamWriter, MemoryBufferReplayEncodesInSubmissionOrder) {
+    MemoryBuffer buffer;
+    for (const Command& c : testing::two_frames())
+        buffer.submit(c);
+    StreamWriter writer(Properties{});
+    buffer.replay_into(writer);
+    writer.close();
+    EXPECT_EQ(writer.bytes(), encode_stream(testing::two_frames()));
+    EXPECT_EQ(decode_all(writer.take_bytes()), testing::two_frames());
+}
+
+}  // namespace
+}  // namespace fb89::protocol
