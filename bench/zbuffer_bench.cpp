@@ -36,9 +36,10 @@ void run_zbuffer(benchmark::State& state, const host::ScreenScene& scene) {
         benchmark::DoNotOptimize(buffer.commands().data());
     }
     state.counters["spans"] = static_cast<double>(buffer.size());
-    state.counters["pixels_per_s"] = benchmark::Counter(
-        static_cast<double>(stats.counters.get("depth_tests")) / static_cast<double>(state.iterations()),
-        benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["pixels_per_s"] =
+        benchmark::Counter(static_cast<double>(stats.counters.get("depth_tests")) /
+                               static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_ZBuffer_1000Triangles700px(benchmark::State& state) {

@@ -16,7 +16,8 @@ ImageSize parse_size(const std::string& text) {
         throw UsageError(fmt::format("--size: expected WxH such as 1024x780, got '{}'", text));
     ImageSize s{std::stoi(m[1]), std::stoi(m[2])};
     if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
-        throw UsageError(fmt::format("--size: width and height must be in [1, 16384], got '{}'", text));
+        throw UsageError(
+            fmt::format("--size: width and height must be in [1, 16384], got '{}'", text));
     return s;
 }
 

@@ -15,7 +15,7 @@ enum ExitCode : int { kSuccess = 0, kCheckFailed = 1, kBadInput = 2 };
 
 // A usage mistake found after parsing (e.g. an unknown method); exits with 2.
 class UsageError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

@@ -111,7 +111,8 @@ int run_render(const RenderArgs& args) {
     controller::CostProfile profile = controller::load_profile(args.profile);
 
     HostRun run = run_host(args, *renderer);
-    for (const auto& note : run.scene.notes) console.note("note: " + note);
+    for (const auto& note : run.scene.notes)
+        console.note("note: " + note);
 
     // the controller tiles what the host decided; its cost is modelled, never timed
     controller::Controller ctl(profile);
@@ -143,15 +144,16 @@ void register_render(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand("render", "Render a scene with one hidden-surface method");
     sub->add_option("scene", args->scene, "Scene file (.json, or .tri screen-space triangles)")
         ->required();
-    sub->add_option("--method,-m", args->method, "Hidden-surface method")
-        ->capture_default_str();
+    sub->add_option("--method,-m", args->method, "Hidden-surface method")->capture_default_str();
     sub->add_option("--size", args->size, "Image size WxH, overriding the scene's");
     sub->add_option("--png", args->png, "Write the controller's framebuffer as PNG");
     sub->add_option("--ids", args->ids,
                     "Write the face-id buffer as PNG (id + 1 as 24-bit RGB, 0 = background)");
     sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
-    sub->add_option("--stats", args->stats, "Write host and controller figures as JSON ('-' for stdout)");
-    sub->add_option("--profile", args->profile, "Controller cost profile: a built-in name or a .json file")
+    sub->add_option("--stats", args->stats,
+                    "Write host and controller figures as JSON ('-' for stdout)");
+    sub->add_option("--profile", args->profile,
+                    "Controller cost profile: a built-in name or a .json file")
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_render(*args); });

@@ -57,7 +57,8 @@ uint64_t Counters::get(std::string_view name) const {
 
 nlohmann::json HostStats::to_json() const {
     nlohmann::json counts = nlohmann::json::object();
-    for (const auto& [name, value] : counters.items()) counts[name] = value;
+    for (const auto& [name, value] : counters.items())
+        counts[name] = value;
     return {{"times",
              {{"load", timing_json(load)},
               {"setup", timing_json(setup)},

@@ -28,25 +28,25 @@ struct Timing {
 
 // Measures one interval of wall-clock and process CPU time.
 class Stopwatch {
-public:
+  public:
     Stopwatch() { restart(); }
     void restart();
     Timing elapsed() const;
 
-private:
+  private:
     std::chrono::steady_clock::time_point m_wall;
     double m_cpu_s = 0;
 };
 
 // Named counters in first-use order.
 class Counters {
-public:
+  public:
     void add(std::string_view name, uint64_t value);
     void set(std::string_view name, uint64_t value);
     uint64_t get(std::string_view name) const;  // 0 when never counted
     const std::vector<std::pair<std::string, uint64_t>>& items() const { return m_items; }
 
-private:
+  private:
     std::vector<std::pair<std::string, uint64_t>> m_items;
 };
 

@@ -9,16 +9,23 @@ namespace fb89::protocol {
 
 const char* to_string(Opcode op) {
     switch (op) {
-        case Opcode::FrameBegin: return "FRAME_BEGIN";
-        case Opcode::FillRect: return "FILL_RECT";
-        case Opcode::DrawSpan: return "DRAW_SPAN";
-        case Opcode::Marker: return "MARKER";
-        case Opcode::FrameEnd: return "FRAME_END";
+        case Opcode::FrameBegin:
+            return "FRAME_BEGIN";
+        case Opcode::FillRect:
+            return "FILL_RECT";
+        case Opcode::DrawSpan:
+            return "DRAW_SPAN";
+        case Opcode::Marker:
+            return "MARKER";
+        case Opcode::FrameEnd:
+            return "FRAME_END";
     }
     return "UNKNOWN";
 }
 
-std::string to_string(Rgb c) { return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b); }
+std::string to_string(Rgb c) {
+    return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b);
+}
 
 Opcode opcode_of(const Command& c) {
     return static_cast<Opcode>(c.index() + 1);  // variant order follows the opcodes
@@ -43,20 +50,33 @@ struct Describe {
 };
 }  // namespace
 
-std::string to_string(const Command& c) { return std::visit(Describe{}, c); }
+std::string to_string(const Command& c) {
+    return std::visit(Describe{}, c);
+}
 
 void CommandSink::submit(const Command& c) {
     switch (c.index()) {
-        case 0: frame_begin(std::get<FrameBegin>(c)); break;
-        case 1: fill_rect(std::get<FillRect>(c)); break;
-        case 2: draw_span(std::get<DrawSpan>(c)); break;
-        case 3: marker(std::get<Marker>(c)); break;
-        case 4: frame_end(std::get<FrameEnd>(c)); break;
+        case 0:
+            frame_begin(std::get<FrameBegin>(c));
+            break;
+        case 1:
+            fill_rect(std::get<FillRect>(c));
+            break;
+        case 2:
+            draw_span(std::get<DrawSpan>(c));
+            break;
+        case 3:
+            marker(std::get<Marker>(c));
+            break;
+        case 4:
+            frame_end(std::get<FrameEnd>(c));
+            break;
     }
 }
 
 void MemoryBuffer::replay_into(CommandSink& sink) const {
-    for (const Command& c : m_commands) sink.submit(c);
+    for (const Command& c : m_commands)
+        sink.submit(c);
 }
 
 }  // namespace fb89::protocol

@@ -24,7 +24,9 @@ enum class Opcode : uint8_t {
 inline constexpr int kOpcodeCount = 5;  // opcodes are 1..kOpcodeCount
 
 // Index 0..kOpcodeCount-1 of an opcode, for per-opcode tables.
-inline constexpr int opcode_index(Opcode op) { return static_cast<int>(op) - 1; }
+inline constexpr int opcode_index(Opcode op) {
+    return static_cast<int>(op) - 1;
+}
 const char* to_string(Opcode op);  // "FRAME_BEGIN", "FILL_RECT", ...
 
 struct Rgb {

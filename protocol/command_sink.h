@@ -7,7 +7,7 @@
 namespace fb89::protocol {
 
 class CommandSink {
-public:
+  public:
     virtual ~CommandSink() = default;
     virtual void frame_begin(const FrameBegin& c) = 0;
     virtual void fill_rect(const FillRect& c) = 0;

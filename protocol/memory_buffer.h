@@ -9,7 +9,7 @@
 namespace fb89::protocol {
 
 class MemoryBuffer final : public CommandSink {
-public:
+  public:
     void frame_begin(const FrameBegin& c) override { m_commands.emplace_back(c); }
     void fill_rect(const FillRect& c) override { m_commands.emplace_back(c); }
     void draw_span(const DrawSpan& c) override { m_commands.emplace_back(c); }
@@ -24,7 +24,7 @@ public:
     // Sends every command, in order, to another sink (an encoder or the controller).
     void replay_into(CommandSink& sink) const;
 
-private:
+  private:
     std::vector<Command> m_commands;
 };
 

@@ -6,12 +6,15 @@
 
 namespace fb89::host {
 
-std::vector<std::string> renderer_names() { return {"zbuffer"}; }
+std::vector<std::string> renderer_names() {
+    return {"zbuffer"};
+}
 
 std::unique_ptr<Renderer> make_renderer(const RenderOptions& options) {
     if (options.method == "zbuffer") return std::make_unique<ZBuffer>();
     std::string known;
-    for (const auto& n : renderer_names()) known += (known.empty() ? "" : ", ") + n;
+    for (const auto& n : renderer_names())
+        known += (known.empty() ? "" : ", ") + n;
     throw std::invalid_argument("unknown method '" + options.method + "' (known: " + known + ")");
 }
 

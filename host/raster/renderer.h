@@ -15,10 +15,11 @@
 namespace fb89::host {
 
 class Renderer {
-public:
+  public:
     virtual ~Renderer() = default;
     virtual std::string_view name() const = 0;
-    virtual void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) = 0;
+    virtual void render(const ScreenScene& scene, protocol::CommandSink& sink,
+                        HostStats& stats) = 0;
 };
 
 struct RenderOptions {

@@ -51,13 +51,14 @@ uint64_t depth_test_row(const DepthPlane& plane, int y, int xb, int xe, uint32_t
         __m128d d = _mm_loadu_pd(depth + x);
         __m128i f = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(face + x));
         __m128i empty = _mm_cmpeq_epi32(f, _mm_setzero_si128());
-        __m128d wins = _mm_or_pd(_mm_cmplt_pd(z, d),
-                                 _mm_castsi128_pd(_mm_unpacklo_epi32(empty, empty)));
+        __m128d wins =
+            _mm_or_pd(_mm_cmplt_pd(z, d), _mm_castsi128_pd(_mm_unpacklo_epi32(empty, empty)));
         _mm_storeu_pd(depth + x, _mm_or_pd(_mm_and_pd(wins, z), _mm_andnot_pd(wins, d)));
         __m128i wins32 = _mm_shuffle_epi32(_mm_castpd_si128(wins), _MM_SHUFFLE(2, 0, 2, 0));
         __m128i merged = _mm_or_si128(_mm_and_si128(wins32, vmark), _mm_andnot_si128(wins32, f));
         _mm_storel_epi64(reinterpret_cast<__m128i*>(face + x), merged);
-        written += static_cast<uint64_t>(__builtin_popcount(static_cast<unsigned>(_mm_movemask_pd(wins))));
+        const int won = _mm_movemask_pd(wins);  // one bit per pixel
+        written += static_cast<uint64_t>((won & 1) + (won >> 1));
         xc = _mm_add_pd(xc, two);
     }
 #endif
@@ -73,12 +74,12 @@ uint64_t depth_test_row(const DepthPlane& plane, int y, int xb, int xe, uint32_t
 
 }  // namespace
 
-void ZBuffer::draw_face(const ScreenScene& scene, uint32_t index, const PixelRect& band,
+void ZBuffer::draw_face(const ScreenScene& scene, uint32_t index, const PixelRect& window,
                         ZBufferCounts& counts) {
     const ScreenFace& f = scene.faces[index];
     const EdgeFunction* edges = scene.edges_of(f);
-    const int y0 = std::max(band.y0, f.bounds.y0), y1 = std::min(band.y1, f.bounds.y1);
-    const int x_lo = std::max(band.x0, f.bounds.x0), x_hi = std::min(band.x1, f.bounds.x1);
+    const int y0 = std::max(window.y0, f.bounds.y0), y1 = std::min(window.y1, f.bounds.y1);
+    const int x_lo = std::max(window.x0, f.bounds.x0), x_hi = std::min(window.x1, f.bounds.x1);
     uint64_t tests = 0, written = 0;
     for (int y = y0; y < y1; ++y) {
         // coverage: this row's run of centres
@@ -94,13 +95,13 @@ void ZBuffer::draw_face(const ScreenScene& scene, uint32_t index, const PixelRec
     counts.pixels_written += written;
 }
 
-uint64_t ZBuffer::emit(const ScreenScene& scene, const PixelRect& band,
+uint64_t ZBuffer::emit(const ScreenScene& scene, const PixelRect& window,
                        protocol::CommandSink& sink) {
     uint64_t spans = 0;
-    for (int y = band.y0; y < band.y1; ++y) {
+    for (int y = window.y0; y < window.y1; ++y) {
         uint32_t* row = m_face.data() + static_cast<size_t>(y) * m_width;
-        spans += emit_row_spans(scene, row, y, band.x0, band.x1, sink);
-        if (!m_keep) std::fill(row + band.x0, row + band.x1, 0u);
+        spans += emit_row_spans(scene, row, y, window.x0, window.x1, sink);
+        if (!m_keep) std::fill(row + window.x0, row + window.x1, 0u);
     }
     return spans;
 }
@@ -109,32 +110,21 @@ void ZBuffer::render_window(const ScreenScene& scene, std::span<const uint32_t> 
                             const PixelRect& window, protocol::CommandSink& sink,
                             ZBufferCounts& counts) {
     prepare(scene, window);
-    // bin faces into bands of rows, keeping ascending order within each band
-    const int bands = (window.height() + kBandRows - 1) / kBandRows;
-    if (m_bands.size() < static_cast<size_t>(bands)) m_bands.resize(static_cast<size_t>(bands));
-    for (int b = 0; b < bands; ++b) m_bands[static_cast<size_t>(b)].clear();
     for (uint32_t index : faces) {
         const PixelRect& r = scene.faces[index].bounds;
-        int first = std::max(r.y0, window.y0), last = std::min(r.y1, window.y1) - 1;
-        if (first > last || r.x1 <= window.x0 || r.x0 >= window.x1) continue;
-        for (int b = (first - window.y0) / kBandRows; b <= (last - window.y0) / kBandRows; ++b)
-            m_bands[static_cast<size_t>(b)].push_back(index);
+        if (r.x1 <= window.x0 || r.x0 >= window.x1 || r.y1 <= window.y0 || r.y0 >= window.y1)
+            continue;
+        draw_face(scene, index, window, counts);
         ++counts.faces;
     }
-    // each band: depth-test its faces, then send its spans while the rows are in cache
-    for (int b = 0; b < bands; ++b) {
-        PixelRect band = window;
-        band.y0 = window.y0 + b * kBandRows;
-        band.y1 = std::min(window.y1, band.y0 + kBandRows);
-        for (uint32_t index : m_bands[static_cast<size_t>(b)]) draw_face(scene, index, band, counts);
-        counts.spans += emit(scene, band, sink);
-    }
+    counts.spans += emit(scene, window, sink);
 }
 
 void ZBuffer::render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) {
     ZBufferCounts counts;
     m_all.resize(scene.faces.size());
-    for (uint32_t i = 0; i < m_all.size(); ++i) m_all[i] = i;
+    for (uint32_t i = 0; i < m_all.size(); ++i)
+        m_all[i] = i;
     render_window(scene, m_all, scene.screen(), sink, counts);
     stats.counters.add("depth_tests", counts.depth_tests);
     stats.counters.add("pixels_written", counts.pixels_written);

@@ -11,9 +11,10 @@
 //
 // Faces are drawn in ascending id order, so the shared rule's tie case (equal depth, lower
 // id wins) is met by keeping the first face at equal depth: the inner loop needs only a
-// strict less-than. The window is worked in bands of rows: each band's faces are
-// depth-tested and its spans sent while its rows are still in cache. The face buffer doubles as the depth buffer's "empty" mark, and each
-// row is zeroed again as its spans leave, so no frame pays for clearing either buffer.
+// strict less-than. Faces are visited in order, not binned into tiles: with a few MB of
+// buffers the faces' own data is what misses the cache. The face buffer doubles as the depth
+// buffer's "empty" mark, and each row is zeroed again as its spans leave, so no frame pays for
+// clearing either buffer.
 #pragma once
 
 #include <span>
@@ -31,7 +32,7 @@ struct ZBufferCounts {
 };
 
 class ZBuffer final : public Renderer {
-public:
+  public:
     std::string_view name() const override { return "zbuffer"; }
     void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
 
@@ -45,7 +46,7 @@ public:
     void keep_face_buffer(bool keep) { m_keep = keep; }
     const std::vector<uint32_t>& face_buffer() const { return m_face; }
 
-private:
+  private:
     void prepare(const ScreenScene& scene, const PixelRect& window);
     uint64_t emit(const ScreenScene& scene, const PixelRect& window, protocol::CommandSink& sink);
     void draw_face(const ScreenScene& scene, uint32_t index, const PixelRect& window,
@@ -55,8 +56,6 @@ private:
     std::vector<double> m_depth;
     std::vector<uint32_t> m_face;  // all zero between renders unless m_keep
     bool m_keep = false;
-    static constexpr int kBandRows = 16;       // rows resolved together, kept in cache
-    std::vector<std::vector<uint32_t>> m_bands;  // faces meeting each band, ascending
     std::vector<uint32_t> m_all;
 };
 

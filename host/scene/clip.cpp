@@ -29,7 +29,8 @@ bool clip_polygon(std::vector<glm::dvec4>& poly, std::span<const glm::dvec4> pla
     for (const glm::dvec4& plane : planes) {
         // quick accept: every vertex inside this plane
         bool all_inside = true;
-        for (const auto& p : poly) all_inside = all_inside && glm::dot(plane, p) >= 0;
+        for (const auto& p : poly)
+            all_inside = all_inside && glm::dot(plane, p) >= 0;
         if (all_inside) continue;
 
         scratch.clear();

@@ -54,12 +54,13 @@ GeneratedPolygons generate_box(const glm::dvec3& lo, const glm::dvec3& hi) {
     const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                              {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     GeneratedPolygons out;
-    for (const auto& q : quads) out.push_back({{c[q[0]], c[q[1]], c[q[2]], c[q[3]]}, {}});
+    for (const auto& q : quads)
+        out.push_back({{c[q[0]], c[q[1]], c[q[2]], c[q[3]]}, {}});
     return out;
 }
 
-GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u,
-                                const glm::dvec3& v, int nu, int nv, bool triangles) {
+GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u, const glm::dvec3& v,
+                                int nu, int nv, bool triangles) {
     GeneratedPolygons out;
     auto at = [&](int i, int j) {
         return origin + u * (static_cast<double>(i) / nu) + v * (static_cast<double>(j) / nv);
@@ -78,8 +79,8 @@ GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u,
     return out;
 }
 
-GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_w,
-                                 double cell_h, double gap) {
+GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_w, double cell_h,
+                                 double gap) {
     int cols = static_cast<int>(std::floor(width / cell_w + 1e-9));
     int rows = static_cast<int>(std::floor(height / cell_h + 1e-9));
     GeneratedPolygons out;
@@ -111,7 +112,8 @@ GeneratedPolygons generate_random_triangles(int width, int height, int count, do
         double cx = uniform(0, width), cy = uniform(0, height);
         // three directions around the centre, then scaled to the wanted area
         double a0 = uniform(0, 2.0944), a1 = a0 + uniform(1.5, 2.6), a2 = a1 + uniform(1.5, 2.6);
-        glm::dvec2 d[3] = {{std::cos(a0), std::sin(a0)}, {std::cos(a1), std::sin(a1)},
+        glm::dvec2 d[3] = {{std::cos(a0), std::sin(a0)},
+                           {std::cos(a1), std::sin(a1)},
                            {std::cos(a2), std::sin(a2)}};
         double unit = 0.5 * std::abs((d[1].x - d[0].x) * (d[2].y - d[0].y) -
                                      (d[2].x - d[0].x) * (d[1].y - d[0].y));
@@ -156,7 +158,8 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
         if (o.has("checker")) {  // two colours alternating cell by cell
             JsonFields checker = o.child("checker");
             if (checker.size() != 2) o.fail("checker", "two colours [[r, g, b], [r, g, b]]");
-            glm::dvec3 colors[2] = {checker.element(0).vec3_of_node(), checker.element(1).vec3_of_node()};
+            glm::dvec3 colors[2] = {checker.element(0).vec3_of_node(),
+                                    checker.element(1).vec3_of_node()};
             size_t per_cell = triangles ? 2 : 1;
             for (size_t k = 0; k < quad.size(); ++k) {
                 size_t cell = k / per_cell;
@@ -175,10 +178,10 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
             throw SceneError(o.where("generator") +
                              ": random triangles are built in screen space; set "
                              "\"camera\": {\"projection\": \"screen\"}");
-        return generate_random_triangles(scene.width, scene.height,
-                                         o.integer_in("count", 1, 10'000'000),
-                                         o.number_in("area", 0.01, 1e8),
-                                         static_cast<uint64_t>(o.integer_or("seed", 1, 0, 1 << 30)));
+        return generate_random_triangles(
+            scene.width, scene.height, o.integer_in("count", 1, 10'000'000),
+            o.number_in("area", 0.01, 1e8),
+            static_cast<uint64_t>(o.integer_or("seed", 1, 0, 1 << 30)));
     }
     o.fail("generator", "one of \"box\", \"quad\", \"ideal\", \"random_triangles\"");
 }

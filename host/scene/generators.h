@@ -24,15 +24,15 @@ GeneratedPolygons generate_box(const glm::dvec3& lo, const glm::dvec3& hi);
 // Parallelogram origin, origin+u, origin+u+v, origin+v split into nu x nv cells, each one
 // quad or (with `triangles`) two triangles. Scene files may add "checker": two colours
 // alternating cell by cell.
-GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u,
-                                const glm::dvec3& v, int nu, int nv, bool triangles);
+GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u, const glm::dvec3& v,
+                                int nu, int nv, bool triangles);
 
 // The ideal scene, in screen space: `layers` identical layers of square faces on a grid of
 // cell x cell pixel cells; each face is flush with the right and bottom borders of its cell
 // and leaves a `gap`-pixel gap on its left and top (the paper's ½ pixel). Layer k lies at
 // depth (k + 1) / (layers + 1). Faces are numbered layer by layer, row by row.
-GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_w,
-                                 double cell_h, double gap);
+GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_w, double cell_h,
+                                 double gap);
 
 // `count` random triangles in screen space, each of about `area` pixels, centres uniform
 // over the screen, vertex depths uniform in [0, 1] (so they slope and cut through each

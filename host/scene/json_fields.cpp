@@ -87,7 +87,8 @@ std::string JsonFields::string(const char* key) const {
 glm::dvec3 JsonFields::vec3_of_node() const {
     const auto& a = m_node;
     bool ok = a.is_array() && a.size() == 3;
-    for (size_t i = 0; ok && i < 3; ++i) ok = a[i].is_number() && std::isfinite(a[i].get<double>());
+    for (size_t i = 0; ok && i < 3; ++i)
+        ok = a[i].is_number() && std::isfinite(a[i].get<double>());
     if (!ok) fail(nullptr, "an array of 3 finite numbers");
     return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()};
 }
@@ -112,12 +113,14 @@ void JsonFields::only_keys(std::initializer_list<const char*> allowed) const {
     if (!m_node.is_object()) fail(nullptr, "an object");
     for (const auto& item : m_node.items()) {
         bool known = false;
-        for (const char* k : allowed) known = known || item.key() == k;
+        for (const char* k : allowed)
+            known = known || item.key() == k;
         if (!known) {
             std::string list;
-            for (const char* k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
-            throw SceneError(fmt::format("{}: unknown field '{}' (expected one of: {})",
-                                         where(), item.key(), list));
+            for (const char* k : allowed)
+                list += (list.empty() ? "" : ", ") + std::string(k);
+            throw SceneError(fmt::format("{}: unknown field '{}' (expected one of: {})", where(),
+                                         item.key(), list));
         }
     }
 }

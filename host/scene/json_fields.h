@@ -10,14 +10,14 @@
 namespace fb89::host {
 
 class JsonFields {
-public:
+  public:
     JsonFields(const nlohmann::json& node, std::string file, std::string path)
         : m_node(node), m_file(std::move(file)), m_path(std::move(path)) {}
 
     bool has(const char* key) const { return m_node.is_object() && m_node.contains(key); }
-    JsonFields child(const char* key) const;     // the field must exist
-    JsonFields element(size_t index) const;      // array element
-    size_t size() const;                          // array length; the node must be an array
+    JsonFields child(const char* key) const;  // the field must exist
+    JsonFields element(size_t index) const;   // array element
+    size_t size() const;                      // array length; the node must be an array
     const nlohmann::json& node() const { return m_node; }
     std::string where(const char* key = nullptr) const;  // "file: path.key"
 
@@ -32,12 +32,12 @@ public:
     glm::dvec3 vec3(const char* key) const;
     glm::dvec3 vec3_or(const char* key, glm::dvec3 fallback) const;
     glm::dvec3 color(const char* key) const;  // 3 numbers in [0, 1]
-    glm::dvec3 vec3_of_node() const;           // this node itself as [x, y, z]
+    glm::dvec3 vec3_of_node() const;          // this node itself as [x, y, z]
 
     // Rejects keys not in the list, so a misspelt field is an error, not silently ignored.
     void only_keys(std::initializer_list<const char*> allowed) const;
 
-private:
+  private:
     const nlohmann::json& m_node;
     std::string m_file;
     std::string m_path;

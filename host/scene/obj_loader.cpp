@@ -19,7 +19,8 @@ GeneratedPolygons load_obj(const std::filesystem::path& file) {
     tinyobj::ObjReader reader;
     if (!reader.ParseFromFile(file.string(), config)) {
         std::string why = reader.Error();
-        while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+        while (!why.empty() && (why.back() == '\n' || why.back() == '\r'))
+            why.pop_back();
         throw SceneError(fmt::format("{}: {}", file.string(), why.empty() ? "unreadable" : why));
     }
     const auto& attrib = reader.GetAttrib();

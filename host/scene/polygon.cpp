@@ -27,7 +27,8 @@ std::vector<glm::dvec3> without_repeats(const std::vector<glm::dvec3>& in) {
     std::vector<glm::dvec3> out;
     for (const auto& p : in)
         if (out.empty() || out.back() != p) out.push_back(p);
-    while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+    while (out.size() > 1 && out.front() == out.back())
+        out.pop_back();
     return out;
 }
 
@@ -39,7 +40,8 @@ std::vector<glm::dvec2> to_plane(const std::vector<glm::dvec3>& v, const glm::dv
     bool flip = n[drop] < 0;
     std::vector<glm::dvec2> out;
     out.reserve(v.size());
-    for (const auto& p : v) out.emplace_back(p[u], flip ? -p[w] : p[w]);
+    for (const auto& p : v)
+        out.emplace_back(p[u], flip ? -p[w] : p[w]);
     return out;
 }
 
@@ -55,7 +57,8 @@ bool inside_triangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2&
 // Ear clipping on a counter-clockwise 2D polygon; returns index triples.
 std::vector<std::array<size_t, 3>> ear_clip(const std::vector<glm::dvec2>& p) {
     std::vector<size_t> ring(p.size());
-    for (size_t i = 0; i < ring.size(); ++i) ring[i] = i;
+    for (size_t i = 0; i < ring.size(); ++i)
+        ring[i] = i;
     std::vector<std::array<size_t, 3>> tris;
     size_t guard = ring.size() * ring.size() + 8;
     size_t i = 0;
@@ -76,7 +79,8 @@ std::vector<std::array<size_t, 3>> ear_clip(const std::vector<glm::dvec2>& p) {
         }
     }
     if (ring.size() > 3) {  // self-intersecting: fall back to a fan over what is left
-        for (size_t k = 1; k + 1 < ring.size(); ++k) tris.push_back({ring[0], ring[k], ring[k + 1]});
+        for (size_t k = 1; k + 1 < ring.size(); ++k)
+            tris.push_back({ring[0], ring[k], ring[k + 1]});
     } else if (ring.size() == 3) {
         tris.push_back({ring[0], ring[1], ring[2]});
     }
@@ -119,10 +123,12 @@ PolygonResult prepare_polygon(const std::vector<glm::dvec3>& input) {
     // planarity: every vertex within a relative tolerance of the best-fit plane
     glm::dvec3 u = n / len;
     glm::dvec3 centroid{0};
-    for (const auto& p : v) centroid += p;
+    for (const auto& p : v)
+        centroid += p;
     centroid /= static_cast<double>(v.size());
     double worst = 0;
-    for (const auto& p : v) worst = std::max(worst, std::abs(glm::dot(u, p - centroid)));
+    for (const auto& p : v)
+        worst = std::max(worst, std::abs(glm::dot(u, p - centroid)));
     bool planar = worst <= 1e-6 * extent;
 
     // convexity: every turn the same way as the polygon (collinear vertices allowed)

@@ -72,7 +72,8 @@ std::vector<SnappedPoint> snap(const std::vector<ProjectedVertex>& v) {
         SnappedPoint q{std::llround(p.x * kSubpixel), std::llround(p.y * kSubpixel)};
         if (s.empty() || s.back().x != q.x || s.back().y != q.y) s.push_back(q);
     }
-    while (s.size() > 1 && s.front().x == s.back().x && s.front().y == s.back().y) s.pop_back();
+    while (s.size() > 1 && s.front().x == s.back().x && s.front().y == s.back().y)
+        s.pop_back();
     if (s.size() < 3) return {};
     int64_t area2 = 0;
     for (size_t i = 0; i < s.size(); ++i) {
@@ -157,13 +158,16 @@ ScreenScene project_scene(const Scene& scene, ColorMode mode, Counters& counters
     glm::dmat4 clip_from_world(1.0);
     if (perspective) {
         const Camera& cam = scene.camera;
-        clip_from_world = glm::perspective(glm::radians(cam.fovy_degrees), w / h, cam.near, cam.far) *
-                          glm::lookAt(cam.eye, cam.look_at, cam.up);
+        clip_from_world =
+            glm::perspective(glm::radians(cam.fovy_degrees), w / h, cam.near, cam.far) *
+            glm::lookAt(cam.eye, cam.look_at, cam.up);
         double gx = 1 + 2 * kGuardBandPixels / w, gy = 1 + 2 * kGuardBandPixels / h;
-        planes = {{0, 0, 1, 1}, {0, 0, -1, 1}, {1, 0, 0, gx}, {-1, 0, 0, gx}, {0, 1, 0, gy}, {0, -1, 0, gy}};
+        planes = {{0, 0, 1, 1},   {0, 0, -1, 1}, {1, 0, 0, gx},
+                  {-1, 0, 0, gx}, {0, 1, 0, gy}, {0, -1, 0, gy}};
     } else {
         const double g = kGuardBandPixels;
-        planes = {{0, 0, 1, 0}, {0, 0, -1, 1}, {1, 0, 0, g}, {-1, 0, 0, w + g}, {0, 1, 0, g}, {0, -1, 0, h + g}};
+        planes = {{0, 0, 1, 0},      {0, 0, -1, 1}, {1, 0, 0, g},
+                  {-1, 0, 0, w + g}, {0, 1, 0, g},  {0, -1, 0, h + g}};
     }
 
     uint64_t clipped = 0, outside = 0, no_area = 0, split = 0;
@@ -186,8 +190,8 @@ ScreenScene project_scene(const Scene& scene, ColorMode mode, Counters& counters
         projected.clear();
         for (const auto& p : poly) {
             if (perspective)
-                projected.push_back({(p.x / p.w + 1) * 0.5 * w, (1 - p.y / p.w) * 0.5 * h,
-                                     (p.z / p.w + 1) * 0.5});
+                projected.push_back(
+                    {(p.x / p.w + 1) * 0.5 * w, (1 - p.y / p.w) * 0.5 * h, (p.z / p.w + 1) * 0.5});
             else
                 projected.push_back({p.x, p.y, p.z});
         }

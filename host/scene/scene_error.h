@@ -8,7 +8,7 @@
 namespace fb89::host {
 
 class SceneError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

@@ -63,7 +63,8 @@ void read_camera(const JsonFields& root, Scene& scene) {
     if (!(c.far > c.near)) cam.fail("far", fmt::format("a number greater than near ({})", c.near));
     glm::dvec3 view = c.look_at - c.eye;
     if (glm::length(view) == 0) cam.fail("look_at", "a point different from eye");
-    if (glm::length(glm::cross(view, c.up)) == 0) cam.fail("up", "a vector not parallel to the view");
+    if (glm::length(glm::cross(view, c.up)) == 0)
+        cam.fail("up", "a vector not parallel to the view");
 }
 
 void read_globals(const JsonFields& root, Scene& scene) {
@@ -116,7 +117,8 @@ glm::dmat4 read_transform(const JsonFields& o) {
     tr.only_keys({"scale", "rotate", "translate"});
     glm::dvec3 scale(1.0);
     if (tr.has("scale")) {
-        scale = tr.node().at("scale").is_number() ? glm::dvec3(tr.number("scale")) : tr.vec3("scale");
+        scale =
+            tr.node().at("scale").is_number() ? glm::dvec3(tr.number("scale")) : tr.vec3("scale");
         if (scale.x == 0 || scale.y == 0 || scale.z == 0) tr.fail("scale", "non-zero factors");
     }
     glm::dmat4 rotation(1.0);
@@ -125,12 +127,13 @@ glm::dmat4 read_transform(const JsonFields& o) {
         rot.only_keys({"axis", "degrees"});
         glm::dvec3 axis = rot.vec3("axis");
         if (glm::length(axis) == 0) rot.fail("axis", "a non-zero vector");
-        rotation = glm::rotate(glm::dmat4(1.0), glm::radians(rot.number("degrees")),
-                               glm::normalize(axis));
+        rotation =
+            glm::rotate(glm::dmat4(1.0), glm::radians(rot.number("degrees")), glm::normalize(axis));
     }
     glm::dvec3 translate = tr.vec3_or("translate", glm::dvec3(0));
     // scale, then rotate, then translate
-    return glm::translate(glm::dmat4(1.0), translate) * rotation * glm::scale(glm::dmat4(1.0), scale);
+    return glm::translate(glm::dmat4(1.0), translate) * rotation *
+           glm::scale(glm::dmat4(1.0), scale);
 }
 
 GeneratedPolygons read_geometry(const JsonFields& o, const Scene& scene,
@@ -140,14 +143,16 @@ GeneratedPolygons read_geometry(const JsonFields& o, const Scene& scene,
         GeneratedPolygons out;
         auto read_one = [&](const JsonFields& poly) {
             GeneratedPolygon g;
-            for (size_t i = 0; i < poly.size(); ++i) g.vertices.push_back(poly.element(i).vec3_of_node());
+            for (size_t i = 0; i < poly.size(); ++i)
+                g.vertices.push_back(poly.element(i).vec3_of_node());
             if (g.vertices.size() < 3) poly.fail(nullptr, "a polygon of 3 or more vertices");
             out.push_back(std::move(g));
         };
         if (o.has("polygon")) read_one(o.child("polygon"));
         if (o.has("polygons")) {
             JsonFields list = o.child("polygons");
-            for (size_t i = 0; i < list.size(); ++i) read_one(list.element(i));
+            for (size_t i = 0; i < list.size(); ++i)
+                read_one(list.element(i));
         }
         return out;
     }
@@ -173,13 +178,14 @@ void add_object(Scene& scene, const JsonFields& o, uint32_t object_index,
     GeneratedPolygons polys = read_geometry(o, scene, base_dir);
     for (size_t f : mirror_faces)
         if (f >= polys.size())
-            o.fail("material", fmt::format("mirror_faces indices below the object's {} faces",
-                                           polys.size()));
+            o.fail("material",
+                   fmt::format("mirror_faces indices below the object's {} faces", polys.size()));
 
     for (size_t i = 0; i < polys.size(); ++i) {
         std::vector<glm::dvec3> v;
         v.reserve(polys[i].vertices.size());
-        for (const auto& p : polys[i].vertices) v.push_back(glm::dvec3(transform * glm::dvec4(p, 1.0)));
+        for (const auto& p : polys[i].vertices)
+            v.push_back(glm::dvec3(transform * glm::dvec4(p, 1.0)));
         PolygonResult prepared = prepare_polygon(v);
         std::string where = fmt::format("{}: face {}", o.where(), i);
         if (prepared.verdict == PolygonVerdict::NotFinite)
@@ -198,7 +204,8 @@ void add_object(Scene& scene, const JsonFields& o, uint32_t object_index,
         if (polys[i].color && !has_color) m.color = *polys[i].color;
         if (!mirror_faces.empty())
             m.mirror = std::find(mirror_faces.begin(), mirror_faces.end(), i) != mirror_faces.end()
-                           ? material.mirror : 0.0;
+                           ? material.mirror
+                           : 0.0;
         for (auto& piece : prepared.pieces)
             scene.faces.push_back({std::move(piece), m, scene.face_count, object_index});
         ++scene.face_count;
@@ -221,8 +228,9 @@ Scene parse_scene_json(std::string_view text, const std::string& name,
     } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
         std::string what = e.what();
         auto bracket = what.find("] ");
-        throw SceneError(fmt::format("{}: invalid JSON ({})", name,
-                                     bracket == std::string::npos ? what : what.substr(bracket + 2)));
+        throw SceneError(
+            fmt::format("{}: invalid JSON ({})", name,
+                        bracket == std::string::npos ? what : what.substr(bracket + 2)));
     }
     Scene scene;
     scene.source = name;
@@ -240,8 +248,8 @@ Scene load_scene(const std::filesystem::path& file) {
     std::string ext = file.extension().string();
     if (ext == ".tri") return parse_tri(text, file.string());
     if (ext == ".json") return parse_scene_json(text, file.string(), file.parent_path());
-    throw SceneError(fmt::format("{}: unknown scene format '{}' (expected .json or .tri)",
-                                 file.string(), ext));
+    throw SceneError(
+        fmt::format("{}: unknown scene format '{}' (expected .json or .tri)", file.string(), ext));
 }
 
 }  // namespace fb89::host

@@ -49,7 +49,7 @@ struct ScreenFace {
     DepthPlane depth;
     uint32_t first_point = 0;  // into ScreenScene::points and ScreenScene::edges
     uint32_t point_count = 0;  // also the edge count
-    PixelRect bounds;  // pixels whose centres the face may cover, clamped to the screen
+    PixelRect bounds;          // pixels whose centres the face may cover, clamped to the screen
 };
 
 struct ScreenScene {
@@ -59,7 +59,7 @@ struct ScreenScene {
     std::vector<ScreenFace> faces;  // in id order (pieces of one face adjacent)
     std::vector<SnappedPoint> points;
     std::vector<EdgeFunction> edges;  // edge i runs from points[i] to the face's next point
-    uint32_t face_count = 0;  // distinct ids
+    uint32_t face_count = 0;          // distinct ids
 
     PixelRect screen() const { return {0, 0, width, height}; }
     const SnappedPoint* points_of(const ScreenFace& f) const { return &points[f.first_point]; }

@@ -16,7 +16,7 @@ namespace fb89::host {
 namespace {
 
 class LineReader {
-public:
+  public:
     LineReader(std::string_view text, const std::string& name) : m_text(text), m_name(name) {}
 
     bool next_line() {
@@ -40,7 +40,8 @@ public:
         T value{};
         auto [ptr, ec] = std::from_chars(m_line.data() + start, m_line.data() + end, value);
         if (ec != std::errc() || ptr != m_line.data() + end)
-            fail(fmt::format("{} is not a valid number: '{}'", what, m_line.substr(start, end - start)));
+            fail(fmt::format("{} is not a valid number: '{}'", what,
+                             m_line.substr(start, end - start)));
         m_cursor = end;
         return value;
     }
@@ -54,7 +55,7 @@ public:
         throw SceneError(fmt::format("{}: line {}: {}", m_name, m_number, what));
     }
 
-private:
+  private:
     std::string_view m_text;
     const std::string& m_name;
     std::string_view m_line;
@@ -101,7 +102,8 @@ Scene parse_tri(std::string_view text, const std::string& name) {
         if (prepared.verdict == PolygonVerdict::NotFinite) in.fail(prepared.reason);
         if (prepared.verdict == PolygonVerdict::Degenerate) {
             ++scene.dropped;
-            scene.notes.push_back(fmt::format("{}: triangle {}: dropped ({})", name, t, prepared.reason));
+            scene.notes.push_back(
+                fmt::format("{}: triangle {}: dropped ({})", name, t, prepared.reason));
             continue;
         }
         Material m;

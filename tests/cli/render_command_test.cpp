@@ -48,15 +48,17 @@ CliRun fb89(const std::string& args) {
     return r;
 }
 
-fs::path scratch(const std::string& name) { return test_dir() / name; }
+fs::path scratch(const std::string& name) {
+    return test_dir() / name;
+}
 
 const std::string kScenes = FB89_SCENES_DIR;
 
 TEST(RenderCommand, WritesImageIdsStreamAndStats) {
-    fs::path png = scratch("demo.png"), ids = scratch("demo.ids.png"), stream = scratch("demo.fb89"),
-             stats = scratch("demo.json");
-    CliRun r = fb89("render " + kScenes + "/demo.json --png " + png.string() + " --ids " + ids.string() +
-                 " --stream " + stream.string() + " --stats " + stats.string());
+    fs::path png = scratch("demo.png"), ids = scratch("demo.ids.png"),
+             stream = scratch("demo.fb89"), stats = scratch("demo.json");
+    CliRun r = fb89("render " + kScenes + "/demo.json --png " + png.string() + " --ids " +
+                    ids.string() + " --stream " + stream.string() + " --stats " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("hidden-surface"), std::string::npos);
     EXPECT_NE(r.out.find("DRAW_SPAN"), std::string::npos);
@@ -73,7 +75,8 @@ TEST(RenderCommand, WritesImageIdsStreamAndStats) {
 
 TEST(RenderCommand, SizeOverridesTheScene) {
     fs::path png = scratch("small.png");
-    CliRun r = fb89("render " + kScenes + "/cornell_box.json --size 256x195 -q --png " + png.string());
+    CliRun r =
+        fb89("render " + kScenes + "/cornell_box.json --size 256x195 -q --png " + png.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, "");
     auto image = fb89::controller::read_png(png);
@@ -112,11 +115,13 @@ TEST(RenderCommand, BadInputExitsTwoNamingTheFile) {
     EXPECT_NE(missing.err.find("/nonexistent/scene.json"), std::string::npos) << missing.err;
 
     fs::path bad = scratch("bad.json");
-    std::ofstream(bad) << "{ \"camera\": { \"eye\": [0, 0, 1], \"look_at\": [0, 0, 0], \"fovy\": 45,\n"
-                          "  \"near\": 1, \"far\": 10 }, \"objects\": [ { \"polygon\": 3 } ] }\n";
+    std::ofstream(bad)
+        << "{ \"camera\": { \"eye\": [0, 0, 1], \"look_at\": [0, 0, 0], \"fovy\": 45,\n"
+           "  \"near\": 1, \"far\": 10 }, \"objects\": [ { \"polygon\": 3 } ] }\n";
     CliRun r = fb89("render " + bad.string());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("bad.json: objects[0].polygon: expected an array"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("bad.json: objects[0].polygon: expected an array"), std::string::npos)
+        << r.err;
 
     CliRun profile = fb89("render " + kScenes + "/demo.json --profile no-such-profile");
     EXPECT_EQ(profile.exit_code, 2);

@@ -41,7 +41,8 @@ Mismatch compare_with_fixture(const std::string& name) {
     Mismatch m;
     for (uint32_t y = 0; y < want.height; ++y) {
         for (uint32_t x = 0; x < want.width; ++x) {
-            const uint8_t* w = &want.pixels[(static_cast<size_t>(y) * want.width + x) * want.channels];
+            const uint8_t* w =
+                &want.pixels[(static_cast<size_t>(y) * want.width + x) * want.channels];
             protocol::Rgb got = fb.pixel(x, y);
             uint32_t want_id = (uint32_t{w[0]} << 16) | (uint32_t{w[1]} << 8) | w[2];
             uint32_t got_id = host::face_id_from_color(got);
@@ -63,8 +64,9 @@ TEST_P(GoldenConformance, FaceIdBufferMatchesLlvmpipePixelForPixel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Llvmpipe, GoldenConformance,
-                         ::testing::Values("random_large_flat", "mesh_on_centres", "fans_on_centres",
-                                           "ideal_two_layers", "small_sloped_interpenetrating"));
+                         ::testing::Values("random_large_flat", "mesh_on_centres",
+                                           "fans_on_centres", "ideal_two_layers",
+                                           "small_sloped_interpenetrating"));
 
 }  // namespace
 }  // namespace fb89

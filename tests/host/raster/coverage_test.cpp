@@ -25,7 +25,8 @@ std::vector<int> coverage_counts(const ScreenScene& s) {
         for (int y = f.bounds.y0; y < f.bounds.y1; ++y) {
             int xb = 0, xe = 0;
             if (!row_span(s.edges_of(f), f.point_count, y, 0, s.width, xb, xe)) continue;
-            for (int x = xb; x < xe; ++x) ++count[static_cast<size_t>(y) * s.width + x];
+            for (int x = xb; x < xe; ++x)
+                ++count[static_cast<size_t>(y) * s.width + x];
         }
     }
     return count;
@@ -85,14 +86,16 @@ TEST(Coverage, FanAroundAPixelCentreCoversItOnce) {
         objects += (k ? "," : "") + std::string("{\"polygon\": [[") + std::to_string(cx) + "," +
                    std::to_string(cy) + ",0.5],[" + std::to_string(cx + r * std::cos(a0)) + "," +
                    std::to_string(cy + r * std::sin(a0)) + ",0.5],[" +
-                   std::to_string(cx + r * std::cos(a1)) + "," + std::to_string(cy + r * std::sin(a1)) +
-                   ",0.5]]}";
+                   std::to_string(cx + r * std::cos(a1)) + "," +
+                   std::to_string(cy + r * std::sin(a1)) + ",0.5]]}";
     }
     ScreenScene s = screen_of(R"({"camera": {"projection": "screen"},
-        "image": {"width": 48, "height": 48}, "objects": [)" + objects + "]}");
+        "image": {"width": 48, "height": 48}, "objects": [)" +
+                              objects + "]}");
     std::vector<int> count = coverage_counts(s);
     EXPECT_EQ(count[20 * 48 + 20], 1);
-    for (int v : count) EXPECT_LE(v, 1);
+    for (int v : count)
+        EXPECT_LE(v, 1);
 }
 
 }  // namespace

@@ -58,7 +58,8 @@ std::vector<uint32_t> reference_ids(const ScreenScene& s, const PixelRect& windo
 
 std::vector<uint32_t> ids_of(const ScreenScene& s, const std::vector<uint32_t>& faces) {
     std::vector<uint32_t> ids(faces.size());
-    for (size_t i = 0; i < faces.size(); ++i) ids[i] = faces[i] ? s.faces[faces[i] - 1].id + 1 : 0;
+    for (size_t i = 0; i < faces.size(); ++i)
+        ids[i] = faces[i] ? s.faces[faces[i] - 1].id + 1 : 0;
     return ids;
 }
 
@@ -93,18 +94,21 @@ TEST(ZBuffer, RendersAWindowAndLeavesTheRestAlone) {
 }
 
 TEST(ZBuffer, EqualDepthGoesToTheLowerId) {
-    Scene scene = parse_scene_json(R"({"camera": {"projection": "screen"}, "image": {"width": 32, "height": 32},
+    Scene scene = parse_scene_json(
+        R"({"camera": {"projection": "screen"}, "image": {"width": 32, "height": 32},
         "objects": [{"polygon": [[4, 4, 0.5], [20, 4, 0.5], [20, 20, 0.5], [4, 20, 0.5]]},
                     {"polygon": [[10, 10, 0.5], [28, 10, 0.5], [28, 28, 0.5], [10, 28, 0.5]]},
                     {"polygon": [[0, 0, 0.5], [32, 0, 0.5], [32, 32, 0.5], [0, 32, 0.5]]}]})",
-                                   "tie.json", ".");
+        "tie.json", ".");
     ScreenScene s = screen_scene(scene);
     ZBuffer zbuffer;
     zbuffer.keep_face_buffer(true);
     protocol::MemoryBuffer buffer;
     HostStats stats;
     zbuffer.render(s, buffer, stats);
-    auto id_at = [&](int x, int y) { return ids_of(s, zbuffer.face_buffer())[static_cast<size_t>(y) * 32 + x]; };
+    auto id_at = [&](int x, int y) {
+        return ids_of(s, zbuffer.face_buffer())[static_cast<size_t>(y) * 32 + x];
+    };
     EXPECT_EQ(id_at(15, 15), 1u);  // faces 0 and 1 and 2 overlap: 0 wins
     EXPECT_EQ(id_at(25, 25), 2u);  // 1 and 2: 1 wins
     EXPECT_EQ(id_at(1, 30), 3u);
@@ -113,10 +117,11 @@ TEST(ZBuffer, EqualDepthGoesToTheLowerId) {
 TEST(ZBuffer, CountsDepthTestsPixelsAndSpansExactly) {
     // two overlapping axis-aligned rectangles with edges between pixel centres:
     // A covers x 2..9, y 2..5 (8 x 4 = 32 centres) at z 0.5; B covers x 6..13, y 4..7 (32) at 0.25
-    Scene scene = parse_scene_json(R"({"camera": {"projection": "screen"}, "image": {"width": 16, "height": 10},
+    Scene scene = parse_scene_json(
+        R"({"camera": {"projection": "screen"}, "image": {"width": 16, "height": 10},
         "objects": [{"polygon": [[2, 2, 0.5], [10, 2, 0.5], [10, 6, 0.5], [2, 6, 0.5]]},
                     {"polygon": [[6, 4, 0.25], [14, 4, 0.25], [14, 8, 0.25], [6, 8, 0.25]]}]})",
-                                   "count.json", ".");
+        "count.json", ".");
     ScreenScene s = screen_scene(scene);
     ZBuffer zbuffer;
     protocol::MemoryBuffer buffer;

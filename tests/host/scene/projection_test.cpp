@@ -32,7 +32,8 @@ std::vector<int> coverage_counts(const ScreenScene& s) {
         for (int y = f.bounds.y0; y < f.bounds.y1; ++y) {
             int xb = 0, xe = 0;
             if (!row_span(s.edges_of(f), f.point_count, y, 0, s.width, xb, xe)) continue;
-            for (int x = xb; x < xe; ++x) ++count[static_cast<size_t>(y) * s.width + x];
+            for (int x = xb; x < xe; ++x)
+                ++count[static_cast<size_t>(y) * s.width + x];
         }
     }
     return count;
@@ -45,7 +46,8 @@ void expect_every_pixel_once(const std::string& camera) {
     EXPECT_GT(counters.get("faces_clipped"), 0u) << "the view should cut through faces";
     std::vector<int> count = coverage_counts(s);
     size_t wrong = 0;
-    for (int v : count) wrong += v != 1;
+    for (int v : count)
+        wrong += v != 1;
     EXPECT_EQ(wrong, 0u) << "pixels not covered exactly once";
 }
 
@@ -62,10 +64,11 @@ TEST(Projection, CameraInsideRoomLookingDownACornerCoversEveryPixelExactlyOnce) 
 TEST(Projection, FollowsGluPerspectiveConventions) {
     // A point on the view axis lands on the screen centre; +y in the world is up on screen.
     Counters counters;
-    Scene scene = parse_scene_json(R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 90, "near": 1, "far": 10},
+    Scene scene = parse_scene_json(
+        R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 90, "near": 1, "far": 10},
         "image": {"width": 200, "height": 100},
         "objects": [{"polygon": [[-0.5, 0.5, 0], [0.5, 0.5, 0], [0, 1.5, 0]]}]})",
-                                   "t.json", ".");
+        "t.json", ".");
     ScreenScene s = project_scene(scene, ColorMode::FaceId, counters);
     ASSERT_EQ(s.faces.size(), 1u);
     // world y from 0.5 to 1.5 at distance 5 with tan(45°) = 1: rows 50 - 50*0.3 .. 50 - 50*0.1
@@ -78,9 +81,10 @@ TEST(Projection, FollowsGluPerspectiveConventions) {
 
 TEST(Projection, FacesBehindTheCameraAreDropped) {
     Counters counters;
-    Scene scene = parse_scene_json(R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 60, "near": 0.1, "far": 10},
+    Scene scene = parse_scene_json(
+        R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 60, "near": 0.1, "far": 10},
         "objects": [{"polygon": [[-1, -1, 6], [1, -1, 6], [0, 1, 6]]}]})",
-                                   "t.json", ".");
+        "t.json", ".");
     ScreenScene s = project_scene(scene, ColorMode::FaceId, counters);
     EXPECT_TRUE(s.faces.empty());
     EXPECT_EQ(counters.get("faces_outside_frustum"), 1u);
@@ -88,15 +92,17 @@ TEST(Projection, FacesBehindTheCameraAreDropped) {
 
 TEST(Projection, VerticesSnapToTheSubpixelGrid) {
     Counters counters;
-    Scene scene = parse_scene_json(R"({"camera": {"projection": "screen"}, "image": {"width": 16, "height": 16},
+    Scene scene = parse_scene_json(
+        R"({"camera": {"projection": "screen"}, "image": {"width": 16, "height": 16},
         "objects": [{"polygon": [[1.001, 1.0, 0.5], [9.3, 1.0, 0.5], [1.0, 9.7, 0.5]]}]})",
-                                   "t.json", ".");
+        "t.json", ".");
     ScreenScene s = project_scene(scene, ColorMode::FaceId, counters);
     ASSERT_EQ(s.faces.size(), 1u);
     const SnappedPoint* p = s.points_of(s.faces[0]);
     // 1.001 * 256 = 256.256 -> 256; 9.3 * 256 = 2380.8 -> 2381
     std::vector<int64_t> xs;
-    for (uint32_t i = 0; i < s.faces[0].point_count; ++i) xs.push_back(p[i].x);
+    for (uint32_t i = 0; i < s.faces[0].point_count; ++i)
+        xs.push_back(p[i].x);
     EXPECT_NE(std::find(xs.begin(), xs.end(), 256), xs.end());
     EXPECT_NE(std::find(xs.begin(), xs.end(), 2381), xs.end());
 }

@@ -12,7 +12,8 @@
 namespace fb89::host {
 namespace {
 
-const char* kCamera = R"("camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 45, "near": 0.1, "far": 100})";
+const char* kCamera =
+    R"("camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 45, "near": 0.1, "far": 100})";
 
 Scene parse(const std::string& body) {
     return parse_scene_json("{" + std::string(kCamera) + ", " + body + "}", "s.json", ".");
@@ -29,7 +30,8 @@ std::string error_of(const std::string& json) {
 }
 
 TEST(SceneLoader, ReadsCameraImageLightAndDefaults) {
-    Scene s = parse(R"("light": {"direction": [0, -2, 0], "ambient": 0.3}, "background": [0, 0.5, 1],
+    Scene s =
+        parse(R"("light": {"direction": [0, -2, 0], "ambient": 0.3}, "background": [0, 0.5, 1],
                        "objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": {"color": [1, 0, 0]}}])");
     EXPECT_EQ(s.width, 1024);
     EXPECT_EQ(s.height, 780);
@@ -42,9 +44,8 @@ TEST(SceneLoader, ReadsCameraImageLightAndDefaults) {
 }
 
 TEST(SceneLoader, AllowsComments) {
-    Scene s = parse_scene_json(std::string("// a scene\n{") + kCamera +
-                                   ", /* none */ \"objects\": []}",
-                               "c.json", ".");
+    Scene s = parse_scene_json(
+        std::string("// a scene\n{") + kCamera + ", /* none */ \"objects\": []}", "c.json", ".");
     EXPECT_TRUE(s.faces.empty());
 }
 
@@ -55,8 +56,10 @@ TEST(SceneLoader, NumbersFacesInLoadOrderAndPiecesKeepTheirId) {
     EXPECT_EQ(s.face_count, 7u);
     EXPECT_EQ(s.triangulated, 1u);
     ASSERT_EQ(s.faces.size(), 6u + 3u);
-    for (size_t i = 0; i < 6; ++i) EXPECT_EQ(s.faces[i].id, i);
-    for (size_t i = 6; i < 9; ++i) EXPECT_EQ(s.faces[i].id, 6u);
+    for (size_t i = 0; i < 6; ++i)
+        EXPECT_EQ(s.faces[i].id, i);
+    for (size_t i = 6; i < 9; ++i)
+        EXPECT_EQ(s.faces[i].id, 6u);
     ASSERT_EQ(s.notes.size(), 1u);
     EXPECT_NE(s.notes[0].find("not convex"), std::string::npos) << s.notes[0];
 }
@@ -89,13 +92,15 @@ TEST(SceneLoader, AppliesScaleThenRotateThenTranslate) {
 TEST(SceneLoader, MirrorFacesSelectFacesOfAnObject) {
     Scene s = parse(R"("objects": [{"generator": "box", "min": [0, 0, 0], "max": [1, 1, 1],
         "material": {"mirror": 0.9, "mirror_faces": [2]}}])");
-    for (const auto& f : s.faces) EXPECT_DOUBLE_EQ(f.material.mirror, f.id == 2 ? 0.9 : 0.0);
+    for (const auto& f : s.faces)
+        EXPECT_DOUBLE_EQ(f.material.mirror, f.id == 2 ? 0.9 : 0.0);
 }
 
 TEST(SceneLoader, IdealGeneratorBuildsRegisteredLayers) {
-    Scene s = parse_scene_json(R"({"camera": {"projection": "screen"}, "image": {"width": 64, "height": 64},
+    Scene s = parse_scene_json(
+        R"({"camera": {"projection": "screen"}, "image": {"width": 64, "height": 64},
         "objects": [{"generator": "ideal", "layers": 2, "faces_per_layer": 16}]})",
-                               "ideal.json", ".");
+        "ideal.json", ".");
     ASSERT_EQ(s.faces.size(), 32u);
     // face 5: row 1, column 1 of 16-pixel cells: from (16.5, 16.5) to (32, 32)
     const auto& v = s.faces[5].vertices;
@@ -124,31 +129,44 @@ INSTANTIATE_TEST_SUITE_P(
     Malformed, SceneLoaderErrors,
     ::testing::Values(
         BadCase{R"({"objects": []})", "camera: expected a camera object, but it is missing"},
-        BadCase{R"({"camera": {"eye": [0, 0], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": []})",
-                "camera.eye: expected an array of 3 finite numbers"},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 0.5}, "objects": []})",
-                "camera.far: expected a number greater than near"},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": "wide", "near": 1, "far": 2}, "objects": []})",
-                "camera.fovy: expected a number, got \"wide\""},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [0, 1e999, 0]]}]})",
-                "invalid JSON (number overflow parsing '1e999')"},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polygon": [[0, 0, 0], [1, 0, 0]]}]})",
-                "objects[0].polygon: expected a polygon of 3 or more vertices"},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": {"color": [2, 0, 0]}}]})",
-                "objects[0].material.color: expected 3 numbers in [0, 1]"},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polgon": []}]})",
-                "objects[0]: expected an object with \"polygon\""},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"generator": "cone"}]})",
-                "objects[0].generator: expected one of \"box\", \"quad\", \"ideal\", \"random_triangles\""},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"obj": "missing.obj"}]})",
-                "missing.obj: cannot open the OBJ file"},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "image": {"width": 0}, "objects": []})",
-                "image.width: expected an integer in [1, 16384]"},
-        BadCase{R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "colour": [1, 1, 1], "objects": []})",
-                "unknown field 'colour'"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": []})",
+            "camera.eye: expected an array of 3 finite numbers"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 0.5}, "objects": []})",
+            "camera.far: expected a number greater than near"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": "wide", "near": 1, "far": 2}, "objects": []})",
+            "camera.fovy: expected a number, got \"wide\""},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [0, 1e999, 0]]}]})",
+            "invalid JSON (number overflow parsing '1e999')"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polygon": [[0, 0, 0], [1, 0, 0]]}]})",
+            "objects[0].polygon: expected a polygon of 3 or more vertices"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": {"color": [2, 0, 0]}}]})",
+            "objects[0].material.color: expected 3 numbers in [0, 1]"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"polgon": []}]})",
+            "objects[0]: expected an object with \"polygon\""},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"generator": "cone"}]})",
+            "objects[0].generator: expected one of \"box\", \"quad\", \"ideal\", "
+            "\"random_triangles\""},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "objects": [{"obj": "missing.obj"}]})",
+            "missing.obj: cannot open the OBJ file"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "image": {"width": 0}, "objects": []})",
+            "image.width: expected an integer in [1, 16384]"},
+        BadCase{
+            R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 2}, "colour": [1, 1, 1], "objects": []})",
+            "unknown field 'colour'"},
         BadCase{"{\n  \"camera\": {\n    \"eye\": [0, 0, 1],,\n", "line 3"},
-        BadCase{R"({"camera": {"projection": "screen"}, "objects": [{"generator": "ideal", "layers": 1, "faces_per_layer": 15}]})",
-                "objects[0].faces_per_layer: expected a perfect square"}));
+        BadCase{
+            R"({"camera": {"projection": "screen"}, "objects": [{"generator": "ideal", "layers": 1, "faces_per_layer": 15}]})",
+            "objects[0].faces_per_layer: expected a perfect square"}));
 
 TEST(SceneLoader, ReadsTriFiles) {
     Scene s = parse_tri("16 8 2\n0 1 1 0.5 5 1 0.5 1 5 0.5\n0 5 1 0.5 5 5 0.5 1 5 0.5\n", "t.tri");
@@ -167,24 +185,29 @@ TEST(SceneLoader, TriErrorsNameTheLine) {
         }
         return std::string();
     };
-    EXPECT_NE(message("16 8 2\n0 1 1 0.5 5 1 0.5 1 5 0.5\n").find("t.tri: line 2: expected 2 triangles, found 1"),
+    EXPECT_NE(message("16 8 2\n0 1 1 0.5 5 1 0.5 1 5 0.5\n")
+                  .find("t.tri: line 2: expected 2 triangles, found 1"),
               std::string::npos);
-    EXPECT_NE(message("16 8 1\n0 1 1 0.5 5 x 0.5 1 5 0.5\n").find("t.tri: line 2: y is not a valid number: 'x'"),
+    EXPECT_NE(message("16 8 1\n0 1 1 0.5 5 x 0.5 1 5 0.5\n")
+                  .find("t.tri: line 2: y is not a valid number: 'x'"),
               std::string::npos);
-    EXPECT_NE(message("16 8 1\n0 1 1 0.5 5 1 nan 1 5 0.5\n").find("line 2: a vertex coordinate is NaN"),
-              std::string::npos);
+    EXPECT_NE(
+        message("16 8 1\n0 1 1 0.5 5 1 nan 1 5 0.5\n").find("line 2: a vertex coordinate is NaN"),
+        std::string::npos);
 }
 
 TEST(SceneLoader, LoadsObjMeshesRelativeToTheSceneFile) {
     auto dir = std::filesystem::temp_directory_path() / "fb89_obj_test";
     std::filesystem::create_directories(dir / "meshes");
-    std::ofstream(dir / "meshes" / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 9\n";
+    std::ofstream(dir / "meshes" / "quad.obj")
+        << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 9\n";
     std::ofstream(dir / "ok.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
     std::ofstream(dir / "scene.json") << "{" << kCamera << R"(, "objects": [{"obj": "ok.obj"}]})";
     Scene s = load_scene(dir / "scene.json");
     ASSERT_EQ(s.faces.size(), 1u);
     EXPECT_EQ(s.faces[0].vertices.size(), 4u);  // kept whole, not triangulated
-    std::ofstream(dir / "bad.json") << "{" << kCamera << R"(, "objects": [{"obj": "meshes/quad.obj"}]})";
+    std::ofstream(dir / "bad.json")
+        << "{" << kCamera << R"(, "objects": [{"obj": "meshes/quad.obj"}]})";
     try {
         load_scene(dir / "bad.json");
         FAIL() << "an OBJ face referring to a missing vertex must be an error";
