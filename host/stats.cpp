@@ -55,14 +55,31 @@ uint64_t Counters::get(std::string_view name) const {
     return 0;
 }
 
+Timing median(std::vector<Timing> samples) {
+    if (samples.empty()) return {};
+    auto mid = [&](auto member) {
+        std::vector<double> v;
+        for (const auto& t : samples)
+            v.push_back(t.*member);
+        std::sort(v.begin(), v.end());
+        size_t n = v.size();
+        return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    };
+    return {mid(&Timing::wall_ms), mid(&Timing::cpu_ms)};
+}
+
 nlohmann::json HostStats::to_json() const {
     nlohmann::json counts = nlohmann::json::object();
     for (const auto& [name, value] : counters.items())
         counts[name] = value;
+    nlohmann::json samples = nlohmann::json::array();
+    for (const auto& t : hidden_surface_samples)
+        samples.push_back(timing_json(t));
     return {{"times",
              {{"load", timing_json(load)},
               {"setup", timing_json(setup)},
               {"hidden_surface", timing_json(hidden_surface)},
+              {"hidden_surface_samples", samples},
               {"end_to_end", timing_json(end_to_end)}}},
             {"counters", counts}};
 }
@@ -74,8 +91,11 @@ std::string HostStats::summary() const {
     };
     line("load", load);
     line("set-up", setup);
-    line("hidden-surface", hidden_surface);
+    line(hidden_surface_samples.size() > 1 ? "hidden-surface*" : "hidden-surface", hidden_surface);
     line("end to end", end_to_end);
+    if (hidden_surface_samples.size() > 1)
+        out += fmt::format("  * median of {} repeats; end to end uses it\n",
+                           hidden_surface_samples.size());
     out += "host counted operations:\n";
     for (const auto& [name, value] : counters.items())
         out += fmt::format("  {:<24} {:>14}\n", name, value);

@@ -55,11 +55,15 @@ struct HostStats {
     Timing load;            // reading and building the scene
     Timing setup;           // projection, clipping, snapping
     Timing hidden_surface;  // the method's work, including handing commands to the buffer
-    Timing end_to_end;      // from reading the scene to the last command delivered
+    std::vector<Timing> hidden_surface_samples;  // every repeat; hidden_surface is their median
+    Timing end_to_end;  // from reading the scene to the last command delivered
     Counters counters;
 
     nlohmann::json to_json() const;
     std::string summary() const;  // human-readable, several lines
 };
+
+// The median of repeated timings (wall and CPU each on their own).
+Timing median(std::vector<Timing> samples);
 
 }  // namespace fb89::host

@@ -18,6 +18,9 @@ class Renderer {
   public:
     virtual ~Renderer() = default;
     virtual std::string_view name() const = 0;
+    // Set-up before the timed work: allocate buffers for this scene's size, build
+    // acceleration structures. Timed as set-up, not as hidden-surface time.
+    virtual void setup(const ScreenScene& scene) { (void)scene; }
     virtual void render(const ScreenScene& scene, protocol::CommandSink& sink,
                         HostStats& stats) = 0;
 };
@@ -31,8 +34,8 @@ std::unique_ptr<Renderer> make_renderer(const RenderOptions& options);
 std::vector<std::string> renderer_names();
 
 // One frame: FRAME_BEGIN (size, background), a MARKER naming the method, the method's
-// commands, FRAME_END. Adds the time taken to stats.hidden_surface.
-void render_frame(Renderer& renderer, const ScreenScene& scene, protocol::CommandSink& sink,
-                  HostStats& stats, uint32_t frame_number = 0);
+// commands, FRAME_END. Returns the time taken and adds it to stats.hidden_surface.
+Timing render_frame(Renderer& renderer, const ScreenScene& scene, protocol::CommandSink& sink,
+                    HostStats& stats, uint32_t frame_number = 0);
 
 }  // namespace fb89::host

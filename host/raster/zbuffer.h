@@ -34,6 +34,7 @@ struct ZBufferCounts {
 class ZBuffer final : public Renderer {
   public:
     std::string_view name() const override { return "zbuffer"; }
+    void setup(const ScreenScene& scene) override { prepare(scene, scene.screen()); }
     void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
 
     // Renders scene.faces[i] for each i in `faces` (ascending), only inside `window`, and
