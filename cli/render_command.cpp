@@ -8,6 +8,7 @@
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "host/raster/renderer.h"
+#include "host/raster/scene_measures.h"
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
@@ -109,6 +110,14 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
     j["method"] = args.method;
     j["host"] = run.stats.to_json();
     j["host"]["commands"] = run.commands.size();
+    host::SceneMeasures m = host::measure_scene(run.screen);
+    j["scene"]["measures"] = {{"faces_on_screen", m.faces},
+                              {"visible_faces", m.visible_faces},
+                              {"covered_pixels", m.covered_pixels},
+                              {"face_pixels", m.face_pixels},
+                              {"depth_complexity", m.depth_complexity},
+                              {"screen_depth_complexity", m.screen_depth_complexity},
+                              {"mean_visible_face_px", m.mean_visible_face}};
     j["controller"] = ctl.stats().to_json();
     return j;
 }
