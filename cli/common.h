@@ -39,5 +39,7 @@ struct Console {
 };
 
 void register_render(CLI::App& app, int& exit_code);
+void register_model(CLI::App& app, int& exit_code);
+void register_experiment(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

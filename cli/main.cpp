@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
 
     int exit_code = kSuccess;
     register_render(app, exit_code);
+    register_model(app, exit_code);
+    register_experiment(app, exit_code);
 
     try {
         app.parse(argc, argv);

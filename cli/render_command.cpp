@@ -21,6 +21,7 @@ namespace {
 struct RenderArgs {
     std::string scene;
     std::string method = "zbuffer";
+    std::string window_test = "area";
     std::string size;
     std::string png, ids, stream, stats;
     std::string profile = std::string(controller::kDefaultProfile);
@@ -108,6 +109,7 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
                   {"width", run.screen.width},
                   {"height", run.screen.height}};
     j["method"] = args.method;
+    if (args.method == "warnock") j["window_test"] = args.window_test;
     j["host"] = run.stats.to_json();
     j["host"]["commands"] = run.commands.size();
     host::SceneMeasures m = host::measure_scene(run.screen);
@@ -126,6 +128,7 @@ int run_render(const RenderArgs& args) {
     Console console{args.quiet};
     host::RenderOptions options;
     options.method = args.method;
+    options.window_test = args.window_test;
     std::unique_ptr<host::Renderer> renderer;
     try {
         renderer = host::make_renderer(options);
@@ -169,6 +172,9 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("scene", args->scene, "Scene file (.json, or .tri screen-space triangles)")
         ->required();
     sub->add_option("--method,-m", args->method, "Hidden-surface method")->capture_default_str();
+    sub->add_option("--window-test", args->window_test,
+                    "Warnock's window test: area (the paper's) or centres (sampling-aware)")
+        ->capture_default_str();
     sub->add_option("--size", args->size, "Image size WxH, overriding the scene's");
     sub->add_option("--png", args->png, "Write the controller's framebuffer as PNG");
     sub->add_option("--ids", args->ids,

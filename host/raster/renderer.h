@@ -27,6 +27,7 @@ class Renderer {
 
 struct RenderOptions {
     std::string method = "zbuffer";
+    std::string window_test = "area";  // Warnock: "area" or "centres"
 };
 
 // Throws std::invalid_argument naming the known methods when `method` is unknown.

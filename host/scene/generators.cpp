@@ -1,17 +1,27 @@
 #include "host/scene/generators.h"
 
 #include <cmath>
+#include <optional>
 #include <random>
+#include <tuple>
+#include <utility>
 
 #include <glm/vec2.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <fmt/format.h>
 
+#include "host/scene/copies.h"
+#include "host/scene/lathe.h"
 #include "host/scene/scene_error.h"
 
 namespace fb89::host {
 
 namespace {
+
+// No generator makes more faces than this: a typo in a count is an error, not a machine
+// brought to its knees.
+constexpr long long kMaxGeneratedFaces = 10'000'000;
 
 // A pleasant, deterministic colour for face k of a mosaic.
 glm::dvec3 mosaic_color(uint32_t k) {
@@ -43,6 +53,148 @@ GeneratedPolygons ideal_from_json(const JsonFields& o, const Scene& scene) {
     if (cell_w <= gap || cell_h <= gap)
         o.fail("gap", fmt::format("less than the cell size ({} x {} px)", cell_w, cell_h));
     return generate_ideal(scene.width, scene.height, layers, cell_w, cell_h, gap);
+}
+
+bool boolean_or(const JsonFields& o, const char* key, bool fallback) {
+    if (!o.has(key)) return fallback;
+    if (!o.node().at(key).is_boolean()) o.fail(key, "true or false");
+    return o.node().at(key).get<bool>();
+}
+
+// [lo, hi] with lo <= hi, both within [min, max].
+std::pair<double, double> range_or(const JsonFields& o, const char* key, double fallback,
+                                   double min, double max) {
+    if (!o.has(key)) return {fallback, fallback};
+    const auto& a = o.node().at(key);
+    std::string expected = fmt::format("[lo, hi] with {} <= lo <= hi <= {}", min, max);
+    if (!a.is_array() || a.size() != 2 || !a[0].is_number() || !a[1].is_number())
+        o.fail(key, expected);
+    double lo = a[0].get<double>(), hi = a[1].get<double>();
+    if (!(min <= lo && lo <= hi && hi <= max)) o.fail(key, expected);
+    return {lo, hi};
+}
+
+// [nx, ny, nz]: integers in [1, 4096].
+glm::ivec3 counts3(const JsonFields& o, const char* key) {
+    const char* expected = "[nx, ny, nz], integers in [1, 4096]";
+    if (!o.has(key) || !o.node().at(key).is_array() || o.node().at(key).size() != 3)
+        o.fail(key, expected);
+    glm::ivec3 n;
+    for (int i = 0; i < 3; ++i) {
+        const auto& v = o.node().at(key)[static_cast<size_t>(i)];
+        if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 4096)
+            o.fail(key, expected);
+        n[i] = v.get<int>();
+    }
+    return n;
+}
+
+GeneratedPolygons lathe_from_json(const JsonFields& o) {
+    JsonFields list = o.child("profile");
+    if (list.size() < 2) o.fail("profile", "[[r, y], ...] with 2 or more points");
+    std::vector<glm::dvec2> profile;
+    for (size_t i = 0; i < list.size(); ++i) {
+        const auto& p = list.node()[i];
+        bool ok = p.is_array() && p.size() == 2 && p[0].is_number() && p[1].is_number();
+        double r = ok ? p[0].get<double>() : 0, y = ok ? p[1].get<double>() : 0;
+        if (!ok || !std::isfinite(r) || !std::isfinite(y) || r < 0)
+            list.element(i).fail(nullptr, "[r, y]: finite numbers, r >= 0");
+        if (!profile.empty() && profile.back() == glm::dvec2(r, y))
+            list.element(i).fail(nullptr, "a point different from the one before");
+        profile.emplace_back(r, y);
+    }
+    LatheCaps caps = LatheCaps::None;
+    if (o.has("caps")) {
+        const auto& c = o.node().at("caps");
+        std::string name = c.is_boolean() ? (c.get<bool>() ? "both" : "none")
+                                          : (c.is_string() ? c.get<std::string>() : "");
+        if (name == "both")
+            caps = LatheCaps::Both;
+        else if (name == "first")
+            caps = LatheCaps::First;
+        else if (name == "last")
+            caps = LatheCaps::Last;
+        else if (name != "none")
+            o.fail("caps", "true, false, \"first\", \"last\", \"both\" or \"none\"");
+    }
+    int segments = o.integer_in("segments", 3, 4096);
+    if (static_cast<long long>(profile.size() - 1) * segments > kMaxGeneratedFaces)
+        o.fail("segments", fmt::format("at most {} faces in all", kMaxGeneratedFaces));
+    return generate_lathe(profile, segments, caps);
+}
+
+// The parts of an `array` or `scatter`: generator objects, each with at most a colour.
+GeneratedPolygons parts_from_json(const JsonFields& o, const Scene& scene) {
+    JsonFields list = o.child("parts");
+    if (list.size() == 0) o.fail("parts", "a non-empty array of generator objects");
+    GeneratedPolygons out;
+    for (size_t i = 0; i < list.size(); ++i) {
+        JsonFields part = list.element(i);
+        if (!part.node().is_object() || !part.has("generator"))
+            part.fail(nullptr, "a generator object {\"generator\": ...}");
+        if (part.has("transform"))
+            part.fail("transform", "no transform: a part is placed by its own coordinates");
+        std::optional<glm::dvec3> color;
+        if (part.has("material")) {
+            JsonFields m = part.child("material");
+            m.only_keys({"color"});
+            color = m.color("color");
+        }
+        for (GeneratedPolygon& g : generate_from_json(part, scene)) {
+            if (color) g.color = color;
+            out.push_back(std::move(g));
+        }
+    }
+    return out;
+}
+
+GeneratedPolygons copies_from_json(const JsonFields& o, const Scene& scene,
+                                   const std::vector<Placement>& placements) {
+    GeneratedPolygons parts = parts_from_json(o, scene);
+    if (static_cast<long long>(parts.size()) * static_cast<long long>(placements.size()) >
+        kMaxGeneratedFaces)
+        o.fail("count", fmt::format("at most {} faces in all ({} copies of {} faces)",
+                                    kMaxGeneratedFaces, placements.size(), parts.size()));
+    return place_copies(parts, placements);
+}
+
+GeneratedPolygons array_from_json(const JsonFields& o, const Scene& scene) {
+    glm::ivec3 n = o.has("count") ? counts3(o, "count") : glm::ivec3(1);
+    if (static_cast<long long>(n.x) * n.y * n.z > 1'000'000)
+        o.fail("count", "at most 1,000,000 copies in all");
+    std::vector<Placement> placements =
+        array_placements(n.x, n.y, n.z, o.vec3_or("step", glm::dvec3(0)));
+    if (o.has("colors")) {  // cycled copy by copy
+        JsonFields colors = o.child("colors");
+        if (colors.size() == 0) o.fail("colors", "a non-empty array of colours");
+        for (size_t k = 0; k < placements.size(); ++k) {
+            JsonFields c = colors.element(k % colors.size());
+            glm::dvec3 rgb = c.vec3_of_node();
+            if (glm::any(glm::lessThan(rgb, glm::dvec3(0))) ||
+                glm::any(glm::greaterThan(rgb, glm::dvec3(1))))
+                c.fail(nullptr, "3 numbers in [0, 1]");
+            placements[k].color = rgb;
+        }
+    }
+    return copies_from_json(o, scene, placements);
+}
+
+GeneratedPolygons scatter_from_json(const JsonFields& o, const Scene& scene) {
+    ScatterOptions s;
+    s.count = o.integer_in("count", 1, 100'000);
+    s.seed = static_cast<uint64_t>(o.integer_or("seed", 1, 0, 1 << 30));
+    s.min = o.vec3("min");
+    s.max = o.vec3("max");
+    if (!glm::all(glm::lessThanEqual(s.min, s.max))) o.fail("max", "every coordinate >= min");
+    s.min_distance = o.number_or("min_distance", 0, 0, 1e12);
+    std::tie(s.scale_min, s.scale_max) = range_or(o, "scale", 1, 1e-6, 1e6);
+    s.random_yaw = boolean_or(o, "random_yaw", false);
+    s.color_jitter = o.number_or("color_jitter", 0, 0, 1);
+    std::vector<Placement> placements = scatter_placements(s);
+    if (static_cast<int>(placements.size()) < s.count)
+        o.fail("count", fmt::format("copies that fit at min_distance {} (only {} did)",
+                                    s.min_distance, placements.size()));
+    return copies_from_json(o, scene, placements);
 }
 
 }  // namespace
@@ -183,7 +335,33 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
             o.number_in("area", 0.01, 1e8),
             static_cast<uint64_t>(o.integer_or("seed", 1, 0, 1 << 30)));
     }
-    o.fail("generator", "one of \"box\", \"quad\", \"ideal\", \"random_triangles\"");
+    if (kind == "lathe") {
+        o.only_keys({"generator", "profile", "segments", "caps", "material", "transform"});
+        return lathe_from_json(o);
+    }
+    if (kind == "sphere") {
+        o.only_keys(
+            {"generator", "center", "radius", "segments", "rings", "material", "transform"});
+        glm::dvec3 center = o.vec3_or("center", glm::dvec3(0));
+        double radius = o.number_in("radius", 1e-12, 1e12);
+        int segments = o.integer_or("segments", 16, 3, 4096);
+        int rings = o.integer_or("rings", 8, 2, 4096);
+        if (static_cast<long long>(segments) * rings > kMaxGeneratedFaces)
+            o.fail("rings", fmt::format("at most {} faces in all", kMaxGeneratedFaces));
+        return generate_sphere(center, radius, segments, rings);
+    }
+    if (kind == "array") {
+        o.only_keys({"generator", "count", "step", "colors", "parts", "material", "transform"});
+        return array_from_json(o, scene);
+    }
+    if (kind == "scatter") {
+        o.only_keys({"generator", "count", "seed", "min", "max", "min_distance", "scale",
+                     "random_yaw", "color_jitter", "parts", "material", "transform"});
+        return scatter_from_json(o, scene);
+    }
+    o.fail("generator",
+           "one of \"box\", \"quad\", \"ideal\", \"random_triangles\", \"lathe\", "
+           "\"sphere\", \"array\", \"scatter\"");
 }
 
 }  // namespace fb89::host

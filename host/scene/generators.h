@@ -1,5 +1,6 @@
-// Procedural scene objects: `box`, `quad` and the paper's ideal scene (§2, Fig. 2.3).
-// Later methods add their own (lathe, shell, rooms) beside these.
+// Procedural scene objects: `box`, `quad`, the paper's ideal scene (§2, Fig. 2.3) and random
+// triangles here; surfaces of revolution (`lathe`, `sphere`) in lathe.h; copies of a group
+// of parts (`array`, `scatter`) in copies.h. Later methods add their own beside these.
 #pragma once
 
 #include <optional>
@@ -40,7 +41,8 @@ GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_
 GeneratedPolygons generate_random_triangles(int width, int height, int count, double area,
                                             uint64_t seed);
 
-// Reads an object's generator fields and builds it. Errors name the field.
+// Reads an object's generator fields and builds it. Errors name the field. The parts of an
+// `array` or `scatter` are generator objects read by this same function.
 GeneratedPolygons generate_from_json(const JsonFields& object, const Scene& scene);
 
 }  // namespace fb89::host

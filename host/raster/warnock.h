@@ -1,0 +1,81 @@
+// Warnock's area-subdivision hidden-surface algorithm as the paper's §1 describes it: a
+// looker that samples a window and, when the thinker fails, splits it evenly into four;
+// a thinker that succeeds on an empty window (background: counted, nothing sent, since
+// FRAME_BEGIN cleared the frame) or on a window one face S surrounds and is in front of
+// (one FILL_RECT in S's colour). Instrumented as §2 counts it: window samples (thinker
+// calls) and face computations (a face sorted whole into one sub-window, or split across
+// several), plus windows filled by size and recursion depth.
+//
+// Two window tests (DESIGN.md), giving the same face-id buffer:
+// - area (the paper's, what Eqs. 2.1-2.4 model): a face goes into a sub-window when its
+//   interior overlaps the sub-window's; S surrounds when it contains the closed window;
+// - centres (sampling-aware): a face goes into a sub-window only if it covers one of its
+//   pixel centres; S surrounds when it covers every centre; empty means no centre covered.
+// Where ours differs from the paper: coverage and depth come from the shared rule
+// (coverage.h, depth.h); "in front" is checked on the planes at the window's corner
+// centres with a rounding margin, and a thinker that cannot prove it declines; a 1-pixel
+// window is resolved by point sampling at its centre (and filled 1x1); odd windows split
+// as evenly as integers allow and no empty sub-window is made.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "host/raster/renderer.h"
+
+namespace fb89::host {
+
+enum class WindowTest { Area, Centres };
+const char* to_string(WindowTest t);
+
+struct WarnockCounts {
+    uint64_t samples = 0;        // thinker calls (window samples)
+    uint64_t face_sorts = 0;     // face computations: a face into exactly one sub-window
+    uint64_t face_splits = 0;    // face computations: a face across two or more
+    uint64_t face_drops = 0;     // centres test: faces that reached no sub-window's centre
+    uint64_t empty_windows = 0;  // background, nothing sent
+    uint64_t surrounded = 0;     // windows filled by a surrounder in front
+    uint64_t pixel_windows = 0;  // 1-pixel windows resolved by point sampling
+    uint64_t fills = 0;          // FILL_RECT commands sent
+    uint64_t filled_pixels = 0;
+    uint64_t front_tests = 0;  // surrounder-in-front checks of one face pair
+    uint64_t max_depth = 0;    // deepest recursion level (the screen is level 0)
+    // Filled windows by the shorter side: [k] counts sides in [2^k, 2^(k+1)).
+    std::array<uint64_t, 16> fills_by_side{};
+
+    void publish(Counters& counters) const;
+};
+
+class Warnock final : public Renderer {
+  public:
+    explicit Warnock(WindowTest test = WindowTest::Area) : m_test(test) {}
+    std::string_view name() const override { return "warnock"; }
+    void setup(const ScreenScene& scene) override;
+    void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
+
+    // The counts of the last render.
+    const WarnockCounts& counts() const { return m_counts; }
+
+  private:
+    struct Box {  // bounding box of a face's snapped vertices, in 1/256 pixel
+        int64_t x0, y0, x1, y1;
+    };
+    void look(const PixelRect& window, size_t begin, size_t end, uint64_t depth);
+    bool think(const PixelRect& window, size_t begin, size_t end);
+    bool resolve_pixel(const PixelRect& window, size_t begin, size_t end);
+    bool in_front(uint32_t s, const PixelRect& window, size_t begin, size_t end);
+    bool surrounds(uint32_t face, const PixelRect& window) const;
+    bool belongs(uint32_t face, const PixelRect& window) const;
+    bool interiors_overlap(uint32_t face, const PixelRect& window) const;
+    bool covers_a_centre(uint32_t face, const PixelRect& window) const;
+    void fill(const PixelRect& window, protocol::Rgb color);
+
+    WindowTest m_test;
+    const ScreenScene* m_scene = nullptr;
+    protocol::CommandSink* m_sink = nullptr;
+    std::vector<Box> m_boxes;
+    std::vector<uint32_t> m_arena;  // face lists of the windows on the recursion path
+    WarnockCounts m_counts;
+};
+
+}  // namespace fb89::host

@@ -1,0 +1,95 @@
+"""Draws fb89's charts from the CSV files that `fb89 experiment` writes.
+
+Usage: /usr/bin/python3 scripts/plot_figures.py FOLDER
+Reads FOLDER/fig2_1.csv and FOLDER/fig2_4.csv, writes FOLDER/fig2_1.png and fig2_4.png.
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def scene_label(path):
+    return os.path.splitext(os.path.basename(path))[0]
+
+
+def fig2_1(folder):
+    rows = read(os.path.join(folder, "fig2_1.csv"))
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
+    width = 0.8 / len(methods)
+    for k, method in enumerate(methods):
+        ms = [float(r["hs_cpu_ms"]) for s in scenes for r in rows if r["scene"] == s and r["method"] == method]
+        ctl = [float(r["controller_ms"]) for s in scenes for r in rows if r["scene"] == s and r["method"] == method]
+        xs = [i + (k - (len(methods) - 1) / 2) * width for i in range(len(scenes))]
+        left.bar(xs, ms, width, label=method)
+        right.bar(xs, ctl, width, label=method)
+    for ax, title, unit in ((left, "host hidden-surface time (median CPU)", "ms"),
+                            (right, "modelled controller time (tms34010-50mhz)", "ms")):
+        ax.set_xticks(range(len(scenes)))
+        ax.set_xticklabels([scene_label(s) for s in scenes])
+        ax.set_yscale("log")
+        ax.set_ylabel(unit)
+        ax.set_title(title)
+        ax.grid(axis="y", which="both", alpha=0.3)
+    left.legend()
+    fig.suptitle("Fig. 2.1 re-run: Warnock, scan-line and Z-buffer at 1024x780")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "fig2_1.png"), dpi=110)
+
+
+def fig2_4(folder):
+    rows = read(os.path.join(folder, "fig2_4.csv"))
+    real = [r for r in rows if not r["scene"].startswith("ideal")]
+    ideal = [r for r in rows if r["scene"].startswith("ideal")]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
+    xs = range(len(real))
+    left.bar([x - 0.27 for x in xs], [float(r["predicted"]) for r in real], 0.27, label="Eq. 2.4 predicted")
+    left.bar(xs, [float(r["measured_area"]) for r in real], 0.27, label="measured, area test")
+    left.bar([x + 0.27 for x in xs], [float(r["measured_centres"]) for r in real], 0.27,
+             label="measured, centres test")
+    left.set_xticks(list(xs))
+    left.set_xticklabels([scene_label(r["scene"]) for r in real])
+    left.set_yscale("log")
+    left.set_ylabel("window samples")
+    left.set_title("scenes A-F (E_s = sqrt(WH), F_v = F/D)")
+    left.legend()
+    left.grid(axis="y", which="both", alpha=0.3)
+    for d in sorted({r["depth_complexity"] for r in ideal}, key=float):
+        sub = [r for r in ideal if r["depth_complexity"] == d]
+        fv = [float(r["f_v"]) for r in sub]
+        right.plot(fv, [float(r["measured_area"]) for r in sub], "o", label=f"measured, D={d}")
+        right.plot(fv, [float(r["measured_centres"]) for r in sub], "x", label=f"centres test, D={d}")
+    sub = [r for r in ideal if r["depth_complexity"] == ideal[0]["depth_complexity"]]
+    right.plot([float(r["f_v"]) for r in sub], [float(r["predicted"]) for r in sub], "-", color="black",
+               label="Eq. 2.4")
+    right.set_xscale("log")
+    right.set_yscale("log")
+    right.set_xlabel("visible faces F_v")
+    right.set_ylabel("window samples")
+    right.set_title("ideal scenes, 512x512")
+    right.legend(fontsize=8)
+    right.grid(which="both", alpha=0.3)
+    fig.suptitle("Fig. 2.4 re-run: predicted and actual window samples")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "fig2_4.png"), dpi=110)
+
+
+def main():
+    folder = sys.argv[1] if len(sys.argv) > 1 else "docs/figures"
+    fig2_1(folder)
+    fig2_4(folder)
+
+
+if __name__ == "__main__":
+    main()
