@@ -29,7 +29,10 @@ void make_parent_dirs(const std::string& path) {
 }
 
 void write_json(const std::string& path, const nlohmann::json& value) {
-    std::string text = value.dump(2) + "\n";
+    write_text(path, value.dump(2) + "\n");
+}
+
+void write_text(const std::string& path, const std::string& text) {
     if (path == "-") {
         std::cout << text << std::flush;
         return;

@@ -28,6 +28,8 @@ ImageSize parse_size(const std::string& text);
 // Writes JSON (indented) to a path, or to stdout for "-". Throws std::runtime_error
 // naming the path on failure.
 void write_json(const std::string& path, const nlohmann::json& value);
+// Writes text to a path, or to stdout for "-". Throws std::runtime_error naming the path.
+void write_text(const std::string& path, const std::string& text);
 
 // Creates the parent folder of an output path if needed.
 void make_parent_dirs(const std::string& path);
@@ -41,5 +43,7 @@ struct Console {
 void register_render(CLI::App& app, int& exit_code);
 void register_model(CLI::App& app, int& exit_code);
 void register_experiment(CLI::App& app, int& exit_code);
+void register_sweep(CLI::App& app, int& exit_code);
+void register_calibrate(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

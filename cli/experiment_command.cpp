@@ -5,13 +5,16 @@
 //           modelled cost (paper Fig. 2.1).
 //   fig2.4  Eq. 2.4's predicted window samples against the counts of an instrumented
 //           Warnock, on A-F and on ideal scenes (paper Fig. 2.4).
+//   fig3.1  the hybrid's time against its threshold on A and F (paper Fig. 3.1), with
+//           the calibrated and the paper's thresholds, host and controller apart.
+//   accuracy  exact and approximate Warnock and hybrid: time, commands, pixels wrong.
 #include <unistd.h>
 
-#include <fstream>
 #include <iostream>
 
 #include <fmt/format.h>
 
+#include "cli/calibration.h"
 #include "cli/common.h"
 #include "cli/experiments.h"
 
@@ -26,32 +29,21 @@ struct ExperimentArgs {
     std::string size;
     std::string profile = "tms34010-50mhz";
     int repeat = 7;
+    std::string threshold = "calibrated";
     bool quiet = false;
 };
 
-std::vector<std::string> default_scenes() {
+std::vector<std::string> default_scenes(const std::string& name) {
+    if (name == "fig3.1") return {"scenes/A.json", "scenes/F.json"};
     std::vector<std::string> out;
     for (char c = 'A'; c <= 'F'; ++c)
         out.push_back(fmt::format("scenes/{}.json", c));
     return out;
 }
 
-void write_csv(const std::string& path, const Table& table) {
-    std::string text = table.csv();
-    if (path == "-") {
-        std::cout << text;
-        return;
-    }
-    make_parent_dirs(path);
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write the file", path));
-}
-
 int run_experiment(const ExperimentArgs& args) {
     ExperimentSettings settings;
-    settings.scenes = args.scenes.empty() ? default_scenes() : args.scenes;
+    settings.scenes = args.scenes.empty() ? default_scenes(args.name) : args.scenes;
     settings.repeat = args.repeat;
     settings.profile = args.profile;
     settings.progress = !args.quiet && isatty(STDERR_FILENO);
@@ -62,10 +54,15 @@ int run_experiment(const ExperimentArgs& args) {
         table = experiment_fig2_1(settings);
     else if (args.name == "fig2.4")
         table = experiment_fig2_4(settings);
+    else if (args.name == "fig3.1")
+        table = experiment_fig3_1(settings, resolve_threshold(args.threshold));
+    else if (args.name == "accuracy")
+        table = experiment_accuracy(settings, resolve_threshold(args.threshold));
     else
-        throw UsageError(fmt::format("unknown experiment '{}' (known: fig2.1, fig2.4)", args.name));
+        throw UsageError(fmt::format(
+            "unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, accuracy)", args.name));
 
-    if (!args.csv.empty()) write_csv(args.csv, table);
+    if (!args.csv.empty()) write_text(args.csv, table.csv());
     if (!args.quiet && args.csv != "-") std::cout << table.text();
     return kSuccess;
 }
@@ -85,6 +82,9 @@ void register_experiment(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     sub->add_option("--profile", args->profile, "Controller cost profile")->capture_default_str();
+    sub->add_option("--threshold", args->threshold,
+                    "fig3.1 and accuracy: the hybrid's threshold (number, paper or calibrated)")
+        ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_experiment(*args); });
 }

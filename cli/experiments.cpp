@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 #include <fmt/format.h>
@@ -66,6 +67,52 @@ const std::vector<Method>& fig2_1_methods() {
     return methods;
 }
 
+}  // namespace
+
+// Interleaved timing: every round renders each setting once, in a rotating order, so slow
+// drifts of the machine fall on all settings alike; a warm-up round first; medians.
+std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
+                                          const std::vector<host::RenderOptions>& settings,
+                                          int repeat, const std::string& label, bool progress) {
+    std::vector<std::unique_ptr<host::Renderer>> renderers;
+    std::vector<std::vector<host::Timing>> times(settings.size());
+    std::vector<Measured> out(settings.size());
+    for (const auto& o : settings) {
+        renderers.push_back(host::make_renderer(o));
+        renderers.back()->setup(screen);
+    }
+    for (int round = -1; round < repeat; ++round) {
+        if (progress) std::cerr << fmt::format("\r{}: round {}/{}   ", label, round + 1, repeat);
+        for (size_t k = 0; k < settings.size(); ++k) {
+            const size_t m = (k + static_cast<size_t>(round + 1)) % settings.size();
+            out[m].commands.clear();
+            host::HostStats stats;
+            host::Timing t = host::render_frame(*renderers[m], screen, out[m].commands, stats);
+            if (round >= 0) times[m].push_back(t);
+            out[m].counters = stats.counters;
+        }
+    }
+    if (progress) std::cerr << "\r" << std::string(60, ' ') << "\r";
+    for (size_t m = 0; m < settings.size(); ++m)
+        out[m].median = host::median(times[m]);
+    return out;
+}
+
+ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
+                                     const controller::CostProfile& profile) {
+    controller::Controller ctl(profile);
+    commands.replay_into(ctl);
+    const auto& frame = ctl.frames().at(0);
+    ControllerFigures f;
+    f.commands = frame.total().commands;
+    f.fills = frame.ops[protocol::opcode_index(protocol::Opcode::FillRect)].commands;
+    f.spans = frame.ops[protocol::opcode_index(protocol::Opcode::DrawSpan)].commands;
+    f.controller_ms = frame.controller_busy_us / 1e3;
+    f.bus_ms = frame.bus_busy_us / 1e3;
+    f.frame_ms = frame.end_us / 1e3;
+    return f;
+}
+
 host::ScreenScene load_screen(const std::string& file, const ExperimentSettings& s,
                               host::Scene& scene) {
     scene = host::load_scene(file);
@@ -81,10 +128,6 @@ std::string fixed(double v, int digits) {
     return fmt::format("{:.{}f}", v, digits);
 }
 
-}  // namespace
-
-// Interleaved timing: every round renders each method once, in a rotating order, so
-// slow drifts of the machine fall on all methods alike; medians per method.
 Table experiment_fig2_1(const ExperimentSettings& s) {
     Table table({"scene", "method", "faces", "depth_complexity", "hs_wall_ms", "hs_cpu_ms",
                  "ratio_to_zbuffer", "window_samples", "face_computations", "depth_tests",
@@ -95,46 +138,23 @@ Table experiment_fig2_1(const ExperimentSettings& s) {
         host::ScreenScene screen = load_screen(file, s, scene);
         host::SceneMeasures measures = host::measure_scene(screen);
         const auto& methods = fig2_1_methods();
-        std::vector<std::unique_ptr<host::Renderer>> renderers;
-        std::vector<std::vector<host::Timing>> times(methods.size());
-        std::vector<host::HostStats> last(methods.size());
-        std::vector<protocol::MemoryBuffer> buffers(methods.size());
-        for (const auto& m : methods) {
-            renderers.push_back(host::make_renderer(m.options));
-            renderers.back()->setup(screen);
-        }
-        for (int round = -1; round < s.repeat; ++round) {  // round -1 warms up
-            if (s.progress)
-                std::cerr << fmt::format("\r{}: round {}/{}   ", file, round + 1, s.repeat);
-            for (size_t k = 0; k < methods.size(); ++k) {
-                size_t m = (k + static_cast<size_t>(round + 1)) % methods.size();
-                buffers[m].clear();
-                host::HostStats stats;
-                host::Timing t = host::render_frame(*renderers[m], screen, buffers[m], stats);
-                if (round >= 0) times[m].push_back(t);
-                last[m] = stats;
-            }
-        }
-        if (s.progress) std::cerr << "\r" << std::string(60, ' ') << "\r";
-        const double zbuffer_ms = host::median(times[0]).cpu_ms;
+        std::vector<host::RenderOptions> settings;
+        for (const auto& m : methods)
+            settings.push_back(m.options);
+        std::vector<Measured> results =
+            measure_interleaved(screen, settings, s.repeat, file, s.progress);
+        const double zbuffer_ms = results[0].median.cpu_ms;
         for (size_t m = 0; m < methods.size(); ++m) {
-            controller::Controller ctl(profile);
-            buffers[m].replay_into(ctl);
-            const auto& frame = ctl.frames().at(0);
-            const auto& c = last[m].counters;
-            host::Timing med = host::median(times[m]);
-            table.add({file, methods[m].label, std::to_string(scene.face_count),
-                       fixed(measures.depth_complexity, 3), fixed(med.wall_ms, 3),
-                       fixed(med.cpu_ms, 3), fixed(med.cpu_ms / zbuffer_ms, 3),
-                       std::to_string(c.get("window_samples")),
-                       std::to_string(c.get("face_computations")),
-                       std::to_string(c.get("depth_tests")), std::to_string(frame.total().commands),
-                       std::to_string(
-                           frame.ops[protocol::opcode_index(protocol::Opcode::FillRect)].commands),
-                       std::to_string(
-                           frame.ops[protocol::opcode_index(protocol::Opcode::DrawSpan)].commands),
-                       fixed(frame.controller_busy_us / 1e3, 3), fixed(frame.bus_busy_us / 1e3, 3),
-                       fixed(frame.end_us / 1e3, 3)});
+            const ControllerFigures ctl = controller_figures(results[m].commands, profile);
+            const auto& c = results[m].counters;
+            const host::Timing med = results[m].median;
+            table.add(
+                {file, methods[m].label, std::to_string(scene.face_count),
+                 fixed(measures.depth_complexity, 3), fixed(med.wall_ms, 3), fixed(med.cpu_ms, 3),
+                 fixed(med.cpu_ms / zbuffer_ms, 3), std::to_string(c.get("window_samples")),
+                 std::to_string(c.get("face_computations")), std::to_string(c.get("depth_tests")),
+                 std::to_string(ctl.commands), std::to_string(ctl.fills), std::to_string(ctl.spans),
+                 fixed(ctl.controller_ms, 3), fixed(ctl.bus_ms, 3), fixed(ctl.frame_ms, 3)});
         }
     }
     return table;
@@ -210,6 +230,159 @@ Table experiment_fig2_4(const ExperimentSettings& s) {
     }
     if (s.progress) std::cerr << "\r" << std::string(40, ' ') << "\r";
     return table;
+}
+
+}  // namespace fb89::cli
+
+namespace fb89::cli {
+
+std::vector<double> threshold_ramp(double from, double to, int steps) {
+    std::vector<double> out;
+    if (steps <= 1) return {from};
+    for (int i = 0; i < steps; ++i)
+        out.push_back(from * std::pow(to / from, static_cast<double>(i) / (steps - 1)));
+    return out;
+}
+
+// The hybrid at each threshold (plus 0 = pure Z-buffer and inf = pure Warnock), timed
+// interleaved per scene.
+Table sweep_threshold(const ExperimentSettings& s, const std::vector<double>& thresholds,
+                      const host::RenderOptions& base) {
+    Table table({"scene", "threshold", "hs_wall_ms", "hs_cpu_ms", "ratio_to_zbuffer",
+                 "window_samples", "face_computations", "windows_handed_over", "pixels_zbuffer",
+                 "pixels_warnock", "depth_tests", "commands", "fills", "spans", "controller_ms",
+                 "bus_ms", "frame_ms"});
+    const controller::CostProfile profile = controller::load_profile(s.profile);
+    std::vector<host::RenderOptions> settings;
+    for (double t : thresholds) {
+        host::RenderOptions o = base;
+        o.method = "hybrid";
+        o.threshold = t;
+        settings.push_back(o);
+    }
+    for (const auto& file : s.scenes) {
+        host::Scene scene;
+        host::ScreenScene screen = load_screen(file, s, scene);
+        std::vector<Measured> results =
+            measure_interleaved(screen, settings, s.repeat, file, s.progress);
+        double zbuffer_ms = 0;
+        for (size_t i = 0; i < thresholds.size(); ++i)
+            if (thresholds[i] == 0) zbuffer_ms = results[i].median.cpu_ms;
+        for (size_t i = 0; i < thresholds.size(); ++i) {
+            const ControllerFigures ctl = controller_figures(results[i].commands, profile);
+            const auto& c = results[i].counters;
+            const host::Timing med = results[i].median;
+            table.add({file,
+                       std::isinf(thresholds[i]) ? "inf" : fmt::format("{:.6g}", thresholds[i]),
+                       fixed(med.wall_ms, 3), fixed(med.cpu_ms, 3),
+                       zbuffer_ms > 0 ? fixed(med.cpu_ms / zbuffer_ms, 3) : "",
+                       std::to_string(c.get("window_samples")),
+                       std::to_string(c.get("face_computations")),
+                       std::to_string(c.get("windows_handed_over")),
+                       std::to_string(c.get("hybrid_pixels_zbuffer")),
+                       std::to_string(c.get("hybrid_pixels_warnock")),
+                       std::to_string(c.get("depth_tests")), std::to_string(ctl.commands),
+                       std::to_string(ctl.fills), std::to_string(ctl.spans),
+                       fixed(ctl.controller_ms, 3), fixed(ctl.bus_ms, 3), fixed(ctl.frame_ms, 3)});
+        }
+    }
+    return table;
+}
+
+}  // namespace fb89::cli
+
+namespace fb89::cli {
+
+namespace {
+
+// The face-id buffer a setting produces, through its commands and the controller.
+std::vector<uint8_t> id_pixels(const host::Scene& scene, const host::RenderOptions& o) {
+    host::HostStats stats;
+    host::ScreenScene ids = host::project_scene(scene, host::ColorMode::FaceId, stats.counters);
+    auto renderer = host::make_renderer(o);
+    renderer->setup(ids);
+    protocol::MemoryBuffer commands;
+    host::render_frame(*renderer, ids, commands, stats);
+    controller::Controller ctl(controller::load_profile("ideal"));
+    commands.replay_into(ctl);
+    const auto px = ctl.framebuffer().pixels();
+    return {px.begin(), px.end()};
+}
+
+uint64_t pixels_differing(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    uint64_t n = 0;
+    for (size_t i = 0; i + 2 < a.size(); i += 3)
+        n += a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
+    return n;
+}
+
+}  // namespace
+
+// Speed against accuracy: exact settings beside approximate ones (the thinker may fill a
+// window of side >= k with a face in front that misses up to a fraction eps of its
+// centres); pixels wrong are counted against the Z-buffer's face-id buffer.
+Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
+    Table table({"scene", "setting", "method", "threshold", "approx_min_side", "approx_epsilon",
+                 "hs_cpu_ms", "ratio_to_zbuffer", "commands", "controller_ms", "pixels_wrong",
+                 "fraction_wrong"});
+    const controller::CostProfile profile = controller::load_profile(s.profile);
+    struct Setting {
+        std::string label;
+        host::RenderOptions options;
+    };
+    std::vector<Setting> settings{{"zbuffer", {"zbuffer"}}};
+    for (const char* method : {"warnock", "hybrid"}) {
+        for (auto [k, eps] : {std::pair{0, 0.0}, {32, 0.01}, {16, 0.02}, {8, 0.05}, {4, 0.1}}) {
+            host::RenderOptions o;
+            o.method = method;
+            o.threshold = threshold;
+            o.approx_min_side = k;
+            o.approx_epsilon = eps;
+            settings.push_back(
+                {fmt::format("{}{}", method, k ? fmt::format(" k={} eps={}", k, eps) : " exact"),
+                 o});
+        }
+    }
+    for (const auto& file : s.scenes) {
+        host::Scene scene;
+        host::ScreenScene screen = load_screen(file, s, scene);
+        std::vector<host::RenderOptions> options;
+        for (const auto& st : settings)
+            options.push_back(st.options);
+        std::vector<Measured> results =
+            measure_interleaved(screen, options, s.repeat, file, s.progress);
+        const std::vector<uint8_t> truth = id_pixels(scene, settings[0].options);
+        const double zbuffer_ms = results[0].median.cpu_ms;
+        for (size_t i = 0; i < settings.size(); ++i) {
+            const auto& o = settings[i].options;
+            const ControllerFigures ctl = controller_figures(results[i].commands, profile);
+            const uint64_t wrong = i == 0 ? 0 : pixels_differing(truth, id_pixels(scene, o));
+            table.add(
+                {file, settings[i].label, o.method,
+                 o.method == "hybrid" ? fmt::format("{:.6g}", o.threshold) : "",
+                 std::to_string(o.approx_min_side), fmt::format("{}", o.approx_epsilon),
+                 fixed(results[i].median.cpu_ms, 3),
+                 fixed(results[i].median.cpu_ms / zbuffer_ms, 3), std::to_string(ctl.commands),
+                 fixed(ctl.controller_ms, 3), std::to_string(wrong),
+                 fmt::format("{:.6f}", static_cast<double>(wrong) /
+                                           static_cast<double>(screen.width * screen.height))});
+        }
+    }
+    return table;
+}
+
+}  // namespace fb89::cli
+
+namespace fb89::cli {
+
+Table experiment_fig3_1(const ExperimentSettings& s, double chosen) {
+    std::vector<double> thresholds{0.0, 0.04, chosen};
+    for (double t : threshold_ramp(0.0002, 2.0, 13))
+        thresholds.push_back(t);
+    thresholds.push_back(std::numeric_limits<double>::infinity());
+    std::sort(thresholds.begin(), thresholds.end());
+    thresholds.erase(std::unique(thresholds.begin(), thresholds.end()), thresholds.end());
+    return sweep_threshold(s, thresholds, host::RenderOptions{});
 }
 
 }  // namespace fb89::cli

@@ -6,6 +6,10 @@
 #include <vector>
 
 #include "cli/common.h"
+#include "controller_sim/profile.h"
+#include "host/raster/renderer.h"
+#include "host/scene/scene.h"
+#include "protocol/memory_buffer.h"
 
 namespace fb89::cli {
 
@@ -31,7 +35,44 @@ struct ExperimentSettings {
     bool progress = false;
 };
 
+// One setting's result of interleaved timing: the median time, the counters and commands
+// of its last frame (every frame is the same).
+struct Measured {
+    host::Timing median;
+    host::Counters counters;
+    protocol::MemoryBuffer commands;
+};
+std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
+                                          const std::vector<host::RenderOptions>& settings,
+                                          int repeat, const std::string& label, bool progress);
+
+// What the controller makes of one frame's commands under a profile.
+struct ControllerFigures {
+    uint64_t commands = 0, fills = 0, spans = 0;
+    double controller_ms = 0, bus_ms = 0, frame_ms = 0;
+};
+ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
+                                     const controller::CostProfile& profile);
+
+host::ScreenScene load_screen(const std::string& file, const ExperimentSettings& s,
+                              host::Scene& scene);
+std::string fixed(double v, int digits);
+
 Table experiment_fig2_1(const ExperimentSettings& settings);
+
+// `steps` thresholds from `from` to `to`, evenly spaced on a log scale.
+std::vector<double> threshold_ramp(double from, double to, int steps);
+// The hybrid (options `base`, method and threshold replaced) at each threshold, on each
+// scene, timed interleaved: one row per scene and threshold.
+// Exact and approximate Warnock and hybrid (at `threshold`) against the Z-buffer: time,
+// commands and pixels wrong.
+Table experiment_accuracy(const ExperimentSettings& settings, double threshold);
+
+// Fig. 3.1: the threshold sweep on each scene, including `chosen` and the paper's 0.04.
+Table experiment_fig3_1(const ExperimentSettings& settings, double chosen);
+
+Table sweep_threshold(const ExperimentSettings& settings, const std::vector<double>& thresholds,
+                      const host::RenderOptions& base);
 Table experiment_fig2_4(const ExperimentSettings& settings);
 
 }  // namespace fb89::cli

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
     register_render(app, exit_code);
     register_model(app, exit_code);
     register_experiment(app, exit_code);
+    register_sweep(app, exit_code);
+    register_calibrate(app, exit_code);
 
     try {
         app.parse(argc, argv);

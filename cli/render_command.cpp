@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/calibration.h"
 #include "cli/common.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
@@ -22,6 +23,10 @@ struct RenderArgs {
     std::string scene;
     std::string method = "zbuffer";
     std::string window_test = "area";
+    std::string threshold = "calibrated";
+    std::string depth_estimate = "window";
+    int approx_min_side = 0;
+    double approx_epsilon = 0;
     std::string size;
     std::string png, ids, stream, stats;
     std::string profile = std::string(controller::kDefaultProfile);
@@ -109,7 +114,11 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
                   {"width", run.screen.width},
                   {"height", run.screen.height}};
     j["method"] = args.method;
-    if (args.method == "warnock") j["window_test"] = args.window_test;
+    if (args.method == "warnock" || args.method == "hybrid") j["window_test"] = args.window_test;
+    if (args.method == "hybrid") {
+        j["threshold"] = resolve_threshold(args.threshold);
+        j["depth_estimate"] = args.depth_estimate;
+    }
     j["host"] = run.stats.to_json();
     j["host"]["commands"] = run.commands.size();
     host::SceneMeasures m = host::measure_scene(run.screen);
@@ -129,12 +138,19 @@ int run_render(const RenderArgs& args) {
     host::RenderOptions options;
     options.method = args.method;
     options.window_test = args.window_test;
+    std::string threshold_source;
+    options.threshold = resolve_threshold(args.threshold, &threshold_source);
+    options.depth_estimate = args.depth_estimate;
+    options.approx_min_side = args.approx_min_side;
+    options.approx_epsilon = args.approx_epsilon;
     std::unique_ptr<host::Renderer> renderer;
     try {
         renderer = host::make_renderer(options);
     } catch (const std::invalid_argument& e) {
-        throw UsageError(fmt::format("--method: {}", e.what()));
+        throw UsageError(e.what());
     }
+    if (args.method == "hybrid")
+        console.note(fmt::format("hybrid threshold {} ({})", options.threshold, threshold_source));
     controller::CostProfile profile = controller::load_profile(args.profile);
 
     HostRun run = run_host(args, *renderer);
@@ -175,6 +191,21 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--window-test", args->window_test,
                     "Warnock's window test: area (the paper's) or centres (sampling-aware)")
         ->capture_default_str();
+    sub->add_option("--threshold", args->threshold,
+                    "Hybrid: Expr. 3.1 threshold: a number, inf, paper (0.04) or calibrated "
+                    "(this machine's, from fb89 calibrate; else the paper's)")
+        ->capture_default_str();
+    sub->add_option("--depth-estimate", args->depth_estimate,
+                    "Hybrid: D in Expr. 3.1 from the window's faces or the whole scene's")
+        ->check(CLI::IsMember({"window", "scene"}))
+        ->capture_default_str();
+    sub->add_option("--approx-min", args->approx_min_side,
+                    "Approximate: fill windows of at least this side with a face covering all "
+                    "but --approx-eps of their pixel centres (0: exact)")
+        ->check(CLI::Range(0, 16384));
+    sub->add_option("--approx-eps", args->approx_epsilon,
+                    "Approximate: the fraction of a window's centres its face may miss")
+        ->check(CLI::Range(0.0, 0.999));
     sub->add_option("--size", args->size, "Image size WxH, overriding the scene's");
     sub->add_option("--png", args->png, "Write the controller's framebuffer as PNG");
     sub->add_option("--ids", args->ids,

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "host/raster/hybrid.h"
 #include "host/raster/scanline.h"
 #include "host/raster/warnock.h"
 #include "host/raster/zbuffer.h"
@@ -9,18 +10,44 @@
 namespace fb89::host {
 
 std::vector<std::string> renderer_names() {
-    return {"zbuffer", "scanline", "warnock"};
+    return {"zbuffer", "scanline", "warnock", "hybrid"};
 }
+
+namespace {
+
+WindowTest window_test_of(const RenderOptions& o) {
+    if (o.window_test == "area") return WindowTest::Area;
+    if (o.window_test == "centres") return WindowTest::Centres;
+    throw std::invalid_argument("unknown window test '" + o.window_test +
+                                "' (known: area, centres)");
+}
+
+Approximation approximation_of(const RenderOptions& o) {
+    if (o.approx_min_side < 0 || !(o.approx_epsilon >= 0 && o.approx_epsilon < 1))
+        throw std::invalid_argument("approximation needs a side >= 0 and 0 <= epsilon < 1");
+    return {o.approx_min_side, o.approx_epsilon};
+}
+
+}  // namespace
 
 std::unique_ptr<Renderer> make_renderer(const RenderOptions& options) {
     if (options.method == "zbuffer") return std::make_unique<ZBuffer>();
     if (options.method == "scanline") return std::make_unique<ScanLine>();
-    if (options.method == "warnock") {
-        if (options.window_test != "area" && options.window_test != "centres")
-            throw std::invalid_argument("unknown window test '" + options.window_test +
-                                        "' (known: area, centres)");
-        return std::make_unique<Warnock>(options.window_test == "area" ? WindowTest::Area
-                                                                       : WindowTest::Centres);
+    if (options.method == "warnock")
+        return std::make_unique<Warnock>(window_test_of(options), approximation_of(options));
+    if (options.method == "hybrid") {
+        HybridOptions h;
+        if (!(options.threshold >= 0))
+            throw std::invalid_argument(
+                "the hybrid's threshold must be >= 0 (inf for pure Warnock)");
+        h.threshold = options.threshold;
+        if (options.depth_estimate != "window" && options.depth_estimate != "scene")
+            throw std::invalid_argument("unknown depth estimate '" + options.depth_estimate +
+                                        "' (known: window, scene)");
+        h.depth = options.depth_estimate == "scene" ? DepthEstimate::Scene : DepthEstimate::Window;
+        h.window_test = window_test_of(options);
+        h.approx = approximation_of(options);
+        return std::make_unique<Hybrid>(h);
     }
     std::string known;
     for (const auto& n : renderer_names())

@@ -27,7 +27,11 @@ class Renderer {
 
 struct RenderOptions {
     std::string method = "zbuffer";
-    std::string window_test = "area";  // Warnock: "area" or "centres"
+    std::string window_test = "area";       // Warnock and hybrid: "area" or "centres"
+    double threshold = 0.04;                // hybrid: Expr. 3.1 threshold (the paper's 0.04)
+    std::string depth_estimate = "window";  // hybrid: "window" or "scene"
+    int approx_min_side = 0;                // Warnock and hybrid: approximate fills (0: exact)
+    double approx_epsilon = 0;
 };
 
 // Throws std::invalid_argument naming the known methods when `method` is unknown.

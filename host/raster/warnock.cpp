@@ -47,6 +47,8 @@ void WarnockCounts::publish(Counters& c) const {
     c.add("filled_pixels", filled_pixels);
     c.add("front_tests", front_tests);
     c.set("max_depth", max_depth);
+    if (handed_over) c.add("windows_handed_over", handed_over);
+    if (approximate_fills) c.add("approximate_fills", approximate_fills);
     for (size_t k = 0; k < fills_by_side.size(); ++k)
         if (fills_by_side[k])
             c.add("fills_side_" + std::to_string(1u << k) + "+", fills_by_side[k]);
@@ -82,6 +84,10 @@ void Warnock::render(const ScreenScene& scene, protocol::CommandSink& sink, Host
 // The looker: sample the window; if the thinker fails, split it and look at each part.
 void Warnock::look(const PixelRect& w, size_t begin, size_t end, uint64_t depth) {
     m_counts.max_depth = std::max(m_counts.max_depth, depth);
+    if (m_handoff && m_handoff->take(*m_scene, w, {m_arena.data() + begin, end - begin}, *m_sink)) {
+        ++m_counts.handed_over;
+        return;
+    }
     if (think(w, begin, end)) return;
 
     // split evenly into (up to) four: no empty sub-window
@@ -134,6 +140,17 @@ bool Warnock::think(const PixelRect& w, size_t begin, size_t end) {
             ++m_counts.surrounded;
             fill(w, m_scene->faces[s].color);
             return true;
+        }
+    }
+    // approximate: a large window nearly covered by a face in front of the others
+    if (m_approx.min_side > 0 && std::min(w.width(), w.height()) >= m_approx.min_side) {
+        for (size_t i = begin; i < end; ++i) {
+            const uint32_t s = m_arena[i];
+            if (nearly_surrounds(s, w) && in_front(s, w, begin, end)) {
+                ++m_counts.approximate_fills;
+                fill(w, m_scene->faces[s].color);
+                return true;
+            }
         }
     }
     return false;
@@ -212,6 +229,20 @@ bool Warnock::surrounds(uint32_t face, const PixelRect& w) const {
             return false;
     }
     return true;
+}
+
+// Covers all but a fraction epsilon of the window's pixel centres.
+bool Warnock::nearly_surrounds(uint32_t face, const PixelRect& w) const {
+    const ScreenFace& f = m_scene->faces[face];
+    const EdgeFunction* edges = m_scene->edges_of(f);
+    const double allowed = m_approx.epsilon * static_cast<double>(w.area());
+    double missed = 0;
+    for (int y = w.y0; y < w.y1 && missed <= allowed; ++y) {
+        int xb = 0, xe = 0;
+        missed += row_span(edges, f.point_count, y, w.x0, w.x1, xb, xe) ? w.width() - (xe - xb)
+                                                                        : w.width();
+    }
+    return missed <= allowed;
 }
 
 bool Warnock::belongs(uint32_t face, const PixelRect& w) const {

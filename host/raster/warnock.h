@@ -19,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "host/raster/renderer.h"
@@ -27,6 +28,24 @@ namespace fb89::host {
 
 enum class WindowTest { Area, Centres };
 const char* to_string(WindowTest t);
+
+// What the looker may hand a window to instead of sampling it: the Warnock/Z-buffer
+// hybrid (hybrid.h). `faces` are the window's faces, ascending scene.faces indices.
+class WindowHandoff {
+  public:
+    virtual ~WindowHandoff() = default;
+    // Returns true when it took the window (and sent its commands).
+    virtual bool take(const ScreenScene& scene, const PixelRect& window,
+                      std::span<const uint32_t> faces, protocol::CommandSink& sink) = 0;
+};
+
+// Speed against accuracy: let the thinker fill a window whose shorter side is at least
+// `min_side` with a face in front that covers all but a fraction `epsilon` of its pixel
+// centres. Off (exact) when min_side is 0.
+struct Approximation {
+    int min_side = 0;
+    double epsilon = 0;
+};
 
 struct WarnockCounts {
     uint64_t samples = 0;        // thinker calls (window samples)
@@ -38,8 +57,10 @@ struct WarnockCounts {
     uint64_t pixel_windows = 0;  // 1-pixel windows resolved by point sampling
     uint64_t fills = 0;          // FILL_RECT commands sent
     uint64_t filled_pixels = 0;
-    uint64_t front_tests = 0;  // surrounder-in-front checks of one face pair
-    uint64_t max_depth = 0;    // deepest recursion level (the screen is level 0)
+    uint64_t front_tests = 0;        // surrounder-in-front checks of one face pair
+    uint64_t max_depth = 0;          // deepest recursion level (the screen is level 0)
+    uint64_t handed_over = 0;        // windows the looker handed to a WindowHandoff
+    uint64_t approximate_fills = 0;  // windows filled by a face missing some centres
     // Filled windows by the shorter side: [k] counts sides in [2^k, 2^(k+1)).
     std::array<uint64_t, 16> fills_by_side{};
 
@@ -48,7 +69,10 @@ struct WarnockCounts {
 
 class Warnock final : public Renderer {
   public:
-    explicit Warnock(WindowTest test = WindowTest::Area) : m_test(test) {}
+    explicit Warnock(WindowTest test = WindowTest::Area, Approximation approx = {})
+        : m_test(test), m_approx(approx) {}
+    // The looker offers every window to `handoff` before sampling it (null: never).
+    void set_handoff(WindowHandoff* handoff) { m_handoff = handoff; }
     std::string_view name() const override { return "warnock"; }
     void setup(const ScreenScene& scene) override;
     void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
@@ -68,9 +92,12 @@ class Warnock final : public Renderer {
     bool belongs(uint32_t face, const PixelRect& window) const;
     bool interiors_overlap(uint32_t face, const PixelRect& window) const;
     bool covers_a_centre(uint32_t face, const PixelRect& window) const;
+    bool nearly_surrounds(uint32_t face, const PixelRect& window) const;
     void fill(const PixelRect& window, protocol::Rgb color);
 
     WindowTest m_test;
+    Approximation m_approx;
+    WindowHandoff* m_handoff = nullptr;
     const ScreenScene* m_scene = nullptr;
     protocol::CommandSink* m_sink = nullptr;
     std::vector<Box> m_boxes;

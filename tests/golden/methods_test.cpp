@@ -55,15 +55,25 @@ std::string difference(const Frame& want, const Frame& got, int width) {
 
 class GoldenMethods : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(GoldenMethods, EveryMethodGivesTheZBuffersIdsAndImage) {
+TEST_P(GoldenMethods, EveryMethodAndHybridThresholdGivesTheZBuffersIdsAndImage) {
     host::Scene scene = host::load_scene(std::string(FB89_SCENES_DIR) + "/" + GetParam());
     const host::RenderOptions reference{"zbuffer", "area"};
     const Frame ids = render(scene, host::ColorMode::FaceId, reference);
     const Frame image = render(scene, host::ColorMode::Shaded, reference);
-    for (const host::RenderOptions& o :
-         {host::RenderOptions{"scanline", "area"}, host::RenderOptions{"warnock", "area"},
-          host::RenderOptions{"warnock", "centres"}}) {
-        const std::string label = o.method + (o.method == "warnock" ? " " + o.window_test : "");
+    std::vector<host::RenderOptions> methods{
+        {"scanline", "area"}, {"warnock", "area"}, {"warnock", "centres"}};
+    for (double threshold : {0.0, 0.003, 0.04, 0.5}) {
+        host::RenderOptions hybrid{"hybrid", "area"};
+        hybrid.threshold = threshold;
+        methods.push_back(hybrid);
+    }
+    host::RenderOptions hybrid_centres{"hybrid", "centres"};
+    hybrid_centres.threshold = 0.01;
+    hybrid_centres.depth_estimate = "scene";
+    methods.push_back(hybrid_centres);
+    for (const host::RenderOptions& o : methods) {
+        const std::string label = o.method + " " + o.window_test +
+                                  (o.method == "hybrid" ? " " + std::to_string(o.threshold) : "");
         Frame got_ids = render(scene, host::ColorMode::FaceId, o);
         EXPECT_EQ(got_ids.checksum, ids.checksum)
             << label << " ids: " << difference(ids, got_ids, scene.width);
