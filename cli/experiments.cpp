@@ -386,3 +386,35 @@ Table experiment_fig3_1(const ExperimentSettings& s, double chosen) {
 }
 
 }  // namespace fb89::cli
+
+namespace fb89::cli {
+
+// The headline of §3: the hybrid at the calibrated and at the paper's threshold against
+// the pure Z-buffer, interleaved, on each scene.
+Table experiment_hybrid(const ExperimentSettings& s, double chosen) {
+    Table table({"scene", "faces", "zbuffer_ms", "hybrid_ms", "hybrid_over_zbuffer", "speedup_pct",
+                 "paper_hybrid_ms", "paper_over_zbuffer", "threshold", "pixels_zbuffer_pct",
+                 "zbuffer_commands", "hybrid_commands", "zbuffer_controller_ms",
+                 "hybrid_controller_ms"});
+    const controller::CostProfile profile = controller::load_profile(s.profile);
+    host::RenderOptions zbuffer{"zbuffer"}, hybrid{"hybrid"}, paper{"hybrid"};
+    hybrid.threshold = chosen;
+    paper.threshold = 0.04;
+    for (const auto& file : s.scenes) {
+        host::Scene scene;
+        host::ScreenScene screen = load_screen(file, s, scene);
+        auto r = measure_interleaved(screen, {zbuffer, hybrid, paper}, s.repeat, file, s.progress);
+        const double z = r[0].median.cpu_ms, h = r[1].median.cpu_ms, p = r[2].median.cpu_ms;
+        const ControllerFigures cz = controller_figures(r[0].commands, profile);
+        const ControllerFigures ch = controller_figures(r[1].commands, profile);
+        const double share = 100.0 * static_cast<double>(r[1].counters.get("hybrid_pixels_zbuffer")) /
+                             (static_cast<double>(screen.width) * screen.height);
+        table.add({file, std::to_string(scene.face_count), fixed(z, 3), fixed(h, 3), fixed(h / z, 3),
+                   fixed(100.0 * (z - h) / z, 1), fixed(p, 3), fixed(p / z, 3),
+                   fmt::format("{:.6g}", chosen), fixed(share, 1), std::to_string(cz.commands),
+                   std::to_string(ch.commands), fixed(cz.controller_ms, 3), fixed(ch.controller_ms, 3)});
+    }
+    return table;
+}
+
+}  // namespace fb89::cli

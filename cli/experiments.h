@@ -70,6 +70,8 @@ Table experiment_accuracy(const ExperimentSettings& settings, double threshold);
 
 // Fig. 3.1: the threshold sweep on each scene, including `chosen` and the paper's 0.04.
 Table experiment_fig3_1(const ExperimentSettings& settings, double chosen);
+// The hybrid at `chosen` and at the paper's 0.04 against the Z-buffer, per scene.
+Table experiment_hybrid(const ExperimentSettings& settings, double chosen);
 
 Table sweep_threshold(const ExperimentSettings& settings, const std::vector<double>& thresholds,
                       const host::RenderOptions& base);

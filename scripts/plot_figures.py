@@ -85,10 +85,78 @@ def fig2_4(folder):
     fig.savefig(os.path.join(folder, "fig2_4.png"), dpi=110)
 
 
+def threshold_value(text):
+    return float("inf") if text == "inf" else float(text)
+
+
+def fig3_1(folder):
+    rows = read(os.path.join(folder, "fig3_1.csv"))
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 4.5), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        sub = [r for r in rows if r["scene"] == scene]
+        finite = [r for r in sub if 0 < threshold_value(r["threshold"]) < float("inf")]
+        zero = [r for r in sub if threshold_value(r["threshold"]) == 0][0]
+        ax.plot([float(r["threshold"]) for r in finite], [float(r["hs_cpu_ms"]) for r in finite], "o-",
+                label="hybrid")
+        ax.axhline(float(zero["hs_cpu_ms"]), color="gray", linestyle="--", label="threshold 0 (Z-buffer)")
+        ax.axvline(0.04, color="red", linestyle=":", label="paper's 0.04")
+        ax.set_xscale("log")
+        ax.set_xlabel("threshold on Expr. 3.1")
+        ax.set_ylabel("hidden-surface ms (median CPU)")
+        ax.set_title(f"scene {scene_label(scene)}")
+        ax.grid(which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Fig. 3.1 re-run: hybrid rendering time vs threshold, 1024x780")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "fig3_1.png"), dpi=110)
+
+    fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 4.5), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        sub = [r for r in rows if r["scene"] == scene and 0 < threshold_value(r["threshold"]) < float("inf")]
+        t = [float(r["threshold"]) for r in sub]
+        ax.plot(t, [float(r["hs_cpu_ms"]) for r in sub], "o-", label="host hidden-surface (measured)")
+        ax.plot(t, [float(r["controller_ms"]) for r in sub], "s-", label="controller busy (modelled)")
+        ax.plot(t, [float(r["bus_ms"]) for r in sub], "^-", label="bus busy (modelled)")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("threshold on Expr. 3.1")
+        ax.set_ylabel("ms per frame")
+        ax.set_title(f"scene {scene_label(scene)}: host vs tms34010-50mhz controller")
+        ax.grid(which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "split.png"), dpi=110)
+
+
+def accuracy(folder):
+    rows = read(os.path.join(folder, "accuracy.csv"))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
+    for method, marker in (("warnock", "o"), ("hybrid", "s")):
+        sub = [r for r in rows if r["method"] == method]
+        wrong = [max(float(r["fraction_wrong"]), 1e-7) for r in sub]
+        left.scatter([float(r["ratio_to_zbuffer"]) for r in sub], wrong, marker=marker, label=method)
+        right.scatter([float(r["commands"]) for r in sub], wrong, marker=marker, label=method)
+    for ax, xlabel in ((left, "host time / Z-buffer time"), (right, "commands sent")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("fraction of pixels wrong (exact settings drawn at 1e-7)")
+        ax.grid(which="both", alpha=0.3)
+        ax.legend()
+    fig.suptitle("Speed against accuracy: approximate fills on scenes A-F")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "accuracy.png"), dpi=110)
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "docs/figures"
     fig2_1(folder)
     fig2_4(folder)
+    if os.path.exists(os.path.join(folder, "fig3_1.csv")):
+        fig3_1(folder)
+    if os.path.exists(os.path.join(folder, "accuracy.csv")):
+        accuracy(folder)
 
 
 if __name__ == "__main__":
