@@ -10,42 +10,18 @@
 #include <nlohmann/json.hpp>
 
 #include "controller_sim/png_io.h"
+#include "tests/cli/cli_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-// A folder of this test's own: ctest runs tests in parallel processes.
-fs::path test_dir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path dir = fs::temp_directory_path() / "fb89_cli_test" /
-                   (std::string(info->test_suite_name()) + "." + info->name());
-    fs::create_directories(dir);
-    return dir;
-}
+using fb89::testing::CliRun;
+using fb89::testing::slurp;
+using fb89::testing::test_dir;
 
 CliRun fb89(const std::string& args) {
-    fs::path dir = test_dir();
-    std::string cmd = std::string(FB89_CLI_PATH) + " " + args + " >" + (dir / "out").string() +
-                      " 2>" + (dir / "err").string() + " </dev/null";
-    int status = std::system(cmd.c_str());
-    CliRun r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir / "out");
-    r.err = slurp(dir / "err");
-    return r;
+    return fb89::testing::run_fb89(args);
 }
 
 fs::path scratch(const std::string& name) {

@@ -10,51 +10,32 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-fs::path test_dir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path dir = fs::temp_directory_path() / "fb89_cli_test" /
-                   (std::string(info->test_suite_name()) + "." + info->name());
-    fs::create_directories(dir);
-    return dir;
-}
+using fb89::testing::CliRun;
+using fb89::testing::slurp;
+using fb89::testing::test_dir;
 
 // Runs fb89 from the repository root (scenes/A.json ... are the defaults there), with a
 // calibration file of this test's own.
 CliRun fb89(const std::string& args) {
-    fs::path dir = test_dir();
-    std::string cmd = "cd " + fs::path(FB89_SCENES_DIR).parent_path().string() +
-                      " && FB89_CALIBRATION=" + (dir / "calibration.json").string() + " " +
-                      FB89_CLI_PATH + " " + args + " >" + (dir / "out").string() + " 2>" +
-                      (dir / "err").string() + " </dev/null";
-    int status = std::system(cmd.c_str());
-    CliRun r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir / "out");
-    r.err = slurp(dir / "err");
-    return r;
+    return fb89::testing::run_fb89(
+        args, "cd " + fs::path(FB89_SCENES_DIR).parent_path().string() +
+                  " && FB89_CALIBRATION=" + (test_dir() / "calibration.json").string() + " ");
 }
 
-size_t lines(const std::string& text) { return static_cast<size_t>(std::count(text.begin(), text.end(), '\n')); }
+size_t lines(const std::string& text) {
+    return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+}
 
 TEST(SweepCommand, WritesOneCsvRowPerSceneAndThresholdWithTheReferences) {
-    CliRun r = fb89("sweep threshold scenes/A.json scenes/B.json --from 0.001 --to 0.1 --steps 3 "
-                    "--repeat 1 --size 256x195 --csv -");
+    CliRun r = fb89(
+        "sweep threshold scenes/A.json scenes/B.json --from 0.001 --to 0.1 --steps 3 "
+        "--repeat 1 --size 256x195 --csv -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out.rfind("scene,threshold,hs_wall_ms,hs_cpu_ms", 0), 0u) << r.out;
     EXPECT_EQ(lines(r.out), 1u + 2u * (3u + 2u));  // header; per scene 0, 3 ramp, inf
@@ -82,14 +63,16 @@ TEST(CalibrateCommand, SavesTheChosenThresholdForRender) {
     ASSERT_EQ(render.exit_code, 0) << render.err;
     EXPECT_DOUBLE_EQ(nlohmann::json::parse(render.out)["threshold"].get<double>(), chosen);
     // and the paper's stays available
-    CliRun paper = fb89("render scenes/A.json --method hybrid --threshold paper --size 128x98 -q --stats -");
+    CliRun paper =
+        fb89("render scenes/A.json --method hybrid --threshold paper --size 128x98 -q --stats -");
     EXPECT_DOUBLE_EQ(nlohmann::json::parse(paper.out)["threshold"].get<double>(), 0.04);
 }
 
 TEST(CalibrateCommand, WithoutCalibrationRenderUsesThePapersThreshold) {
     CliRun render = fb89("render scenes/A.json --method hybrid --size 128x98 --stats -");
     ASSERT_EQ(render.exit_code, 0) << render.err;
-    EXPECT_NE(render.err.find("hybrid threshold 0.04 (paper (not calibrated yet))"), std::string::npos)
+    EXPECT_NE(render.err.find("hybrid threshold 0.04 (paper (not calibrated yet))"),
+              std::string::npos)
         << render.err;
 }
 
@@ -100,14 +83,16 @@ TEST(ExperimentCommand, UnknownExperimentExitsTwo) {
 }
 
 TEST(ExperimentCommand, AccuracyCountsNoWrongPixelForExactSettings) {
-    CliRun r = fb89("experiment accuracy scenes/C.json --size 256x195 --repeat 1 --threshold 0.01 --csv -");
+    CliRun r = fb89(
+        "experiment accuracy scenes/C.json --size 256x195 --repeat 1 --threshold 0.01 --csv -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::istringstream csv(r.out);
     std::string line;
     std::getline(csv, line);
     size_t exact_rows = 0;
     while (std::getline(csv, line)) {
-        if (line.find("exact") == std::string::npos && line.find(",zbuffer,") == std::string::npos) continue;
+        if (line.find("exact") == std::string::npos && line.find(",zbuffer,") == std::string::npos)
+            continue;
         ++exact_rows;
         // pixels_wrong is the second-to-last column
         std::string rest = line.substr(0, line.rfind(','));

@@ -13,6 +13,7 @@
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
+#include "tests/host/raster/raster_test_util.h"
 
 namespace fb89::host {
 namespace {
@@ -33,21 +34,8 @@ std::vector<protocol::Command> commands_of(Renderer& r, const ScreenScene& s,
     return buffer.commands();
 }
 
-// Per-pixel ids from a method's commands (fills and spans in order).
 std::vector<uint32_t> ids_of(const std::vector<protocol::Command>& commands, const ScreenScene& s) {
-    std::vector<uint32_t> ids(static_cast<size_t>(s.width) * s.height, 0);
-    for (const auto& c : commands) {
-        if (const auto* r = std::get_if<protocol::FillRect>(&c)) {
-            for (uint32_t y = 0; y < r->h; ++y)
-                for (uint32_t x = 0; x < r->w; ++x)
-                    ids[(r->y + y) * static_cast<size_t>(s.width) + r->x + x] =
-                        face_id_from_color(r->color);
-        } else if (const auto* d = std::get_if<protocol::DrawSpan>(&c)) {
-            for (int x = d->x0; x <= d->x1; ++x)
-                ids[static_cast<size_t>(d->y) * s.width + x] = face_id_from_color(d->color);
-        }
-    }
-    return ids;
+    return testing::ids_from_commands(commands, s.width, s.height);
 }
 
 TEST(Hybrid, Expr31FollowsThePaperAndStatedConventions) {

@@ -14,6 +14,7 @@
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
+#include "tests/host/raster/raster_test_util.h"
 
 namespace fb89::host {
 namespace {
@@ -43,18 +44,7 @@ std::vector<uint32_t> id_buffer(Renderer& renderer, const ScreenScene& s,
     protocol::MemoryBuffer buffer;
     HostStats stats;
     renderer.render(s, buffer, stats);
-    std::vector<uint32_t> ids(static_cast<size_t>(s.width) * s.height, 0);
-    for (const auto& c : buffer.commands()) {
-        if (const auto* r = std::get_if<protocol::FillRect>(&c)) {
-            for (uint32_t y = 0; y < r->h; ++y)
-                for (uint32_t x = 0; x < r->w; ++x)
-                    ids[(r->y + y) * static_cast<size_t>(s.width) + r->x + x] =
-                        face_id_from_color(r->color);
-        } else if (const auto* d = std::get_if<protocol::DrawSpan>(&c)) {
-            for (int x = d->x0; x <= d->x1; ++x)
-                ids[static_cast<size_t>(d->y) * s.width + x] = face_id_from_color(d->color);
-        }
-    }
+    std::vector<uint32_t> ids = testing::ids_from_commands(buffer.commands(), s.width, s.height);
     if (counters) *counters = stats.counters;
     return ids;
 }
