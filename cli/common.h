@@ -45,5 +45,12 @@ void register_model(CLI::App& app, int& exit_code);
 void register_experiment(CLI::App& app, int& exit_code);
 void register_sweep(CLI::App& app, int& exit_code);
 void register_calibrate(CLI::App& app, int& exit_code);
+void register_replay(CLI::App& app, int& exit_code);
+void register_dump(CLI::App& app, int& exit_code);
+void register_info(CLI::App& app, int& exit_code);
+void register_trim(CLI::App& app, int& exit_code);
+void register_diff(CLI::App& app, int& exit_code);
+void register_controller(CLI::App& app, int& exit_code);
+void register_view(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

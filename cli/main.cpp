@@ -23,6 +23,13 @@ int main(int argc, char** argv) {
     register_experiment(app, exit_code);
     register_sweep(app, exit_code);
     register_calibrate(app, exit_code);
+    register_replay(app, exit_code);
+    register_dump(app, exit_code);
+    register_info(app, exit_code);
+    register_trim(app, exit_code);
+    register_diff(app, exit_code);
+    register_controller(app, exit_code);
+    register_view(app, exit_code);
 
     try {
         app.parse(argc, argv);

@@ -1,6 +1,11 @@
 // fb89 render SCENE: load, project, run one hidden-surface method into the in-memory
 // buffer (timed), then hand the commands to the simulated controller (modelled), and write
-// what was asked for: PNG, face-id PNG, command stream, stats JSON.
+// what was asked for: PNG, face-id PNG, command stream, stats JSON. With --connect PATH
+// the same commands then go, as a stream, to an `fb89 controller` process on that socket;
+// the socket is opened only after the host has finished, so no host time includes it.
+#include <chrono>
+#include <cstdio>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -13,6 +18,7 @@
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
+#include "protocol/socket_stream.h"
 #include "protocol/stream_writer.h"
 
 namespace fb89::cli {
@@ -28,7 +34,7 @@ struct RenderArgs {
     int approx_min_side = 0;
     double approx_epsilon = 0;
     std::string size;
-    std::string png, ids, stream, stats;
+    std::string png, ids, stream, stats, connect;
     std::string profile = std::string(controller::kDefaultProfile);
     int repeat = 1;
     bool quiet = false;
@@ -91,16 +97,65 @@ void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Ren
     controller::write_png(args.ids, id_controller.framebuffer());
 }
 
+protocol::Properties stream_properties(const RenderArgs& args, const HostRun& run) {
+    return {{"scene", args.scene},
+            {"method", args.method},
+            {"resolution", fmt::format("{}x{}", run.screen.width, run.screen.height)},
+            {"tool", std::string("fb89 ") + FB89_VERSION}};
+}
+
 void write_stream(const RenderArgs& args, const HostRun& run) {
-    protocol::Properties properties{
-        {"scene", args.scene},
-        {"method", args.method},
-        {"resolution", fmt::format("{}x{}", run.screen.width, run.screen.height)},
-        {"tool", std::string("fb89 ") + FB89_VERSION}};
     make_parent_dirs(args.stream);
-    protocol::StreamWriter writer(args.stream, properties);
+    protocol::StreamWriter writer(args.stream, stream_properties(args, run));
     run.commands.replay_into(writer);
     writer.close();
+}
+
+// --connect: streams the rendered commands to a controller process and waits for its
+// answer. Returns the exit code; a controller that goes away is reported, never waited on.
+int send_to_controller(const RenderArgs& args, const HostRun& run, const Console& console) {
+    const auto start = std::chrono::steady_clock::now();
+    protocol::UniqueFd socket = protocol::connect_socket(args.connect);  // names the path
+    protocol::StreamWriter writer(socket.get(), "socket " + args.connect,
+                                  stream_properties(args, run));
+    const std::size_t total = run.commands.size();
+    try {
+        run.commands.replay_into(writer);
+        writer.close();
+    } catch (const std::runtime_error& e) {
+        fmt::print(stderr,
+                   "fb89: error: the controller at {} went away mid-stream: {} of {} commands "
+                   "had got through to the socket ({})\n",
+                   args.connect, writer.commands_flushed(), total, e.what());
+        return kBadInput;
+    }
+    std::optional<std::string> reply;
+    std::string lost;  // why no answer came
+    try {
+        reply =
+            protocol::finish_and_read_reply(socket.get(), args.connect, std::chrono::seconds(60));
+        if (!reply) lost = "it closed the connection";
+    } catch (const std::runtime_error& e) {
+        lost = e.what();
+    }
+    if (!reply) {
+        fmt::print(stderr,
+                   "fb89: error: the controller at {} went away before acknowledging the stream "
+                   "({}) after all {} commands were sent\n",
+                   args.connect, lost, total);
+        return kBadInput;
+    }
+    if (reply->rfind("ok", 0) != 0) {
+        fmt::print(stderr, "fb89: error: the controller at {} refused the stream: {}\n",
+                   args.connect, *reply);
+        return kBadInput;
+    }
+    const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
+    console.note(
+        fmt::format("controller at {}: {} ({} bytes sent in {:.3f} ms, apart from host "
+                    "times)",
+                    args.connect, *reply, writer.byte_count(), took.count()));
+    return kSuccess;
 }
 
 nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
@@ -177,6 +232,10 @@ int run_render(const RenderArgs& args) {
         fmt::print("{}", run.stats.summary());
         fmt::print("controller ({}):\n{}", profile.name, ctl.stats().summary());
     }
+    if (!args.connect.empty()) {
+        std::fflush(stdout);
+        return send_to_controller(args, run, console);
+    }
     return kSuccess;
 }
 
@@ -211,6 +270,8 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--ids", args->ids,
                     "Write the face-id buffer as PNG (id + 1 as 24-bit RGB, 0 = background)");
     sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
+    sub->add_option("--connect", args->connect,
+                    "Also stream the commands to `fb89 controller --listen PATH` on this socket");
     sub->add_option("--stats", args->stats,
                     "Write host and controller figures as JSON ('-' for stdout)");
     sub->add_option("--profile", args->profile,

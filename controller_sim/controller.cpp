@@ -96,6 +96,7 @@ void Controller::execute(const Command& c) {
     const Executed x = (this->*e.exec)(c);
     account(op, e, x);
     if (op == opcode_index(Opcode::FrameEnd) && m_in_frame) close_frame(true);
+    if (m_observer) m_observer(m_next_command - 1, c);
 }
 
 // FRAME_BEGIN: size the framebuffer and clear it; charged as one full-screen fill.
@@ -179,6 +180,11 @@ void Controller::close_frame(bool complete) {
     m_stats.frames_end_us += m_frame.end_us;
     m_stats.frames.push_back(m_frame);
     m_in_frame = false;
+}
+
+double Controller::elapsed_us() const {
+    return m_stats.frames_end_us + m_unframed_pipe.end_us() +
+           (m_in_frame ? m_frame_pipe.end_us() : 0.0);
 }
 
 FrameResult Controller::open_frame() const {

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,15 @@ class Controller final : public protocol::CommandSink {
     // The frame being drawn so far (meaningful only while in_frame()).
     FrameResult open_frame() const;
     uint64_t commands_executed() const { return m_next_command; }
+    // Modelled time so far, in µs: the closed frames' end times, plus the open frame's
+    // time so far, plus the commands outside frames. Cheap (no checksum): a viewer paces
+    // playback by it.
+    double elapsed_us() const;
+
+    // Called after each command has executed, with its number (commands_executed() before
+    // it) and the command; empty by default. A viewer hooks a Recorder here.
+    using Observer = std::function<void(uint64_t number, const protocol::Command&)>;
+    void set_observer(Observer observer) { m_observer = std::move(observer); }
 
   private:
     // What an exec_* function did; execute() turns it into counters and time.
@@ -125,6 +135,7 @@ class Controller final : public protocol::CommandSink {
     Pipeline m_frame_pipe;
     Pipeline m_unframed_pipe;
     uint64_t m_next_command = 0;
+    Observer m_observer;
 };
 
 }  // namespace fb89::controller

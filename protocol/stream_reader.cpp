@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -52,6 +53,12 @@ StreamReader::StreamReader(std::vector<uint8_t> bytes, std::string name)
     read_header();
 }
 
+StreamReader::StreamReader(int fd, std::string name, std::chrono::milliseconds idle_timeout)
+    : m_name(std::move(name)), m_fd(fd), m_idle_timeout(idle_timeout) {
+    m_buf.resize(kReadChunk);
+    read_header();
+}
+
 StreamReader::~StreamReader() {
     if (m_owns_fd) ::close(m_fd);
 }
@@ -70,6 +77,7 @@ bool StreamReader::fill(std::size_t n) {
     }
     if (m_buf.size() < n) m_buf.resize(n);  // n is bounded by the format's limits
     while (m_end < n && !m_eof) {
+        if (m_idle_timeout.count() >= 0) wait_for_data();
         const ssize_t got = ::read(m_fd, m_buf.data() + m_end, m_buf.size() - m_end);
         if (got < 0 && errno == EINTR) continue;
         if (got < 0) fail("read error", stream_end(), "", std::strerror(errno));
@@ -77,6 +85,19 @@ bool StreamReader::fill(std::size_t n) {
         m_end += static_cast<std::size_t>(got);
     }
     return m_end - m_pos >= n;
+}
+
+// With an idle time-out: waits for the next bytes at most that long.
+void StreamReader::wait_for_data() {
+    pollfd p{m_fd, POLLIN, 0};
+    int n = 0;
+    while ((n = ::poll(&p, 1, static_cast<int>(m_idle_timeout.count()))) < 0 && errno == EINTR) {
+    }
+    if (n == 0) {
+        fail("idle time-out", stream_end(), "",
+             fmt::format("nothing arrived for {:.3g} s",
+                         static_cast<double>(m_idle_timeout.count()) / 1e3));
+    }
 }
 
 bool StreamReader::read_at(uint64_t at, uint8_t* dst, std::size_t n) {

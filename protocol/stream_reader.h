@@ -11,6 +11,7 @@
 // offset and the command number, after every complete command before it was delivered.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -29,6 +30,11 @@ class StreamReader {
     explicit StreamReader(const std::string& path);
     // Reads a stream held in memory; name stands for it in messages.
     explicit StreamReader(std::vector<uint8_t> bytes, std::string name = "<memory>");
+    // Reads from an open descriptor it does not own (e.g. a connected socket), as it
+    // arrives; name stands for it in messages. With idle_timeout >= 0, a wait of longer
+    // than that for the next bytes throws StreamError ("idle"), as a truncation would.
+    StreamReader(int fd, std::string name,
+                 std::chrono::milliseconds idle_timeout = std::chrono::milliseconds(-1));
     ~StreamReader();
     StreamReader(const StreamReader&) = delete;
     StreamReader& operator=(const StreamReader&) = delete;
@@ -65,6 +71,7 @@ class StreamReader {
 
   private:
     bool fill(std::size_t n);
+    void wait_for_data();
     uint64_t offset() const { return m_buf_offset + m_pos; }
     uint64_t stream_end() const { return m_buf_offset + m_end; }
     bool read_at(uint64_t at, uint8_t* dst, std::size_t n);
@@ -82,6 +89,7 @@ class StreamReader {
     std::string m_name;
     int m_fd = -1;  // -1: the stream is m_buf
     bool m_owns_fd = false;
+    std::chrono::milliseconds m_idle_timeout{-1};  // < 0: wait as long as it takes
     std::optional<uint64_t> m_size;  // known for buffers and regular files: they can seek
 
     std::vector<uint8_t> m_buf;

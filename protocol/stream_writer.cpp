@@ -6,6 +6,8 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -33,6 +35,14 @@ StreamWriter::StreamWriter(const std::string& path, const Properties& properties
         }
         m_owns_fd = true;
     }
+}
+
+StreamWriter::StreamWriter(int fd, std::string name, const Properties& properties)
+    : m_path(std::move(name)), m_fd(fd) {
+    encode_header(m_buffer, properties);
+    m_byte_count = m_buffer.size();
+    struct stat st {};
+    m_is_socket = ::fstat(fd, &st) == 0 && S_ISSOCK(st.st_mode);
 }
 
 StreamWriter::StreamWriter(const Properties& properties) : m_path(kMemoryName) {
@@ -112,12 +122,15 @@ void StreamWriter::close() {
 void StreamWriter::flush_buffer() {
     std::size_t done = 0;
     while (done < m_buffer.size()) {
-        const ssize_t n = ::write(m_fd, m_buffer.data() + done, m_buffer.size() - done);
+        const std::size_t left = m_buffer.size() - done;
+        const ssize_t n = m_is_socket ? ::send(m_fd, m_buffer.data() + done, left, MSG_NOSIGNAL)
+                                      : ::write(m_fd, m_buffer.data() + done, left);
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) fail(n < 0 ? std::strerror(errno) : "write made no progress");
         done += static_cast<std::size_t>(n);
     }
     m_buffer.clear();
+    m_commands_flushed = m_command_count;
 }
 
 void StreamWriter::close_file() noexcept {

@@ -25,6 +25,10 @@ class StreamWriter final : public CommandSink {
     StreamWriter(const std::string& path, const Properties& properties);
     // Encodes into memory; read the bytes with bytes() or take_bytes().
     explicit StreamWriter(const Properties& properties);
+    // Writes to an open descriptor it does not own (e.g. a connected socket; close() then
+    // leaves it open); name stands for it in messages. On a socket, writes never raise
+    // SIGPIPE: a vanished reader is a std::runtime_error ("Broken pipe").
+    StreamWriter(int fd, std::string name, const Properties& properties);
     ~StreamWriter() override;
     StreamWriter(const StreamWriter&) = delete;
     StreamWriter& operator=(const StreamWriter&) = delete;
@@ -46,6 +50,8 @@ class StreamWriter final : public CommandSink {
     const std::string& path() const { return m_path; }
     uint64_t command_count() const { return m_command_count; }
     uint64_t byte_count() const { return m_byte_count; }  // bytes encoded so far
+    // Commands whose bytes were all handed to the file or socket (at the last flush).
+    uint64_t commands_flushed() const { return m_commands_flushed; }
     const FrameIndex& frame_index() const { return m_index; }
 
     // The encoded stream, in-memory writers only (empty for a file).
@@ -61,11 +67,13 @@ class StreamWriter final : public CommandSink {
     std::string m_path;
     int m_fd = -1;  // -1: in memory
     bool m_owns_fd = false;
+    bool m_is_socket = false;  // write with send(MSG_NOSIGNAL)
     bool m_closed = false;
     std::string m_error;            // set after a write error; later calls repeat it
     std::vector<uint8_t> m_buffer;  // bytes not yet written (all of them in memory)
     uint64_t m_byte_count = 0;
     uint64_t m_command_count = 0;
+    uint64_t m_commands_flushed = 0;
     FrameIndex m_index;
 };
 

@@ -147,8 +147,11 @@ ScreenScene project_scene(const Scene& scene, ColorMode mode, Counters& counters
     ScreenScene out;
     out.width = scene.width;
     out.height = scene.height;
-    out.background = {to_byte(scene.background.r), to_byte(scene.background.g),
-                      to_byte(scene.background.b)};
+    // in the face-id pass the background is id + 1 = 0, whatever the scene's colour
+    out.background = mode == ColorMode::FaceId
+                         ? protocol::Rgb{0, 0, 0}
+                         : protocol::Rgb{to_byte(scene.background.r), to_byte(scene.background.g),
+                                         to_byte(scene.background.b)};
     out.face_count = scene.face_count;
     const double w = scene.width, h = scene.height;
     const bool perspective = scene.projection == Projection::Perspective;

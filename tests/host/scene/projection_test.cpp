@@ -107,6 +107,18 @@ TEST(Projection, VerticesSnapToTheSubpixelGrid) {
     EXPECT_NE(std::find(xs.begin(), xs.end(), 2381), xs.end());
 }
 
+TEST(Projection, FaceIdPassHasABlackBackgroundWhateverTheScenes) {
+    Counters counters;
+    Scene scene =
+        parse_scene_json(R"({"camera": {"projection": "screen"}, "background": [0.5, 0.7, 0.9],
+        "objects": [{"polygon": [[1, 1, 0.5], [9, 1, 0.5], [1, 9, 0.5]]}]})",
+                         "t.json", ".");
+    EXPECT_EQ(project_scene(scene, ColorMode::FaceId, counters).background,
+              (protocol::Rgb{0, 0, 0}));
+    EXPECT_EQ(project_scene(scene, ColorMode::Shaded, counters).background,
+              (protocol::Rgb{128, 179, 230}));
+}
+
 TEST(Projection, FaceIdColourRoundTrips) {
     for (uint32_t id : {0u, 1u, 255u, 256u, 65535u, 16777214u})
         EXPECT_EQ(face_id_from_color(face_id_color(id)), id + 1);

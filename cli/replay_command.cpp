@@ -1,0 +1,171 @@
+// fb89 replay STREAM: re-costs a recorded command stream under a controller profile without
+// re-rendering (apitrace's `apitrace replay`). The stream is read command by command into
+// controller::Controller; it prints one row per frame (commands, pixels, cycles, modelled
+// ms, bus ms, frame ms, checksum) and the controller's per-opcode summary.
+//
+//   --png F               the last complete frame as PNG
+//   --png F --snapshot S  instead, the framebuffer right after each call in call set S,
+//                         as F with the call number inserted: out.png -> out-000123.png
+//   --stats F.json        {"stream": ..., "controller": <controller stats>, "benchmark": ...}
+//   --benchmark           wall time of the replay (reading + executing), commands/s, Mpixels/s
+//
+// A truncated or corrupt stream: every complete frame is reported (and the last complete
+// one written with --png), then the StreamError on stderr, and exit 2.
+#include <chrono>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/common.h"
+#include "cli/stream_tools.h"
+#include "controller_sim/controller.h"
+#include "controller_sim/png_io.h"
+
+namespace fb89::cli {
+
+namespace {
+
+struct ReplayArgs {
+    std::string stream;
+    std::string profile = std::string(controller::kDefaultProfile);
+    std::string png, snapshot, stats;
+    bool benchmark = false;
+    bool quiet = false;
+};
+
+struct ReplayRun {
+    std::optional<controller::Framebuffer> last_frame;  // at the last FRAME_END (--png only)
+    uint64_t snapshots = 0;
+    std::string last_snapshot;
+    double wall_s = 0;
+    std::optional<protocol::StreamError> error;
+};
+
+// The replay loop: read, execute, snapshot. Timed as a whole for --benchmark.
+ReplayRun replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
+                 protocol::StreamReader& reader, controller::Controller& ctl) {
+    ReplayRun run;
+    const bool keep_last = !args.png.empty() && snapshots.empty();
+    const auto start = std::chrono::steady_clock::now();
+    protocol::Command c;
+    try {
+        while (reader.next(c)) {
+            ctl.execute(c);
+            if (keep_last && std::holds_alternative<protocol::FrameEnd>(c))
+                run.last_frame = ctl.framebuffer();
+            if (!snapshots.empty() && snapshots.contains(reader.command_number(), c)) {
+                run.last_snapshot = snapshot_path(args.png, reader.command_number());
+                if (run.snapshots++ == 0) make_parent_dirs(run.last_snapshot);
+                controller::write_png(run.last_snapshot, ctl.framebuffer());
+            }
+        }
+    } catch (const protocol::StreamError& e) {
+        run.error = e;
+    }
+    run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return run;
+}
+
+nlohmann::json benchmark_json(const ReplayRun& run, const controller::OpcodeCounters& all) {
+    const double s = run.wall_s > 0 ? run.wall_s : 1e-9;
+    return {{"wall_s", run.wall_s},
+            {"commands", all.commands},
+            {"pixels", all.pixels},
+            {"commands_per_s", static_cast<double>(all.commands) / s},
+            {"mpixels_per_s", static_cast<double>(all.pixels) / s / 1e6}};
+}
+
+nlohmann::json stats_json(const ReplayArgs& args, const protocol::StreamReader& reader,
+                          const controller::Controller& ctl, const ReplayRun& run) {
+    nlohmann::json j;
+    j["tool"] = std::string("fb89 ") + FB89_VERSION;
+    j["stream"] = {{"file", args.stream},
+                   {"version", reader.version()},
+                   {"properties", reader.properties()},
+                   {"commands_read", ctl.commands_executed()}};
+    j["controller"] = ctl.stats().to_json();
+    if (args.benchmark) j["benchmark"] = benchmark_json(run, sum(ctl.stats().totals));
+    if (run.error) {
+        j["error"] = {{"message", run.error->what()},
+                      {"offset", run.error->offset()},
+                      {"command", run.error->command()}};
+    }
+    return j;
+}
+
+int run_replay(const ReplayArgs& args) {
+    Console console{args.quiet};
+    protocol::CallSet snapshots;
+    if (!args.snapshot.empty()) {
+        if (args.png.empty())
+            throw UsageError("--snapshot needs --png F: snapshots are written as F-<call>.png");
+        snapshots = parse_call_set_option("--snapshot", args.snapshot);
+    }
+    const controller::CostProfile profile = controller::load_profile(args.profile);
+    protocol::StreamReader reader(args.stream);
+    controller::Controller ctl(profile);
+
+    const ReplayRun run = replay(args, snapshots, reader, ctl);
+
+    if (!args.png.empty() && snapshots.empty()) {
+        if (run.last_frame) {
+            make_parent_dirs(args.png);
+            controller::write_png(args.png, *run.last_frame);
+        } else {
+            console.note(
+                fmt::format("{}: no complete frame; {} not written", args.stream, args.png));
+        }
+    }
+    if (!snapshots.empty())
+        console.note(fmt::format("{} snapshot(s) written{}", run.snapshots,
+                                 run.snapshots ? ", the last " + run.last_snapshot : ""));
+    if (!args.stats.empty()) write_json(args.stats, stats_json(args, reader, ctl, run));
+
+    if (!args.quiet && args.stats != "-") {
+        fmt::print("{}\nprofile {}\n", header_line(reader), profile.name);
+        fmt::print("{}", frame_table(ctl));
+        fmt::print("{}", ctl.stats().summary());
+        if (args.benchmark) {
+            const controller::OpcodeCounters all = sum(ctl.stats().totals);
+            const nlohmann::json b = benchmark_json(run, all);
+            fmt::print(
+                "benchmark: {} commands, {} pixels in {:.4f} s wall: {:.3f} M commands/s, "
+                "{:.1f} Mpixels/s\n",
+                grouped(all.commands), grouped(all.pixels), run.wall_s,
+                b["commands_per_s"].get<double>() / 1e6, b["mpixels_per_s"].get<double>());
+        }
+    }
+    if (run.error) {
+        report_stream_error(*run.error);
+        std::cerr << fmt::format("fb89: {}: replayed {} complete frame(s) before the error\n",
+                                 args.stream, ctl.frames().size());
+        return kBadInput;
+    }
+    return kSuccess;
+}
+
+}  // namespace
+
+void register_replay(CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<ReplayArgs>();
+    CLI::App* sub = app.add_subcommand(
+        "replay", "Replay a recorded stream into the controller under a cost profile");
+    sub->add_option("stream", args->stream, "Stream file ('-' for stdin)")->required();
+    sub->add_option("--profile", args->profile,
+                    "Controller cost profile: a built-in name or a .json file")
+        ->capture_default_str();
+    sub->add_option("--png", args->png,
+                    "Write the last complete frame as PNG (with --snapshot: the snapshots)");
+    sub->add_option("--snapshot", args->snapshot,
+                    "Call set: write F-<call>.png right after each of these calls "
+                    "(e.g. 'frame', '100-200/10/span')");
+    sub->add_option("--stats", args->stats,
+                    "Write the controller's stats as JSON ('-' for stdout)");
+    sub->add_flag("--benchmark", args->benchmark,
+                  "Time the replay (wall) and report commands/s and Mpixels/s");
+    sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+    sub->callback([args, &exit_code] { exit_code = run_replay(*args); });
+}
+
+}  // namespace fb89::cli

@@ -1,0 +1,265 @@
+// fb89 view STREAM: plays a recorded command stream in an SDL2 window at the modelled
+// controller speed (1x is the 1989 board's own time, as the cost profile models it), with
+// the opcode overlay (the paper's Fig. 4.7 idea), a pixel inspector and on-screen help.
+//
+// Pacing: each wall-clock tick adds wall seconds x speed of modelled time to a budget;
+// commands execute while the budget lasts, each spending what the controller's pipeline
+// says it took (Controller::elapsed_us(): bus and execution, DESIGN.md "Controller and its
+// cost model"). Time between frames is not modelled, so frames follow each other at once.
+// The stream is read incrementally (StreamReader); going back re-reads it, through the
+// frame index when the stream has one.
+#include <chrono>
+#include <iostream>
+#include <thread>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "cli/common.h"
+#include "controller_sim/display.h"
+#include "controller_sim/png_io.h"
+#include "controller_sim/view_player.h"
+
+namespace fb89::cli {
+
+namespace {
+
+using controller::InputEvent;
+using controller::ViewGoal;
+using controller::ViewPlayer;
+using Clock = std::chrono::steady_clock;
+
+struct ViewArgs {
+    std::string stream;
+    std::string profile = std::string(controller::kDefaultProfile);
+    double speed = 1;
+    bool speed_given = false;
+    int64_t start_call = -1, start_frame = -1;
+    bool overlay = false;
+    int scale = 1;
+    std::string screenshot;
+    bool exit_at_end = false;
+};
+
+const std::vector<std::string> kHelp = {
+    "fb89 view - keys",
+    "space    play / pause",
+    ".        step one command",
+    "n        to the end of this frame, or the next",
+    "p        previous frame (frame index)",
+    "Home/End start / end of the stream",
+    "+ -      speed x2 / x1/2   0: 1x = 1989 time",
+    "o        overlay: tint pixels by opcode",
+    "         green FILL_RECT  red DRAW_SPAN",
+    "         blue FRAME_BEGIN (background)",
+    "mouse    inspect the pixel under it",
+    "h        hide / show this help",
+    "q, Esc   quit",
+};
+
+std::string speed_text(double speed, bool paced) {
+    if (!paced) return "max";
+    return speed >= 1 ? fmt::format("{:g}x", speed) : fmt::format("1/{:g}x", 1 / speed);
+}
+
+struct Ui {
+    bool help = true;
+    bool overlay = false;
+    double speed = 1;
+    bool paced = true;
+    bool mouse_in = false;  // the mouse is over the image, at pixel (mouse_x, mouse_y)
+    uint32_t mouse_x = 0, mouse_y = 0;
+};
+
+controller::Hud make_hud(const ViewPlayer& p, const Ui& ui, int columns) {
+    controller::Hud hud;
+    auto fit = [columns](std::string s) {
+        if (static_cast<int>(s.size()) > columns) s.resize(static_cast<std::size_t>(columns));
+        return s;
+    };
+    const char* state = p.at_end()                    ? "END"
+                        : p.goal() == ViewGoal::Pause ? "PAUSED"
+                        : p.goal() == ViewGoal::Play  ? "PLAYING"
+                                                      : "SEEKING";
+    hud.status.push_back(fit(fmt::format(
+        "frame {} [{}{}]  cmd {}  t {:.3f} ms in frame, {:.3f} s  {}  {}{}",
+        p.frame_number() < 0 ? std::string("-") : std::to_string(p.frame_number()),
+        p.frame_ordinal() + 1, p.frame_count() ? fmt::format("/{}", *p.frame_count()) : "",
+        p.next_command(), p.frame_us() / 1e3, p.elapsed_us() / 1e6, speed_text(ui.speed, ui.paced),
+        state, ui.overlay ? "  overlay" : "")));
+    std::string inspect = "inspector: move the mouse over the image";
+    const auto& fb = p.controller().framebuffer();
+    if (ui.mouse_in && ui.mouse_x < fb.width() && ui.mouse_y < fb.height()) {
+        const uint32_t x = ui.mouse_x, y = ui.mouse_y;
+        inspect = fmt::format("({},{}) {}", x, y, protocol::to_string(fb.pixel(x, y)));
+        if (const auto w = p.recorder().writer(x, y))
+            inspect += fmt::format(" by #{} {}", w->number, protocol::to_string(*w->command));
+    }
+    hud.status.push_back(fit(inspect));
+    hud.status.push_back(fit(!p.error().empty() ? "stream error: " + p.error()
+                             : p.last_command()
+                                 ? fmt::format("last #{} {}  (h: help)", p.last_number(),
+                                               protocol::to_string(*p.last_command()))
+                                 : std::string("(h: help)")));
+    if (ui.help) hud.help = kHelp;
+    return hud;
+}
+
+// Applies one key; returns false to quit.
+bool on_key(int key, ViewPlayer& p, Ui& ui) {
+    switch (key) {
+        case 'q':
+        case controller::kKeyEscape:
+            return false;
+        case ' ':
+            p.set_goal(p.goal() == ViewGoal::Play ? ViewGoal::Pause : ViewGoal::Play);
+            break;
+        case '.':
+        case controller::kKeyRight:
+            p.set_goal(ViewGoal::Pause);
+            p.step();
+            break;
+        case 'n':
+            p.next_frame();
+            break;
+        case 'p':
+        case controller::kKeyLeft:
+            p.previous_frame();
+            break;
+        case controller::kKeyHome:
+            p.restart();
+            break;
+        case controller::kKeyEnd:
+            p.to_end();
+            break;
+        case '+':
+        case '=':
+        case ']':
+            ui.speed = std::min(ui.speed * 2, 1e9);
+            ui.paced = true;
+            break;
+        case '-':
+        case '[':
+            ui.speed = std::max(ui.speed / 2, 1.0 / 1024);
+            ui.paced = true;
+            break;
+        case '0':
+            ui.speed = 1;
+            ui.paced = true;
+            break;
+        case 'o':
+            ui.overlay = !ui.overlay;
+            break;
+        case 'h':
+            ui.help = !ui.help;
+            break;
+        default:
+            break;
+    }
+    return true;
+}
+
+// Saves what the window shows of the framebuffer.
+void save_screenshot(controller::Display& display, const ViewPlayer& p, const std::string& path) {
+    uint32_t w = 0, h = 0;
+    const std::vector<uint8_t> rgb = display.capture(p.controller().framebuffer(), w, h);
+    make_parent_dirs(path);
+    controller::write_png(path, w, h, rgb);
+}
+
+int run_view(const ViewArgs& args) {
+    ViewPlayer player(args.stream, controller::load_profile(args.profile));
+    if (args.start_frame >= 0) player.seek_frame_number(static_cast<uint32_t>(args.start_frame));
+    if (args.start_call >= 0) player.seek_command(static_cast<uint64_t>(args.start_call));
+
+    std::optional<controller::Display> display;
+    try {
+        display.emplace("fb89 view " + args.stream, args.scale);
+    } catch (const controller::DisplayUnavailable& e) {
+        std::cerr << "fb89 view: no display: " << e.what() << "\n";
+        return kBadInput;
+    }
+
+    Ui ui;
+    ui.overlay = args.overlay;
+    ui.speed = args.speed;
+    ui.paced = !(args.exit_at_end && !args.speed_given);  // a screenshot run: as fast as we can
+    ui.help = !args.exit_at_end;
+    bool shot_taken = false;
+    double budget_us = 0;
+    auto last = Clock::now();
+    while (true) {
+        const bool busy = player.goal() != ViewGoal::Pause && !player.at_end();
+        for (const InputEvent& e : display->poll(busy ? 0 : 30)) {
+            if (e.kind == InputEvent::Kind::Quit) return kSuccess;
+            if (e.kind == InputEvent::Kind::MouseMove) {
+                const auto px = display->pixel_at(e.x, e.y);
+                ui.mouse_in = px.has_value();
+                if (px) std::tie(ui.mouse_x, ui.mouse_y) = *px;
+            }
+            if (e.kind == InputEvent::Kind::MouseLeave) ui.mouse_in = false;
+            if (e.kind == InputEvent::Kind::Key && !on_key(e.key, player, ui)) return kSuccess;
+        }
+
+        // advance: paced by the modelled time, or as fast as the tick allows
+        const auto now = Clock::now();
+        const double wall_us = std::chrono::duration<double, std::micro>(now - last).count();
+        last = now;
+        const auto deadline = now + std::chrono::milliseconds(30);
+        if (player.goal() == ViewGoal::Play && ui.paced) {
+            budget_us = std::min(budget_us + wall_us * ui.speed, 250e3 * ui.speed);
+            budget_us = player.play(budget_us, deadline);
+        } else {
+            budget_us = 0;
+            player.run(deadline);
+        }
+
+        if (player.at_end() && !shot_taken && !args.screenshot.empty()) {
+            save_screenshot(*display, player, args.screenshot);
+            shot_taken = true;
+        }
+        if (player.at_end() && args.exit_at_end) {
+            if (player.error().empty()) return kSuccess;
+            std::cerr << "fb89 view: " << player.error() << "\n";
+            return kBadInput;
+        }
+        display->show(player.controller().framebuffer(), ui.overlay ? &player.recorder() : nullptr,
+                      make_hud(player, ui, display->columns()));
+        if (busy) std::this_thread::sleep_until(now + std::chrono::milliseconds(16));
+    }
+}
+
+}  // namespace
+
+void register_view(CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<ViewArgs>();
+    CLI::App* sub = app.add_subcommand(
+        "view", "Play a command stream in a window at the modelled controller speed");
+    sub->add_option("stream", args->stream, "Stream file ('-' for stdin)")->required();
+    sub->add_option("--profile", args->profile, "Controller cost profile (name or JSON file)")
+        ->capture_default_str();
+    auto* speed =
+        sub->add_option("--speed", args->speed, "Modelled time per wall time; 1 = real 1989 time")
+            ->check(CLI::PositiveNumber)
+            ->capture_default_str();
+    auto* call = sub->add_option("--start-call", args->start_call, "Start at this command number")
+                     ->check(CLI::NonNegativeNumber);
+    sub->add_option("--start-frame", args->start_frame,
+                    "Start at the FRAME_BEGIN carrying this frame number")
+        ->check(CLI::NonNegativeNumber)
+        ->excludes(call);
+    sub->add_flag("--overlay", args->overlay, "Start with the opcode overlay on");
+    sub->add_option("--scale", args->scale, "Window pixels per framebuffer pixel")
+        ->check(CLI::Range(1, 8))
+        ->capture_default_str();
+    sub->add_option("--screenshot", args->screenshot,
+                    "At the end of the stream, save what the window shows as PNG");
+    sub->add_flag("--exit-at-end", args->exit_at_end,
+                  "Exit at the end of the stream (as fast as possible unless --speed)");
+    sub->callback([args, speed, &exit_code] {
+        args->speed_given = speed->count() > 0;
+        exit_code = run_view(*args);
+    });
+}
+
+}  // namespace fb89::cli

@@ -1,0 +1,266 @@
+// Display: the SDL2 window of fb89's viewer (see display.h).
+//
+// The framebuffer is uploaded each frame to a streaming RGB24 texture and drawn with
+// nearest-neighbour scaling by SDL's software renderer, so what the window shows is the
+// controller's pixels exactly (the screenshot test compares them byte for byte). Text uses
+// the 5x7 font of bitmap_font.h, baked once into a glyph atlas texture.
+//
+// NOT SHOWN / NOT MODELLED:
+//  - The monitor: no CRT gamma, no interlace, no overscan, no pixel aspect ratio (the
+//    TMS34010 boards' pixels were not square; ours are), no colour palette or video DAC.
+//  - Screen refresh: the window shows the framebuffer as it is when the viewer draws, about
+//    60 times a second of wall time; the 1989 board scanned its VRAM out continuously, so
+//    a real screen could show a fill half done. We never show a command half executed.
+//  - VRAM shift-register transfers and the time they steal: not in the cost model either.
+//  - The host's screen: the window is sized to the framebuffer, never less than 640 pixels
+//    wide so the status text fits; there is no zoom or pan beyond the integer --scale.
+#include "controller_sim/display.h"
+
+#include <SDL.h>
+
+#include <algorithm>
+
+#include "controller_sim/bitmap_font.h"
+#include "controller_sim/framebuffer.h"
+#include "controller_sim/recorder.h"
+
+namespace fb89::controller {
+
+namespace {
+
+constexpr int kMinWindowWidth = 640;
+constexpr int kPad = 4;  // pixels around the status text
+
+int translate_key(const SDL_Keysym& k) {
+    switch (k.sym) {
+        case SDLK_HOME:
+            return kKeyHome;
+        case SDLK_END:
+            return kKeyEnd;
+        case SDLK_LEFT:
+            return kKeyLeft;
+        case SDLK_RIGHT:
+            return kKeyRight;
+        case SDLK_UP:
+            return kKeyUp;
+        case SDLK_DOWN:
+            return kKeyDown;
+        case SDLK_ESCAPE:
+            return kKeyEscape;
+        case SDLK_KP_PLUS:
+            return '+';
+        case SDLK_KP_MINUS:
+            return '-';
+        case SDLK_KP_PERIOD:
+            return '.';
+        default:
+            break;
+    }
+    const bool shift = (k.mod & KMOD_SHIFT) != 0;
+    if (k.sym == SDLK_EQUALS && shift) return '+';
+    if (k.sym >= 32 && k.sym <= 126) return static_cast<int>(k.sym);
+    return 0;
+}
+
+}  // namespace
+
+struct Display::Impl {
+    SDL_Window* window = nullptr;
+    SDL_Renderer* renderer = nullptr;
+    SDL_Texture* image = nullptr;
+    SDL_Texture* font = nullptr;
+    int scale = 1;
+    uint32_t fb_width = 0, fb_height = 0;  // of the texture
+    int status_lines = 0;
+    int win_width = 0, win_height = 0;
+    std::vector<uint8_t> rgb;
+
+    int text_scale() const { return win_width >= 960 ? 2 : 1; }
+    void make_font();
+    void fit(uint32_t width, uint32_t height, int lines);
+    void draw_image(const Framebuffer& fb, const Recorder* overlay);
+    void draw_text(int x, int y, const std::string& text, SDL_Color color);
+    void draw_hud(const Hud& hud);
+};
+
+// glyph atlas: 95 cells in a row, white where a glyph pixel is set, transparent elsewhere
+void Display::Impl::make_font() {
+    const int w = 95 * kCellWidth, h = kGlyphHeight;
+    std::vector<uint32_t> argb(static_cast<std::size_t>(w * h), 0);
+    for (int g = 0; g < 95; ++g)
+        for (int row = 0; row < kGlyphHeight; ++row)
+            for (int col = 0; col < kGlyphWidth; ++col)
+                if (glyph_pixel(kFont[static_cast<std::size_t>(g)], col, row))
+                    argb[static_cast<std::size_t>(row * w + g * kCellWidth + col)] = 0xffffffffu;
+    font = SDL_CreateTexture(renderer, SDL_PIXELFORMAT_ARGB8888, SDL_TEXTUREACCESS_STATIC, w, h);
+    if (!font) throw DisplayUnavailable(std::string("SDL_CreateTexture: ") + SDL_GetError());
+    SDL_UpdateTexture(font, nullptr, argb.data(), w * 4);
+    SDL_SetTextureBlendMode(font, SDL_BLENDMODE_BLEND);
+}
+
+// window and texture sized for a width x height framebuffer and `lines` status lines
+void Display::Impl::fit(uint32_t width, uint32_t height, int lines) {
+    if (width != fb_width || height != fb_height || !image) {
+        if (image) SDL_DestroyTexture(image);
+        image = SDL_CreateTexture(renderer, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
+                                  static_cast<int>(std::max(width, 1u)),
+                                  static_cast<int>(std::max(height, 1u)));
+        if (!image) throw DisplayUnavailable(std::string("SDL_CreateTexture: ") + SDL_GetError());
+        fb_width = width;
+        fb_height = height;
+    }
+    const int image_w = static_cast<int>(width) * scale;
+    const int w = std::max(image_w, kMinWindowWidth);
+    const int ts = w >= 960 ? 2 : 1;
+    const int h = static_cast<int>(height) * scale + lines * kCellHeight * ts + 2 * kPad;
+    if (w != win_width || h != win_height) {
+        SDL_SetWindowSize(window, w, h);
+        // centre the window when it is first shown, or when it grew off the screen
+        int x = 0, y = 0;
+        SDL_Rect screen{0, 0, 0, 0};
+        SDL_GetWindowPosition(window, &x, &y);
+        const bool fits =
+            SDL_GetDisplayUsableBounds(SDL_GetWindowDisplayIndex(window), &screen) != 0 ||
+            (x + w <= screen.x + screen.w && y + h <= screen.y + screen.h);
+        if (win_width == 0 || !fits)
+            SDL_SetWindowPosition(window, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED);
+        if (win_width == 0) SDL_ShowWindow(window);
+        SDL_PumpEvents();  // let the renderer see the new size before drawing
+        win_width = w;
+        win_height = h;
+    }
+    status_lines = lines;
+}
+
+void Display::Impl::draw_image(const Framebuffer& fb, const Recorder* overlay) {
+    SDL_SetRenderDrawColor(renderer, 24, 24, 24, 255);
+    SDL_RenderClear(renderer);
+    if (fb.width() == 0 || fb.height() == 0) return;
+    compose_image(fb, overlay, rgb);
+    SDL_UpdateTexture(image, nullptr, rgb.data(), static_cast<int>(fb.width() * 3));
+    const SDL_Rect dst{0, 0, static_cast<int>(fb.width()) * scale,
+                       static_cast<int>(fb.height()) * scale};
+    SDL_RenderCopy(renderer, image, nullptr, &dst);
+}
+
+void Display::Impl::draw_text(int x, int y, const std::string& text, SDL_Color color) {
+    const int ts = text_scale();
+    SDL_SetTextureColorMod(font, color.r, color.g, color.b);
+    for (char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        const int g = (u >= 32 && u <= 126) ? u - 32 : '?' - 32;
+        const SDL_Rect src{g * kCellWidth, 0, kGlyphWidth, kGlyphHeight};
+        const SDL_Rect dst{x, y, kGlyphWidth * ts, kGlyphHeight * ts};
+        SDL_RenderCopy(renderer, font, &src, &dst);
+        x += kCellWidth * ts;
+    }
+}
+
+void Display::Impl::draw_hud(const Hud& hud) {
+    const int ts = text_scale();
+    const int line_h = kCellHeight * ts;
+    // status bar under the image
+    int y = static_cast<int>(fb_height) * scale + kPad;
+    for (const std::string& line : hud.status) {
+        draw_text(kPad, y, line, SDL_Color{230, 230, 230, 255});
+        y += line_h;
+    }
+    if (hud.help.empty()) return;
+
+    // help box over the image, top left
+    std::size_t longest = 0;
+    for (const std::string& line : hud.help)
+        longest = std::max(longest, line.size());
+    const SDL_Rect box{kPad, kPad, static_cast<int>(longest) * kCellWidth * ts + 4 * kPad,
+                       static_cast<int>(hud.help.size()) * line_h + 3 * kPad};
+    SDL_SetRenderDrawBlendMode(renderer, SDL_BLENDMODE_BLEND);
+    SDL_SetRenderDrawColor(renderer, 0, 0, 0, 200);
+    SDL_RenderFillRect(renderer, &box);
+    SDL_SetRenderDrawColor(renderer, 255, 210, 80, 255);
+    SDL_RenderDrawRect(renderer, &box);
+    y = box.y + 2 * kPad;
+    for (const std::string& line : hud.help) {
+        draw_text(box.x + 2 * kPad, y, line, SDL_Color{255, 230, 140, 255});
+        y += line_h;
+    }
+}
+
+Display::Display(const std::string& title, int scale) : m(std::make_unique<Impl>()) {
+    m->scale = std::max(scale, 1);
+    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");  // nearest: pixels stay pixels
+    if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
+        throw DisplayUnavailable(std::string("cannot open a window (SDL: ") + SDL_GetError() +
+                                 "); set DISPLAY, or run under xvfb-run");
+    m->window = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED,
+                                 kMinWindowWidth, 480, SDL_WINDOW_HIDDEN);
+    if (m->window) m->renderer = SDL_CreateRenderer(m->window, -1, SDL_RENDERER_SOFTWARE);
+    if (!m->window || !m->renderer) {
+        const std::string why = SDL_GetError();
+        if (m->window) SDL_DestroyWindow(m->window);
+        SDL_QuitSubSystem(SDL_INIT_VIDEO);
+        throw DisplayUnavailable("cannot open a window (SDL: " + why + ")");
+    }
+    m->make_font();
+}
+
+Display::~Display() {
+    if (m->image) SDL_DestroyTexture(m->image);
+    if (m->font) SDL_DestroyTexture(m->font);
+    SDL_DestroyRenderer(m->renderer);
+    SDL_DestroyWindow(m->window);
+    SDL_QuitSubSystem(SDL_INIT_VIDEO);
+}
+
+std::vector<InputEvent> Display::poll(int timeout_ms) {
+    std::vector<InputEvent> events;
+    SDL_Event e;
+    bool got = timeout_ms > 0 ? SDL_WaitEventTimeout(&e, timeout_ms) != 0 : SDL_PollEvent(&e) != 0;
+    for (; got; got = SDL_PollEvent(&e) != 0) {
+        if (e.type == SDL_QUIT) {
+            events.push_back(InputEvent{InputEvent::Kind::Quit, 0, 0, 0});
+        } else if (e.type == SDL_KEYDOWN) {
+            const int key = translate_key(e.key.keysym);
+            if (key != 0) events.push_back(InputEvent{InputEvent::Kind::Key, key, 0, 0});
+        } else if (e.type == SDL_MOUSEMOTION) {
+            events.push_back(InputEvent{InputEvent::Kind::MouseMove, 0, e.motion.x, e.motion.y});
+        } else if (e.type == SDL_WINDOWEVENT && e.window.event == SDL_WINDOWEVENT_LEAVE) {
+            events.push_back(InputEvent{InputEvent::Kind::MouseLeave, 0, 0, 0});
+        }
+    }
+    return events;
+}
+
+void Display::show(const Framebuffer& fb, const Recorder* overlay, const Hud& hud) {
+    m->fit(fb.width(), fb.height(), static_cast<int>(hud.status.size()));
+    m->draw_image(fb, overlay);
+    m->draw_hud(hud);
+    SDL_RenderPresent(m->renderer);
+}
+
+std::vector<uint8_t> Display::capture(const Framebuffer& fb, uint32_t& width, uint32_t& height) {
+    m->fit(fb.width(), fb.height(), m->status_lines);
+    m->draw_image(fb, nullptr);
+    width = fb.width() * static_cast<uint32_t>(m->scale);
+    height = fb.height() * static_cast<uint32_t>(m->scale);
+    std::vector<uint8_t> rgb(std::size_t{width} * height * 3);
+    const SDL_Rect area{0, 0, static_cast<int>(width), static_cast<int>(height)};
+    if (width > 0 && height > 0 &&
+        SDL_RenderReadPixels(m->renderer, &area, SDL_PIXELFORMAT_RGB24, rgb.data(),
+                             static_cast<int>(width * 3)) != 0)
+        throw std::runtime_error(std::string("SDL_RenderReadPixels: ") + SDL_GetError());
+    SDL_RenderPresent(m->renderer);
+    return rgb;
+}
+
+std::optional<std::pair<uint32_t, uint32_t>> Display::pixel_at(int x, int y) const {
+    if (x < 0 || y < 0) return std::nullopt;
+    const auto px = static_cast<uint32_t>(x / m->scale), py = static_cast<uint32_t>(y / m->scale);
+    if (px >= m->fb_width || py >= m->fb_height) return std::nullopt;
+    return std::pair{px, py};
+}
+
+int Display::columns() const {
+    return (std::max(m->win_width, kMinWindowWidth) - 2 * kPad) / (kCellWidth * m->text_scale());
+}
+
+}  // namespace fb89::controller

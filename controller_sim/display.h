@@ -1,0 +1,90 @@
+// Display: an SDL2 window showing the controller's framebuffer as a 1989 monitor would,
+// with fb89's own text on top (status lines under the image, help over it).
+//
+// Reusable by any owner of a Controller: `fb89 view` plays a recorded stream through it,
+// and `fb89 controller --view` can show a live one the same way:
+//
+//     Display display("fb89 controller", 1);
+//     Recorder writers;
+//     controller.set_observer([&](uint64_t n, const protocol::Command& c) { writers.record(n, c);
+//     });
+//     ... every 1/60 s: display.poll(0); display.show(controller.framebuffer(), &writers, hud);
+//
+// SDL stays inside display.cpp; this header names none of its types.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fb89::controller {
+
+class Framebuffer;
+class Recorder;
+
+// No window can be opened (no DISPLAY, SDL video initialisation failed): fb89 exits 2.
+class DisplayUnavailable : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Keys other than printable ASCII, as InputEvent::key.
+enum DisplayKey : int {
+    kKeyEscape = 27,
+    kKeyHome = 0x10000,
+    kKeyEnd,
+    kKeyLeft,
+    kKeyRight,
+    kKeyUp,
+    kKeyDown,
+};
+
+struct InputEvent {
+    enum class Kind { Quit, Key, MouseMove, MouseLeave };
+    Kind kind = Kind::Quit;
+    int key = 0;       // Key: printable ASCII or a DisplayKey
+    int x = 0, y = 0;  // MouseMove: window coordinates
+};
+
+// What is drawn on top of the framebuffer.
+struct Hud {
+    std::vector<std::string> status;  // lines in the bar under the image
+    std::vector<std::string> help;    // a box over the image, when not empty
+};
+
+class Display {
+  public:
+    // Opens a window; the framebuffer is drawn `scale` x `scale` pixels per pixel.
+    // Throws DisplayUnavailable when SDL cannot open one.
+    Display(const std::string& title, int scale);
+    ~Display();
+    Display(const Display&) = delete;
+    Display& operator=(const Display&) = delete;
+
+    // Input since the last call; waits up to timeout_ms for the first event (0: no wait).
+    std::vector<InputEvent> poll(int timeout_ms);
+
+    // Draws the framebuffer (tinted by its writers when `overlay` is given), then the HUD,
+    // and presents. Resizes the window when the framebuffer's size changed.
+    void show(const Framebuffer& fb, const Recorder* overlay, const Hud& hud);
+
+    // Draws the framebuffer alone (no overlay, no text), reads back the image area as the
+    // renderer drew it, and presents. RGB888 rows, width * 3 bytes each; the size is the
+    // framebuffer's times the scale.
+    std::vector<uint8_t> capture(const Framebuffer& fb, uint32_t& width, uint32_t& height);
+
+    // The framebuffer pixel under window point (x, y) of the last frame shown, if any.
+    std::optional<std::pair<uint32_t, uint32_t>> pixel_at(int x, int y) const;
+
+    // Characters of status text that fit on one line of the window.
+    int columns() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> m;
+};
+
+}  // namespace fb89::controller

@@ -1,0 +1,365 @@
+// `fb89 replay`, `dump`, `info`, `trim` and `diff` as a user runs them: on streams recorded
+// by `fb89 render` and on small ones built here with the protocol's encoder, including
+// truncated and corrupt ones (every tool reports them and exits 2, never crashes).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "controller_sim/png_io.h"
+#include "protocol/stream_writer.h"
+#include "tests/cli/cli_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace pr = fb89::protocol;
+
+using fb89::testing::CliRun;
+using fb89::testing::slurp;
+using fb89::testing::test_dir;
+
+CliRun fb89(const std::string& args) {
+    return fb89::testing::run_fb89(args);
+}
+
+std::string scratch(const std::string& name) {
+    return (test_dir() / name).string();
+}
+
+const std::string kScenes = FB89_SCENES_DIR;
+
+// Three 8x6 frames; frame 1 has a fill at command 6, frame 2 a span and a marker.
+std::vector<pr::Command> three_frames() {
+    return {
+        pr::FrameBegin{0, 8, 6, pr::Rgb{0, 0, 0}},
+        pr::Marker{"warnock"},
+        pr::FillRect{0, 0, 4, 4, pr::Rgb{255, 0, 0}},
+        pr::DrawSpan{5, 1, 6, pr::Rgb{0, 255, 0}},
+        pr::FrameEnd{},
+        pr::FrameBegin{1, 8, 6, pr::Rgb{0, 0, 64}},
+        pr::FillRect{2, 2, 3, 3, pr::Rgb{9, 9, 9}},
+        pr::FrameEnd{},
+        pr::FrameBegin{2, 8, 6, pr::Rgb{10, 20, 30}},
+        pr::DrawSpan{0, 0, 7, pr::Rgb{0, 0, 255}},
+        pr::Marker{"done"},
+        pr::FrameEnd{},
+    };
+}
+
+// Cutting this many bytes off three_frames()'s stream ends it inside frame 2's span: the
+// index (85 bytes), FRAME_END (1) and MARKER "done" (7) go, and 2 bytes of the span.
+constexpr std::size_t kCutInFrame2 = 95;
+
+std::string write_stream(const std::string& name, const std::vector<pr::Command>& commands,
+                         std::size_t cut_to = 0) {
+    std::vector<uint8_t> bytes = pr::encode_stream(commands, {{"scene", "built"}});
+    if (cut_to) bytes.resize(cut_to);
+    const std::string path = scratch(name);
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+    return path;
+}
+
+// Records scenes/A.json at 256x195 with the Z-buffer.
+std::string record_a(const std::string& name = "a.fb89") {
+    const std::string path = scratch(name);
+    CliRun r = fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + path);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return path;
+}
+
+nlohmann::json replay_stats(const std::string& stream, const std::string& extra = "") {
+    const std::string stats = scratch("replay_stats.json");
+    CliRun r = fb89("replay " + stream + " -q --stats " + stats + " " + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(slurp(stats));
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    for (std::size_t nl; (nl = text.find('\n', start)) != std::string::npos; start = nl + 1)
+        out.push_back(text.substr(start, nl - start));
+    return out;
+}
+
+TEST(ReplayCommand, ReplaysUnderAnotherProfileWithTheRendersChecksum) {
+    const std::string stream = scratch("a.fb89"), render_stats = scratch("render.json");
+    ASSERT_EQ(fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + stream +
+                   " --stats " + render_stats)
+                  .exit_code,
+              0);
+    const auto rendered = nlohmann::json::parse(slurp(render_stats));
+    const auto slow = replay_stats(stream, "--profile tms34010-50mhz");
+    const auto ideal = replay_stats(stream, "--profile ideal");
+    EXPECT_EQ(slow["controller"]["frames"][0]["checksum"],
+              rendered["controller"]["frames"][0]["checksum"]);
+    EXPECT_EQ(ideal["controller"]["frames"][0]["checksum"],
+              rendered["controller"]["frames"][0]["checksum"]);
+    EXPECT_EQ(slow["controller"]["totals"]["all"]["cycles"],
+              rendered["controller"]["totals"]["all"]["cycles"]);
+    EXPECT_EQ(ideal["controller"]["totals"]["all"]["cycles"], 0);
+    CliRun text = fb89("replay " + stream + " --profile tms34020-40mhz");
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("profile tms34020-40mhz"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("checksum"), std::string::npos) << text.out;
+}
+
+TEST(ReplayCommand, PngOfTheLastFrameEqualsTheRendersImage) {
+    const std::string stream = scratch("a.fb89"), rendered = scratch("r.png"),
+                      replayed = scratch("p.png");
+    ASSERT_EQ(fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + stream +
+                   " --png " + rendered)
+                  .exit_code,
+              0);
+    ASSERT_EQ(fb89("replay " + stream + " -q --png " + replayed).exit_code, 0);
+    EXPECT_EQ(fb89::controller::read_png(rendered).pixels,
+              fb89::controller::read_png(replayed).pixels);
+}
+
+TEST(ReplayCommand, SnapshotsAreNamedWithTheCallNumber) {
+    const std::string stream = write_stream("three.fb89", three_frames());
+    CliRun r = fb89("replay " + stream + " -q --png " + scratch("out.png") + " --snapshot frame,2");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* name :
+         {"out-000002.png", "out-000004.png", "out-000007.png", "out-000011.png"})
+        EXPECT_TRUE(fs::exists(scratch(name))) << name;
+    EXPECT_FALSE(fs::exists(scratch("out.png")));
+    // right after call 2 only the red fill is drawn; the span of call 3 is not yet there
+    const auto snap = fb89::controller::read_png(scratch("out-000002.png"));
+    EXPECT_EQ(snap.pixels[0], 255);
+    EXPECT_EQ(snap.pixels[(5 * 8 + 1) * 3 + 1], 0);
+    EXPECT_EQ(fb89("replay " + stream + " --snapshot frame").exit_code, 2);
+}
+
+TEST(ReplayCommand, BenchmarkReportsThroughput) {
+    const std::string stream = record_a();
+    CliRun r = fb89("replay " + stream + " --benchmark");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("M commands/s"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Mpixels/s"), std::string::npos) << r.out;
+    const auto j = replay_stats(stream, "--benchmark");
+    EXPECT_GT(j["benchmark"]["commands"].get<uint64_t>(), 100u);
+}
+
+TEST(ReplayCommand, TruncatedStreamKeepsCompleteFramesAndExitsTwo) {
+    const auto full = pr::encode_stream(three_frames(), {{"scene", "built"}});
+    const std::string stream = write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2);
+    const std::string png = scratch("last.png"), stats = scratch("cut.json");
+    CliRun r = fb89("replay " + stream + " --png " + png + " --stats " + stats);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("cut.fb89: truncated"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("at byte"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(command "), std::string::npos) << r.err;
+    const auto j = nlohmann::json::parse(slurp(stats));
+    EXPECT_EQ(j["controller"]["frames_closed"], 2);
+    EXPECT_TRUE(j.contains("error"));
+    // the PNG is frame 1's: background #000040 with a grey fill
+    const auto image = fb89::controller::read_png(png);
+    EXPECT_EQ(image.pixels[2], 64);
+    EXPECT_EQ(image.pixels[(2 * 8 + 2) * 3], 9);
+}
+
+TEST(DumpCommand, PrintsOneNumberedLinePerCommand) {
+    const std::string stream = write_stream("three.fb89", three_frames());
+    CliRun r = fb89("dump " + stream);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 12u) << r.out;
+    EXPECT_EQ(lines[0].find("      0 @"), 0u) << lines[0];
+    EXPECT_NE(lines[2].find("2 @"), std::string::npos);
+    EXPECT_NE(lines[2].find("FILL_RECT x=0 y=0 w=4 h=4 color=#ff0000"), std::string::npos);
+    EXPECT_NE(lines[1].find("MARKER \"warnock\""), std::string::npos);
+}
+
+TEST(DumpCommand, CallsAndGrepSelectLines) {
+    const std::string stream = write_stream("three.fb89", three_frames());
+    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls /span").out).size(), 2u);
+    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls frame").out).size(), 3u);
+    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls 0-11/2").out).size(), 6u);
+    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls 6-").out).size(), 6u);
+    CliRun grep = fb89("dump " + stream + " --grep 'color=#0+ff$'");
+    ASSERT_EQ(lines_of(grep.out).size(), 1u) << grep.out;
+    EXPECT_NE(grep.out.find("      9 @"), std::string::npos) << grep.out;
+}
+
+TEST(DumpCommand, SeeksThroughTheFrameIndexPastACorruptFrame) {
+    // corrupt frame 0's span (x1 < x0) but leave the index valid: reading from the start
+    // fails there, reading calls 5- seeks to frame 1 and never sees it
+    auto bytes = pr::encode_stream(three_frames(), {{"scene", "built"}});
+    const std::size_t span_at = 12 + 6 + 5 + 5 + 16 + 10 + 20;  // header, FRAME_BEGIN, MARKER, FILL
+    ASSERT_EQ(bytes[span_at], 0x03);
+    bytes[span_at + 12] = 0x80;  // x1's top byte: x1 < 0 < x0
+    const std::string path = scratch("bad0.fb89");
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+    CliRun all = fb89("dump " + path);
+    EXPECT_EQ(all.exit_code, 2);
+    EXPECT_NE(all.err.find("(command 3)"), std::string::npos) << all.err;
+    CliRun later = fb89("dump " + path + " --calls 5-");
+    EXPECT_EQ(later.exit_code, 0) << later.err;
+    EXPECT_EQ(lines_of(later.out).size(), 7u) << later.out;
+}
+
+TEST(DumpCommand, BadCallSetExitsTwoNamingIt) {
+    const std::string stream = write_stream("three.fb89", three_frames());
+    CliRun r = fb89("dump " + stream + " --calls 5-2");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--calls: call set '5-2': at character 3"), std::string::npos) << r.err;
+    CliRun re = fb89("dump " + stream + " --grep '('");
+    EXPECT_EQ(re.exit_code, 2);
+    EXPECT_NE(re.err.find("--grep"), std::string::npos) << re.err;
+}
+
+TEST(InfoCommand, JsonHasPerFrameOpcodesPixelsAndBytes) {
+    const std::string stream = write_stream("three.fb89", three_frames());
+    CliRun r = fb89("info " + stream + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["version"], 1);
+    EXPECT_EQ(j["properties"]["scene"], "built");
+    EXPECT_TRUE(j["frame_index"].get<bool>());
+    EXPECT_EQ(j["commands"], 12);
+    ASSERT_EQ(j["frames"].size(), 3u);
+    const auto& f0 = j["frames"][0];
+    EXPECT_EQ(f0["by_opcode"]["FILL_RECT"], 1);
+    EXPECT_EQ(f0["by_opcode"]["MARKER"], 1);
+    EXPECT_EQ(f0["pixels"], 48 + 16 + 6);              // clear, fill, span
+    EXPECT_EQ(f0["bus_bytes"], 10 + 0 + 12 + 10 + 2);  // tms34010-50mhz
+    EXPECT_EQ(f0["stream_bytes"], 16 + 10 + 20 + 16 + 1);
+    EXPECT_EQ(j["frames"][1]["stream_bytes"], 16 + 20 + 1);
+}
+
+TEST(InfoCommand, TextShowsHeaderAndOneRowPerFrame) {
+    const std::string stream = record_a();
+    CliRun r = fb89("info " + stream);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("format version 1"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("zbuffer"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("256x195"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("frame index    present"), std::string::npos) << r.out;
+}
+
+TEST(InfoCommand, NewerVersionNamesBothVersions) {
+    auto bytes = pr::encode_stream(three_frames());
+    bytes[4] = 3;
+    const std::string path = scratch("v3.fb89");
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+    CliRun r = fb89("info " + path);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("v3.fb89"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("version 3"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("up to 1"), std::string::npos) << r.err;
+}
+
+TEST(TrimCommand, WholeFramesKeepTheirChecksums) {
+    const std::string stream = write_stream("three.fb89", three_frames());
+    const std::string out = scratch("frames12.fb89");
+    CliRun r = fb89("trim " + stream + " --frames 1-2 -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto original = replay_stats(stream);
+    const auto trimmed = replay_stats(out);
+    ASSERT_EQ(trimmed["controller"]["frames_closed"], 2);
+    EXPECT_EQ(trimmed["controller"]["frames"][0]["checksum"],
+              original["controller"]["frames"][1]["checksum"]);
+    EXPECT_EQ(trimmed["controller"]["frames"][1]["checksum"],
+              original["controller"]["frames"][2]["checksum"]);
+    const auto info = nlohmann::json::parse(fb89("info --json " + out).out);
+    EXPECT_EQ(info["properties"]["trimmed_from"], stream);
+    EXPECT_EQ(info["properties"]["trim_frames"], "1-2");
+    EXPECT_EQ(info["properties"]["scene"], "built");
+    EXPECT_TRUE(info["frame_index"].get<bool>());
+}
+
+TEST(TrimCommand, AKeptCommandBringsItsFramesBeginAndEnd) {
+    const std::string stream = write_stream("three.fb89", three_frames());
+    const std::string out = scratch("call6.fb89");
+    ASSERT_EQ(fb89("trim " + stream + " --calls 6 -o " + out).exit_code, 0);
+    const auto lines = lines_of(fb89("dump " + out).out);
+    ASSERT_EQ(lines.size(), 3u);
+    EXPECT_NE(lines[0].find("FRAME_BEGIN frame=1"), std::string::npos) << lines[0];
+    EXPECT_NE(lines[1].find("FILL_RECT x=2"), std::string::npos) << lines[1];
+    EXPECT_NE(lines[2].find("FRAME_END"), std::string::npos) << lines[2];
+    // a slice of a recorded frame replays too
+    const std::string a = record_a(), slice = scratch("slice.fb89");
+    ASSERT_EQ(fb89("trim " + a + " --calls 100-300/2/span -o " + slice).exit_code, 0);
+    EXPECT_EQ(replay_stats(slice)["controller"]["frames_closed"], 1);
+    EXPECT_EQ(fb89("trim " + a + " --frames /span -o " + slice).exit_code, 2);
+    EXPECT_EQ(fb89("trim " + a + " -o " + slice).exit_code, 2);
+    EXPECT_EQ(fb89("trim " + a + " --frames 0 -o " + a).exit_code, 2);
+}
+
+TEST(TrimCommand, TruncatedInputStillGivesAStreamThatReplays) {
+    const auto full = pr::encode_stream(three_frames(), {{"scene", "built"}});
+    const std::string stream = write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2);
+    const std::string out = scratch("from_cut.fb89");
+    CliRun r = fb89("trim " + stream + " --calls 0- -o " + out);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("cut.fb89: truncated"), std::string::npos) << r.err;
+    CliRun replay = fb89("replay -q " + out);
+    EXPECT_EQ(replay.exit_code, 0) << replay.err;
+}
+
+TEST(DiffCommand, SameFramesExitZeroAcrossMethods) {
+    const std::string z = record_a("z.fb89"), w = scratch("w.fb89");
+    ASSERT_EQ(fb89("render " + kScenes + "/A.json --size 256x195 -q --method warnock --stream " + w)
+                  .exit_code,
+              0);
+    CliRun r = fb89("diff " + z + " " + w);
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("identical: 1 frame(s)"), std::string::npos) << r.out;
+}
+
+TEST(DiffCommand, ADifferentPixelExitsOneWithARedDiffImage) {
+    auto changed = three_frames();
+    changed[9] = pr::DrawSpan{0, 0, 6, pr::Rgb{0, 0, 255}};  // frame 2: one pixel fewer
+    const std::string a = write_stream("a3.fb89", three_frames()),
+                      b = write_stream("b3.fb89", changed);
+    const std::string image = scratch("diff.png");
+    CliRun r = fb89("diff " + a + " " + b + " --image " + image);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.out.find("differ in 1 of 3 frame(s)"), std::string::npos) << r.out;
+    const auto png = fb89::controller::read_png(image);
+    ASSERT_EQ(png.width, 8u);
+    EXPECT_EQ(png.pixels[7 * 3], 255);  // (7, 0) differs: red
+    EXPECT_EQ(png.pixels[7 * 3 + 2], 0);
+    EXPECT_EQ(png.pixels[0], 0);  // (0, 0): blue/3
+    EXPECT_EQ(png.pixels[2], 85);
+    auto fewer = three_frames();
+    fewer.resize(8);
+    EXPECT_EQ(fb89("diff " + a + " " + write_stream("two.fb89", fewer)).exit_code, 1);
+}
+
+TEST(ReplayTools, EveryToolReportsATruncatedStreamAndExitsTwo) {
+    const std::string a = record_a();
+    const std::string cut = scratch("cut.fb89");
+    fs::copy_file(a, cut, fs::copy_options::overwrite_existing);
+    fs::resize_file(cut, 5000);
+    for (const std::string& args :
+         {"replay " + cut, "dump " + cut, "info " + cut, "info --json " + cut,
+          "trim " + cut + " --frames 0 -o " + scratch("t.fb89"), "diff " + a + " " + cut}) {
+        CliRun r = fb89(args);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_NE(r.err.find("cut.fb89: truncated DRAW_SPAN at byte"), std::string::npos)
+            << args << ": " << r.err;
+    }
+    for (const char* tool : {"replay", "dump", "info"}) {
+        CliRun missing = fb89(std::string(tool) + " /nonexistent/s.fb89");
+        EXPECT_EQ(missing.exit_code, 2) << tool;
+        EXPECT_NE(missing.err.find("/nonexistent/s.fb89"), std::string::npos) << missing.err;
+    }
+    const std::string junk = scratch("junk.fb89");
+    std::ofstream(junk) << "not a stream";
+    CliRun bad = fb89("dump " + junk);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("bad magic"), std::string::npos) << bad.err;
+}
+
+}  // namespace

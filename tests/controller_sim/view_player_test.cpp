@@ -1,0 +1,129 @@
+// Tests for controller_sim/view_player: playback paced by modelled time, steps, frame
+// moves and seeks, on small streams written to files (no window).
+#include "controller_sim/view_player.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "protocol/stream_writer.h"
+
+namespace fb89::controller {
+namespace {
+
+using protocol::Command;
+using protocol::Rgb;
+using Clock = ViewPlayer::Clock;
+
+// Three frames numbered 10, 11, 12 of 8x6; frame k fills a rect of colour k. Commands 0-3
+// are frame 10, 4-7 frame 11, 8-11 frame 12.
+std::string write_stream(const std::string& name, bool with_index) {
+    const auto path = std::filesystem::temp_directory_path() / ("fb89_view_player_" + name);
+    protocol::StreamWriter w(path.string(), {{"scene", "test"}});
+    for (uint32_t k = 0; k < 3; ++k) {
+        const auto v = static_cast<uint8_t>(k + 1);
+        w.frame_begin(protocol::FrameBegin{10 + k, 8, 6, Rgb{}});
+        w.fill_rect(protocol::FillRect{0, 0, 4, 4, Rgb{v, v, v}});
+        w.draw_span(protocol::DrawSpan{5, 0, 7, Rgb{v, 0, 0}});
+        w.frame_end(protocol::FrameEnd{});
+    }
+    if (with_index) w.close();
+    return path.string();
+}
+
+Clock::time_point far() {
+    return Clock::now() + std::chrono::hours(1);
+}
+
+TEST(ViewPlayer, PlaySpendsTheBudgetInModelledTimeAndCarriesTheDebt) {
+    ViewPlayer p(write_stream("budget", true), load_profile("tms34010-50mhz"));
+    // FRAME_BEGIN 8x6 alone takes more than 1 µs: one command, then the budget is spent
+    const double left = p.play(1.0, far());
+    EXPECT_EQ(p.next_command(), 1u);
+    EXPECT_NEAR(left, 1.0 - p.elapsed_us(), 1e-9);
+    EXPECT_LT(left, 0);
+    EXPECT_EQ(p.play(left, far()), left);  // in debt: nothing runs
+    EXPECT_EQ(p.next_command(), 1u);
+    p.play(1e9, far());
+    EXPECT_TRUE(p.at_end());
+    EXPECT_EQ(p.controller().frames().size(), 3u);
+}
+
+TEST(ViewPlayer, NextFrameRunsToThisFramesEndThenTheNextsAndPauses) {
+    ViewPlayer p(write_stream("next", true), load_profile("ideal"));
+    ASSERT_TRUE(p.step());  // inside frame 10
+    p.next_frame();
+    p.run(far());
+    EXPECT_EQ(p.goal(), ViewGoal::Pause);
+    EXPECT_EQ(p.next_command(), 4u);
+    p.next_frame();
+    p.run(far());
+    EXPECT_EQ(p.next_command(), 8u);
+    EXPECT_EQ(p.frame_number(), 11);
+    EXPECT_EQ(p.controller().framebuffer().pixel(0, 0), (Rgb{2, 2, 2}));
+}
+
+TEST(ViewPlayer, PreviousFrameShowsTheFrameBeforeCompleteWithOrWithoutIndex) {
+    for (bool with_index : {true, false}) {
+        ViewPlayer p(write_stream(with_index ? "prev_index" : "prev_cut", with_index),
+                     load_profile("ideal"));
+        EXPECT_EQ(p.frame_count().has_value(), with_index);
+        p.set_goal(ViewGoal::End);
+        p.run(far());
+        ASSERT_TRUE(p.at_end());
+        EXPECT_EQ(p.frame_ordinal(), 2);
+        p.previous_frame();
+        p.run(far());
+        EXPECT_EQ(p.frame_number(), 11) << with_index;
+        EXPECT_EQ(p.next_command(), 8u);
+        EXPECT_EQ(p.controller().framebuffer().pixel(7, 5), (Rgb{2, 0, 0}));
+        EXPECT_EQ(p.recorder().writer(7, 5)->number, 6u);
+        EXPECT_EQ(p.goal(), ViewGoal::Pause);
+    }
+}
+
+TEST(ViewPlayer, StartsAtAFrameNumberOrACommandAndThenPlays) {
+    ViewPlayer by_frame(write_stream("start_frame", true), load_profile("ideal"));
+    by_frame.seek_frame_number(12);
+    EXPECT_EQ(by_frame.next_command(), 8u);
+    EXPECT_EQ(by_frame.goal(), ViewGoal::Play);
+
+    ViewPlayer by_call(write_stream("start_call", true), load_profile("ideal"));
+    by_call.seek_command(6);
+    by_call.run(far());
+    EXPECT_EQ(by_call.next_command(), 6u);
+    EXPECT_EQ(by_call.goal(), ViewGoal::Play);
+    EXPECT_EQ(by_call.frame_number(), 11);
+
+    ViewPlayer no_index(write_stream("start_frame_cut", false), load_profile("ideal"));
+    no_index.seek_frame_number(11);
+    no_index.run(far());
+    EXPECT_EQ(no_index.next_command(), 5u);
+    EXPECT_TRUE(no_index.error().empty());
+    EXPECT_THROW(by_frame.seek_frame_number(99), std::invalid_argument);
+}
+
+TEST(ViewPlayer, RestartGoesBackToTheFirstCommandPaused) {
+    ViewPlayer p(write_stream("restart", true), load_profile("ideal"));
+    p.set_goal(ViewGoal::End);
+    p.run(far());
+    p.restart();
+    EXPECT_EQ(p.next_command(), 0u);
+    EXPECT_FALSE(p.at_end());
+    EXPECT_EQ(p.goal(), ViewGoal::Pause);
+    EXPECT_EQ(p.frame_ordinal(), -1);
+}
+
+TEST(ViewPlayer, ToEndJumpsToTheLastFrameThroughTheIndex) {
+    ViewPlayer p(write_stream("to_end", true), load_profile("ideal"));
+    p.to_end();
+    EXPECT_EQ(p.next_command(), 8u);  // skipped frames 10 and 11
+    p.run(far());
+    EXPECT_TRUE(p.at_end());
+    EXPECT_EQ(p.frame_number(), 12);
+    EXPECT_EQ(p.controller().frames().size(), 1u);
+    EXPECT_EQ(p.controller().framebuffer().pixel(0, 0), (Rgb{3, 3, 3}));
+}
+
+}  // namespace
+}  // namespace fb89::controller
