@@ -16,14 +16,16 @@ void ZBuffer::prepare(const ScreenScene& scene, const PixelRect& window) {
     if (m_width != scene.width || m_height != scene.height) {
         m_width = scene.width;
         m_height = scene.height;
-        size_t n = static_cast<size_t>(m_width) * m_height;
-        m_depth.assign(n, 0.0);  // meaningful only where m_face is not 0
-        m_face.assign(n, 0);
-        return;
+        const size_t band = static_cast<size_t>(m_width) * kBandRows;
+        m_depth.assign(band, 0.0);  // meaningful only where m_face is not 0
+        m_face.assign(band, 0);
+        m_kept.clear();
     }
-    if (!m_keep) return;  // emit() left the buffer zero
+    if (!m_keep) return;
+    if (m_kept.size() != static_cast<size_t>(m_width) * m_height)
+        m_kept.assign(static_cast<size_t>(m_width) * m_height, 0);
     for (int y = window.y0; y < window.y1; ++y) {
-        uint32_t* row = m_face.data() + static_cast<size_t>(y) * m_width;
+        uint32_t* row = m_kept.data() + static_cast<size_t>(y) * m_width;
         std::fill(row + window.x0, row + window.x1, 0u);
     }
 }
@@ -74,18 +76,18 @@ uint64_t depth_test_row(const DepthPlane& plane, int y, int xb, int xe, uint32_t
 
 }  // namespace
 
-void ZBuffer::draw_face(const ScreenScene& scene, uint32_t index, const PixelRect& window,
+void ZBuffer::draw_face(const ScreenScene& scene, uint32_t index, const PixelRect& band,
                         ZBufferCounts& counts) {
     const ScreenFace& f = scene.faces[index];
     const EdgeFunction* edges = scene.edges_of(f);
-    const int y0 = std::max(window.y0, f.bounds.y0), y1 = std::min(window.y1, f.bounds.y1);
-    const int x_lo = std::max(window.x0, f.bounds.x0), x_hi = std::min(window.x1, f.bounds.x1);
+    const int y0 = std::max(band.y0, f.bounds.y0), y1 = std::min(band.y1, f.bounds.y1);
+    const int x_lo = std::max(band.x0, f.bounds.x0), x_hi = std::min(band.x1, f.bounds.x1);
     uint64_t tests = 0, written = 0;
     for (int y = y0; y < y1; ++y) {
         // coverage: this row's run of centres
         int xb = 0, xe = 0;
         if (!row_span(edges, f.point_count, y, x_lo, x_hi, xb, xe)) continue;
-        const size_t row = static_cast<size_t>(y) * m_width;
+        const size_t row = static_cast<size_t>(y - band.y0) * m_width;  // band-local
         tests += static_cast<uint64_t>(xe - xb);
         // depth test
         written += depth_test_row(f.depth, y, xb, xe, index + 1, m_depth.data() + row,
@@ -95,13 +97,16 @@ void ZBuffer::draw_face(const ScreenScene& scene, uint32_t index, const PixelRec
     counts.pixels_written += written;
 }
 
-uint64_t ZBuffer::emit(const ScreenScene& scene, const PixelRect& window,
+uint64_t ZBuffer::emit(const ScreenScene& scene, const PixelRect& band,
                        protocol::CommandSink& sink) {
     uint64_t spans = 0;
-    for (int y = window.y0; y < window.y1; ++y) {
-        uint32_t* row = m_face.data() + static_cast<size_t>(y) * m_width;
-        spans += emit_row_spans(scene, row, y, window.x0, window.x1, sink);
-        if (!m_keep) std::fill(row + window.x0, row + window.x1, 0u);
+    for (int y = band.y0; y < band.y1; ++y) {
+        uint32_t* row = m_face.data() + static_cast<size_t>(y - band.y0) * m_width;
+        spans += emit_row_spans(scene, row, y, band.x0, band.x1, sink);
+        if (m_keep)
+            std::copy(row + band.x0, row + band.x1,
+                      m_kept.data() + static_cast<size_t>(y) * m_width + band.x0);
+        std::fill(row + band.x0, row + band.x1, 0u);
     }
     return spans;
 }
@@ -110,14 +115,29 @@ void ZBuffer::render_window(const ScreenScene& scene, std::span<const uint32_t> 
                             const PixelRect& window, protocol::CommandSink& sink,
                             ZBufferCounts& counts) {
     prepare(scene, window);
+    // bin faces into bands of rows, ascending within each band
+    const int bands = (window.height() + kBandRows - 1) / kBandRows;
+    if (m_bins.size() < static_cast<size_t>(bands)) m_bins.resize(static_cast<size_t>(bands));
+    for (int b = 0; b < bands; ++b)
+        m_bins[static_cast<size_t>(b)].clear();
     for (uint32_t index : faces) {
         const PixelRect& r = scene.faces[index].bounds;
-        if (r.x1 <= window.x0 || r.x0 >= window.x1 || r.y1 <= window.y0 || r.y0 >= window.y1)
-            continue;
-        draw_face(scene, index, window, counts);
+        const int first = std::max(r.y0, window.y0), last = std::min(r.y1, window.y1) - 1;
+        if (first > last || r.x1 <= window.x0 || r.x0 >= window.x1) continue;
+        for (int b = (first - window.y0) / kBandRows; b <= (last - window.y0) / kBandRows; ++b)
+            m_bins[static_cast<size_t>(b)].push_back(index);
         ++counts.faces;
     }
-    counts.spans += emit(scene, window, sink);
+    // each band: depth-test its faces in a band-sized buffer that stays in cache, then
+    // send its spans
+    for (int b = 0; b < bands; ++b) {
+        PixelRect band = window;
+        band.y0 = window.y0 + b * kBandRows;
+        band.y1 = std::min(window.y1, band.y0 + kBandRows);
+        for (uint32_t index : m_bins[static_cast<size_t>(b)])
+            draw_face(scene, index, band, counts);
+        counts.spans += emit(scene, band, sink);
+    }
 }
 
 void ZBuffer::render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) {

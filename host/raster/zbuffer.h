@@ -11,10 +11,12 @@
 //
 // Faces are drawn in ascending id order, so the shared rule's tie case (equal depth, lower
 // id wins) is met by keeping the first face at equal depth: the inner loop needs only a
-// strict less-than. Faces are visited in order, not binned into tiles: with a few MB of
-// buffers the faces' own data is what misses the cache. The face buffer doubles as the depth
-// buffer's "empty" mark, and each row is zeroed again as its spans leave, so no frame pays for
-// clearing either buffer.
+// strict less-than. The window is worked in bands of rows, as a tiler would: faces are
+// binned to the bands they meet, and each band is depth-tested in one band-sized pair of
+// buffers (a few hundred KB, reused band after band, so they stay in cache instead of
+// being fetched from memory every frame), then its spans leave and the band is zeroed.
+// The face buffer doubles as the depth buffer's "empty" mark, so the depth buffer is never
+// cleared.
 #pragma once
 
 #include <span>
@@ -45,7 +47,7 @@ class ZBuffer final : public Renderer {
     // Keeps the resolved face buffer of each render (scene.faces index + 1 per pixel,
     // 0 = none) for inspection, at the cost of a clear per frame.
     void keep_face_buffer(bool keep) { m_keep = keep; }
-    const std::vector<uint32_t>& face_buffer() const { return m_face; }
+    const std::vector<uint32_t>& face_buffer() const { return m_kept; }
 
   private:
     void prepare(const ScreenScene& scene, const PixelRect& window);
@@ -55,7 +57,13 @@ class ZBuffer final : public Renderer {
 
     int m_width = 0, m_height = 0;
     std::vector<double> m_depth;
-    std::vector<uint32_t> m_face;  // all zero between renders unless m_keep
+    // Buffers for one band of kBandRows rows, reused band after band: a few hundred KB
+    // that stay in cache, where whole-screen buffers would be fetched from memory again
+    // every frame.
+    static constexpr int kBandRows = 32;
+    std::vector<uint32_t> m_face;               // all zero between bands
+    std::vector<std::vector<uint32_t>> m_bins;  // faces meeting each band, ascending
+    std::vector<uint32_t> m_kept;               // whole-screen face buffer, with m_keep
     bool m_keep = false;
     std::vector<uint32_t> m_all;
 };
