@@ -63,8 +63,9 @@ int run_experiment(const ExperimentArgs& args) {
     else if (args.name == "accuracy")
         table = experiment_accuracy(settings, resolve_threshold(args.threshold));
     else
-        throw UsageError(fmt::format(
-            "unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, hybrid, accuracy)", args.name));
+        throw UsageError(
+            fmt::format("unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, hybrid, accuracy)",
+                        args.name));
 
     if (!args.csv.empty()) write_text(args.csv, table.csv());
     if (!args.quiet && args.csv != "-") std::cout << table.text();

@@ -407,12 +407,14 @@ Table experiment_hybrid(const ExperimentSettings& s, double chosen) {
         const double z = r[0].median.cpu_ms, h = r[1].median.cpu_ms, p = r[2].median.cpu_ms;
         const ControllerFigures cz = controller_figures(r[0].commands, profile);
         const ControllerFigures ch = controller_figures(r[1].commands, profile);
-        const double share = 100.0 * static_cast<double>(r[1].counters.get("hybrid_pixels_zbuffer")) /
+        const double share = 100.0 *
+                             static_cast<double>(r[1].counters.get("hybrid_pixels_zbuffer")) /
                              (static_cast<double>(screen.width) * screen.height);
-        table.add({file, std::to_string(scene.face_count), fixed(z, 3), fixed(h, 3), fixed(h / z, 3),
-                   fixed(100.0 * (z - h) / z, 1), fixed(p, 3), fixed(p / z, 3),
+        table.add({file, std::to_string(scene.face_count), fixed(z, 3), fixed(h, 3),
+                   fixed(h / z, 3), fixed(100.0 * (z - h) / z, 1), fixed(p, 3), fixed(p / z, 3),
                    fmt::format("{:.6g}", chosen), fixed(share, 1), std::to_string(cz.commands),
-                   std::to_string(ch.commands), fixed(cz.controller_ms, 3), fixed(ch.controller_ms, 3)});
+                   std::to_string(ch.commands), fixed(cz.controller_ms, 3),
+                   fixed(ch.controller_ms, 3)});
     }
     return table;
 }

@@ -67,14 +67,7 @@ std::string snapshot_path(const std::string& png, uint64_t call) {
 }
 
 std::string grouped(uint64_t v) {
-    const std::string digits = std::to_string(v);
-    std::string out;
-    const std::size_t n = digits.size();
-    for (std::size_t i = 0; i < n; ++i) {
-        if (i > 0 && (n - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return out;
+    return controller::grouped(v);
 }
 
 double modelled_ms(const controller::CostProfile& p, uint64_t cycles) {

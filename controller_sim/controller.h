@@ -54,6 +54,9 @@ struct FrameResult {
     OpcodeCounters total() const { return sum(ops); }
 };
 
+// 1234567 -> "1,234,567", for the tables of the controller and the stream tools.
+std::string grouped(uint64_t v);
+
 struct ControllerStats {
     CostProfile profile;
     std::vector<FrameResult> frames;  // closed frames, in order

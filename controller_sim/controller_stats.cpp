@@ -65,18 +65,6 @@ json frame_json(const CostProfile& p, const FrameResult& f) {
                 {"end_us", f.end_us}};
 }
 
-// 1234567 -> "1,234,567"
-std::string grouped(uint64_t v) {
-    std::string digits = std::to_string(v);
-    std::string out;
-    const std::size_t n = digits.size();
-    for (std::size_t i = 0; i < n; ++i) {
-        if (i > 0 && (n - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return out;
-}
-
 void append_row(std::string& out, const char* name, const OpcodeCounters& c, double model_ms,
                 double bus_ms) {
     out += fmt::format("{:<12} {:>12} {:>15} {:>13} {:>15} {:>13.3f} {:>11.3f} {:>9} {:>9}\n", name,
@@ -85,6 +73,17 @@ void append_row(std::string& out, const char* name, const OpcodeCounters& c, dou
 }
 
 }  // namespace
+
+std::string grouped(uint64_t v) {
+    const std::string digits = std::to_string(v);
+    std::string out;
+    const std::size_t n = digits.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i > 0 && (n - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
 
 nlohmann::json ControllerStats::to_json() const {
     json frames_json = json::array();

@@ -5,6 +5,7 @@
 #include <variant>
 #include <vector>
 
+#include "host/scene/generators.h"
 #include "host/scene/projection.h"
 #include "protocol/command.h"
 
@@ -25,6 +26,21 @@ inline std::vector<uint32_t> ids_from_commands(const std::vector<protocol::Comma
         }
     }
     return ids;
+}
+
+// A screen-space scene of seeded random triangles (generate_random_triangles), ids in order.
+inline host::Scene random_scene(int width, int height, int count, double area, uint64_t seed) {
+    host::Scene scene;
+    scene.projection = host::Projection::Screen;
+    scene.width = width;
+    scene.height = height;
+    for (auto& t : host::generate_random_triangles(width, height, count, area, seed)) {
+        host::Face f;
+        f.vertices = std::move(t.vertices);
+        f.id = scene.face_count++;
+        scene.faces.push_back(std::move(f));
+    }
+    return scene;
 }
 
 }  // namespace fb89::testing

@@ -17,6 +17,7 @@
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
+#include "tests/host/raster/raster_test_util.h"
 
 namespace fb89::host {
 namespace {
@@ -26,19 +27,7 @@ ScreenScene screen_scene(const Scene& scene, ColorMode mode = ColorMode::FaceId)
     return project_scene(scene, mode, counters);
 }
 
-Scene random_scene(int width, int height, int count, double area, uint64_t seed) {
-    Scene scene;
-    scene.projection = Projection::Screen;
-    scene.width = width;
-    scene.height = height;
-    for (auto& t : generate_random_triangles(width, height, count, area, seed)) {
-        Face f;
-        f.vertices = std::move(t.vertices);
-        f.id = scene.face_count++;
-        scene.faces.push_back(std::move(f));
-    }
-    return scene;
-}
+using testing::random_scene;
 
 // `count` random triangles all on the plane z = a x + b y + c: with a = b = 0 their planes
 // are bit-identical; sloped, each is rebuilt from its own vertices and differs by rounding.

@@ -12,6 +12,7 @@
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
+#include "tests/host/raster/raster_test_util.h"
 
 namespace fb89::host {
 namespace {
@@ -21,19 +22,7 @@ ScreenScene screen_scene(const Scene& scene) {
     return project_scene(scene, ColorMode::FaceId, counters);
 }
 
-Scene random_scene(int width, int height, int count, double area, uint64_t seed) {
-    Scene scene;
-    scene.projection = Projection::Screen;
-    scene.width = width;
-    scene.height = height;
-    for (auto& t : generate_random_triangles(width, height, count, area, seed)) {
-        Face f;
-        f.vertices = std::move(t.vertices);
-        f.id = scene.face_count++;
-        scene.faces.push_back(std::move(f));
-    }
-    return scene;
-}
+using testing::random_scene;
 
 // The rule itself, pixel by pixel over every face: ids + 1, 0 for background.
 std::vector<uint32_t> reference_ids(const ScreenScene& s, const PixelRect& window) {
