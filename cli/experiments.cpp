@@ -1,5 +1,7 @@
 #include "cli/experiments.h"
 
+#include "cli/id_pass.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -297,15 +299,9 @@ namespace {
 
 // The face-id buffer a setting produces, through its commands and the controller.
 std::vector<uint8_t> id_pixels(const host::Scene& scene, const host::RenderOptions& o) {
-    host::HostStats stats;
-    host::ScreenScene ids = host::project_scene(scene, host::ColorMode::FaceId, stats.counters);
     auto renderer = host::make_renderer(o);
-    renderer->setup(ids);
-    protocol::MemoryBuffer commands;
-    host::render_frame(*renderer, ids, commands, stats);
-    controller::Controller ctl(controller::load_profile("ideal"));
-    commands.replay_into(ctl);
-    const auto px = ctl.framebuffer().pixels();
+    const controller::Framebuffer fb = id_framebuffer(scene, *renderer);
+    const auto px = fb.pixels();
     return {px.begin(), px.end()};
 }
 

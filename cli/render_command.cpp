@@ -11,6 +11,7 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/id_pass.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "host/raster/renderer.h"
@@ -84,17 +85,10 @@ HostRun run_host(const RenderArgs& args, host::Renderer& renderer) {
 
 // The face-id pass: the same method through the same sink and controller, every face
 // coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer.
-void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Renderer& renderer,
-                     const controller::CostProfile& profile) {
-    host::HostStats stats;
-    host::ScreenScene ids = host::project_scene(scene, host::ColorMode::FaceId, stats.counters);
-    renderer.setup(ids);
-    protocol::MemoryBuffer commands;
-    host::render_frame(renderer, ids, commands, stats);
-    controller::Controller id_controller(profile);
-    commands.replay_into(id_controller);
+void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Renderer& renderer) {
+    controller::Framebuffer ids = id_framebuffer(scene, renderer);
     make_parent_dirs(args.ids);
-    controller::write_png(args.ids, id_controller.framebuffer());
+    controller::write_png(args.ids, ids);
 }
 
 protocol::Properties stream_properties(const RenderArgs& args, const HostRun& run) {
@@ -220,7 +214,7 @@ int run_render(const RenderArgs& args) {
         make_parent_dirs(args.png);
         controller::write_png(args.png, ctl.framebuffer());
     }
-    if (!args.ids.empty()) write_id_buffer(args, run.scene, *renderer, profile);
+    if (!args.ids.empty()) write_id_buffer(args, run.scene, *renderer);
     if (!args.stream.empty()) write_stream(args, run);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, run, ctl));
 
