@@ -21,27 +21,63 @@ std::string calibration_path() {
     return std::string(home && *home ? home : ".") + "/.config/fb89/calibration.json";
 }
 
-std::optional<double> calibrated_threshold() {
+namespace {
+
+// The calibration file's contents, or null when there is none.
+nlohmann::json read_calibration() {
     std::ifstream in(calibration_path());
-    if (!in) return std::nullopt;
+    if (!in) return nullptr;
     std::stringstream ss;
     ss << in.rdbuf();
     try {
         nlohmann::json j = nlohmann::json::parse(ss.str());
-        double t = j.at("threshold").get<double>();
-        if (t >= 0) return t;
+        if (j.is_object()) return j;
     } catch (const std::exception&) {
     }
     throw std::runtime_error(
-        fmt::format("{}: not a calibration file (expected {{\"threshold\": number >= 0}}); run "
-                    "fb89 calibrate again",
+        fmt::format("{}: not a calibration file (expected a JSON object); run fb89 calibrate again",
                     calibration_path()));
 }
 
-void save_calibration(double threshold, const std::string& details_json) {
-    nlohmann::json j = nlohmann::json::parse(details_json);
-    j["threshold"] = threshold;
+std::optional<double> read_threshold(const char* key) {
+    const nlohmann::json j = read_calibration();
+    if (j.is_null() || !j.contains(key)) return std::nullopt;
+    const auto& v = j.at(key);
+    if (v.is_number() && v.get<double>() >= 0) return v.get<double>();
+    throw std::runtime_error(fmt::format(
+        "{}: \"{}\" must be a number >= 0; run fb89 calibrate again", calibration_path(), key));
+}
+
+// Writes `key` and its details, keeping what the file says of the other threshold.
+void save_threshold(const char* key, const char* details_key, double threshold,
+                    const std::string& details_json) {
+    nlohmann::json j;
+    try {
+        j = read_calibration();
+    } catch (const std::runtime_error&) {
+        j = nullptr;  // a broken file is replaced
+    }
+    if (j.is_null()) j = nlohmann::json::object();
+    j[key] = threshold;
+    j[details_key] = nlohmann::json::parse(details_json);
     write_json(calibration_path(), j);
+}
+
+}  // namespace
+
+std::optional<double> calibrated_threshold() {
+    return read_threshold("threshold");
+}
+std::optional<double> calibrated_beam_threshold() {
+    return read_threshold("beam_threshold");
+}
+
+void save_calibration(double threshold, const std::string& details_json) {
+    save_threshold("threshold", "hybrid", threshold, details_json);
+}
+
+void save_beam_calibration(double threshold, const std::string& details_json) {
+    save_threshold("beam_threshold", "beam", threshold, details_json);
 }
 
 double resolve_threshold(const std::string& text, std::string* source) {
@@ -75,6 +111,35 @@ double resolve_threshold(const std::string& text, std::string* source) {
     }
     throw UsageError(fmt::format(
         "--threshold: expected a number >= 0, inf, paper or calibrated, got '{}'", text));
+}
+
+double resolve_beam_threshold(const std::string& text, std::string* source) {
+    auto said = [&](const char* s) {
+        if (source) *source = s;
+    };
+    if (text == "calibrated") {
+        if (auto t = calibrated_beam_threshold()) {
+            said("calibrated");
+            return *t;
+        }
+        said("default (not calibrated yet)");
+        return kDefaultBeamThreshold;
+    }
+    if (text == "inf" || text == "infinity") {
+        said("given");
+        return std::numeric_limits<double>::infinity();
+    }
+    try {
+        size_t used = 0;
+        double t = std::stod(text, &used);
+        if (used == text.size() && t >= 0) {
+            said("given");
+            return t;
+        }
+    } catch (const std::exception&) {
+    }
+    throw UsageError(
+        fmt::format("--beam-threshold: expected a number >= 0, inf or calibrated, got '{}'", text));
 }
 
 }  // namespace fb89::cli

@@ -9,13 +9,22 @@
 namespace fb89::cli {
 
 inline constexpr double kPaperThreshold = 0.04;
+// The beam-ray hybrid's Expr. 2.7 threshold before `fb89 calibrate --method beam` has run
+// (the paper gives no value; this one was chosen on the bundled mirror scenes, RESULTS.md).
+inline constexpr double kDefaultBeamThreshold = 1.0;
 
+// Both thresholds live in one file: "threshold" (the Warnock/Z-buffer hybrid's) and
+// "beam_threshold" (the beam-ray hybrid's), each with the details of its calibration.
 std::string calibration_path();
-std::optional<double> calibrated_threshold();  // none when never calibrated
+std::optional<double> calibrated_threshold();       // none when never calibrated
+std::optional<double> calibrated_beam_threshold();  // none when never calibrated
 void save_calibration(double threshold, const std::string& details_json);
+void save_beam_calibration(double threshold, const std::string& details_json);
 
 // "--threshold" values: a number, "inf", "paper" (0.04) or "calibrated" (this machine's,
 // else the paper's). Throws UsageError.
 double resolve_threshold(const std::string& text, std::string* source = nullptr);
+// "--beam-threshold" values: a number, "inf" or "calibrated" (else the default above).
+double resolve_beam_threshold(const std::string& text, std::string* source = nullptr);
 
 }  // namespace fb89::cli

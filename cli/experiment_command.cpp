@@ -9,6 +9,11 @@
 //           the calibrated and the paper's thresholds, host and controller apart.
 //   hybrid  the calibrated hybrid (and the paper's 0.04) against the Z-buffer per scene.
 //   accuracy  exact and approximate Warnock and hybrid: time, commands, pixels wrong.
+//   fig4.8, fig4.11, fig4.12  the beam-ray hybrid against the ray tracer alone on G, H and
+//           I at 256x195 ... 2048x1560, whole process (paper Figs. 4.8, 4.11, §4's image I).
+//   fig4.7  beam-ray frames of G, H and I with the ray-traced pixels blacked out (paper
+//           Figs. 4.7, 4.10), written to --out-dir.
+//   beam-threshold  time and pixels by beams against the Expr. 2.7 threshold.
 #include <unistd.h>
 
 #include <iostream>
@@ -31,11 +36,20 @@ struct ExperimentArgs {
     std::string profile = "tms34010-50mhz";
     int repeat = 7;
     std::string threshold = "calibrated";
+    std::string beam_threshold = "calibrated";
+    std::vector<std::string> sizes;
+    std::string out_dir = "out/masks";
     bool quiet = false;
 };
 
 std::vector<std::string> default_scenes(const std::string& name) {
     if (name == "fig3.1") return {"scenes/A.json", "scenes/F.json"};
+    if (name == "fig4.8") return {"scenes/G.json"};
+    if (name == "fig4.11") return {"scenes/H.json"};
+    if (name == "fig4.12") return {"scenes/I.json"};
+    if (name == "fig4.7") return {"scenes/G.json", "scenes/H.json", "scenes/I.json"};
+    if (name == "beam-threshold")
+        return {"scenes/G.json", "scenes/H.json", "scenes/I.json", "scenes/cornell_mirror.json"};
     std::vector<std::string> out;
     if (name == "hybrid") out = {"scenes/demo.json", "scenes/cornell_box.json"};
     for (char c = 'A'; c <= 'F'; ++c)
@@ -62,10 +76,23 @@ int run_experiment(const ExperimentArgs& args) {
         table = experiment_hybrid(settings, resolve_threshold(args.threshold));
     else if (args.name == "accuracy")
         table = experiment_accuracy(settings, resolve_threshold(args.threshold));
+    else if (args.name == "fig4.8" || args.name == "fig4.11" || args.name == "fig4.12") {
+        std::vector<ImageSize> sizes;
+        for (const auto& text : args.sizes)
+            sizes.push_back(parse_size(text));
+        if (sizes.empty()) sizes = {{256, 195}, {512, 390}, {1024, 780}, {2048, 1560}};
+        table = experiment_beam_resolution(settings, sizes,
+                                           resolve_beam_threshold(args.beam_threshold));
+    } else if (args.name == "fig4.7")
+        table = experiment_beam_masks(settings, resolve_beam_threshold(args.beam_threshold),
+                                      args.out_dir);
+    else if (args.name == "beam-threshold")
+        table = experiment_beam_threshold(settings, beam_threshold_ramp());
     else
-        throw UsageError(
-            fmt::format("unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, hybrid, accuracy)",
-                        args.name));
+        throw UsageError(fmt::format(
+            "unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, hybrid, accuracy, fig4.7, "
+            "fig4.8, fig4.11, fig4.12, beam-threshold)",
+            args.name));
 
     if (!args.csv.empty()) write_text(args.csv, table.csv());
     if (!args.quiet && args.csv != "-") std::cout << table.text();
@@ -80,7 +107,10 @@ void register_experiment(CLI::App& app, int& exit_code) {
     sub->add_option("name", args->name,
                     "fig2.1 (method times on A-F), fig2.4 (Eq. 2.4 vs counts), fig3.1 (hybrid "
                     "time vs threshold on A and F), hybrid (calibrated hybrid vs Z-buffer per "
-                    "scene), accuracy (approximate fills: time vs pixels wrong)")
+                    "scene), accuracy (approximate fills: time vs pixels wrong), fig4.8 / "
+                    "fig4.11 / fig4.12 (beam-ray hybrid vs ray tracer against resolution on G, "
+                    "H, I), fig4.7 (masks of ray-traced pixels), beam-threshold (time and "
+                    "pixels by beams vs Expr. 2.7 threshold)")
         ->required();
     sub->add_option("scenes", args->scenes, "Scenes (default scenes/A.json ... scenes/F.json)");
     sub->add_option("--csv", args->csv, "Write the results as CSV ('-' for stdout)");
@@ -91,6 +121,15 @@ void register_experiment(CLI::App& app, int& exit_code) {
     sub->add_option("--profile", args->profile, "Controller cost profile")->capture_default_str();
     sub->add_option("--threshold", args->threshold,
                     "fig3.1 and accuracy: the hybrid's threshold (number, paper or calibrated)")
+        ->capture_default_str();
+    sub->add_option("--beam-threshold", args->beam_threshold,
+                    "fig4.*: the beam-ray hybrid's Expr. 2.7 threshold (number, inf or "
+                    "calibrated)")
+        ->capture_default_str();
+    sub->add_option("--sizes", args->sizes,
+                    "fig4.8/4.11/4.12: image sizes WxH (default 256x195 512x390 1024x780 "
+                    "2048x1560)");
+    sub->add_option("--out-dir", args->out_dir, "fig4.7: where the frames and masks go")
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_experiment(*args); });

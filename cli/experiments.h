@@ -77,4 +77,17 @@ Table sweep_threshold(const ExperimentSettings& settings, const std::vector<doub
                       const host::RenderOptions& base);
 Table experiment_fig2_4(const ExperimentSettings& settings);
 
+// §4 (cli/trace_experiments.cpp). Figs. 4.8, 4.11: the ray tracer alone and the beam-ray
+// hybrid at `threshold`, whole process timed interleaved, at each size, per scene.
+Table experiment_beam_resolution(const ExperimentSettings& settings,
+                                 const std::vector<ImageSize>& sizes, double threshold);
+// Figs. 4.7, 4.10: each scene's beam-ray frame and its mask, written to `out_dir`.
+Table experiment_beam_masks(const ExperimentSettings& settings, double threshold,
+                            const std::string& out_dir);
+// Hidden-surface time and pixels by beams against the Expr. 2.7 threshold (first row per
+// scene: the ray tracer alone); every row says whether its frame equals the ray tracer's.
+Table experiment_beam_threshold(const ExperimentSettings& settings,
+                                const std::vector<double>& thresholds);
+std::vector<double> beam_threshold_ramp();  // 0, 0.01 ... 1000 on a log scale, inf
+
 }  // namespace fb89::cli

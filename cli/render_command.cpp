@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/beam_mask.h"
 #include "cli/calibration.h"
 #include "cli/common.h"
 #include "cli/id_pass.h"
@@ -18,6 +19,7 @@
 #include "host/raster/scene_measures.h"
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
+#include "host/trace/beam_ray_hybrid.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/socket_stream.h"
 #include "protocol/stream_writer.h"
@@ -32,6 +34,10 @@ struct RenderArgs {
     std::string window_test = "area";
     std::string threshold = "calibrated";
     std::string depth_estimate = "window";
+    std::string beam_threshold = "calibrated";
+    int reflections = 8;
+    double grid_density = 8;
+    std::string mask;
     int approx_min_side = 0;
     double approx_epsilon = 0;
     std::string size;
@@ -89,6 +95,14 @@ void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Ren
     controller::Framebuffer ids = id_framebuffer(scene, renderer);
     make_parent_dirs(args.ids);
     controller::write_png(args.ids, ids);
+}
+
+// The paper's Figs. 4.7 and 4.10: the frame with the ray-traced pixels blacked out.
+void write_beam_mask(const std::string& path, const controller::Framebuffer& frame,
+                     const host::Renderer& renderer) {
+    const auto& beam = dynamic_cast<const host::BeamRayHybrid&>(renderer);
+    make_parent_dirs(path);
+    controller::write_png(path, masked_by_beams(frame, beam.beam_mask()));
 }
 
 protocol::Properties stream_properties(const RenderArgs& args, const HostRun& run) {
@@ -168,6 +182,8 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
         j["threshold"] = resolve_threshold(args.threshold);
         j["depth_estimate"] = args.depth_estimate;
     }
+    if (args.method == "beam") j["beam_threshold"] = resolve_beam_threshold(args.beam_threshold);
+    if (args.method == "beam" || args.method == "raytrace") j["reflections"] = args.reflections;
     j["host"] = run.stats.to_json();
     j["host"]["commands"] = run.commands.size();
     host::SceneMeasures m = host::measure_scene(run.screen);
@@ -192,6 +208,12 @@ int run_render(const RenderArgs& args) {
     options.depth_estimate = args.depth_estimate;
     options.approx_min_side = args.approx_min_side;
     options.approx_epsilon = args.approx_epsilon;
+    std::string beam_source;
+    options.beam_threshold = resolve_beam_threshold(args.beam_threshold, &beam_source);
+    options.max_reflections = args.reflections;
+    options.grid_density = args.grid_density;
+    if (!args.mask.empty() && args.method != "beam")
+        throw UsageError("--mask: only the beam method decides pixels by beams");
     std::unique_ptr<host::Renderer> renderer;
     try {
         renderer = host::make_renderer(options);
@@ -200,6 +222,8 @@ int run_render(const RenderArgs& args) {
     }
     if (args.method == "hybrid")
         console.note(fmt::format("hybrid threshold {} ({})", options.threshold, threshold_source));
+    if (args.method == "beam")
+        console.note(fmt::format("beam threshold {} ({})", options.beam_threshold, beam_source));
     controller::CostProfile profile = controller::load_profile(args.profile);
 
     HostRun run = run_host(args, *renderer);
@@ -214,6 +238,7 @@ int run_render(const RenderArgs& args) {
         make_parent_dirs(args.png);
         controller::write_png(args.png, ctl.framebuffer());
     }
+    if (!args.mask.empty()) write_beam_mask(args.mask, ctl.framebuffer(), *renderer);
     if (!args.ids.empty()) write_id_buffer(args, run.scene, *renderer);
     if (!args.stream.empty()) write_stream(args, run);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, run, ctl));
@@ -252,6 +277,22 @@ void register_render(CLI::App& app, int& exit_code) {
                     "Hybrid: D in Expr. 3.1 from the window's faces or the whole scene's")
         ->check(CLI::IsMember({"window", "scene"}))
         ->capture_default_str();
+    sub->add_option("--beam-threshold", args->beam_threshold,
+                    "Beam: Expr. 2.7 threshold: a number, inf (beams down to pixels) or "
+                    "calibrated (this machine's, from fb89 calibrate --method beam; else the "
+                    "default)")
+        ->capture_default_str();
+    sub->add_option("--reflections", args->reflections,
+                    "Raytrace and beam: mirror bounces followed (0: primary visibility)")
+        ->check(CLI::Range(0, 16))
+        ->capture_default_str();
+    sub->add_option("--grid-density", args->grid_density,
+                    "Raytrace and beam: uniform-grid cells per face piece")
+        ->check(CLI::Range(0.01, 1000.0))
+        ->capture_default_str();
+    sub->add_option("--mask", args->mask,
+                    "Beam: write the image with every pixel the ray tracer decided blacked out "
+                    "(the paper's Figs. 4.7 and 4.10)");
     sub->add_option("--approx-min", args->approx_min_side,
                     "Approximate: fill windows of at least this side with a face covering all "
                     "but --approx-eps of their pixel centres (0: exact)")

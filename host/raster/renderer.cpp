@@ -6,11 +6,13 @@
 #include "host/raster/scanline.h"
 #include "host/raster/warnock.h"
 #include "host/raster/zbuffer.h"
+#include "host/trace/beam_ray_hybrid.h"
+#include "host/trace/ray_tracer.h"
 
 namespace fb89::host {
 
 std::vector<std::string> renderer_names() {
-    return {"zbuffer", "scanline", "warnock", "hybrid"};
+    return {"zbuffer", "scanline", "warnock", "hybrid", "raytrace", "beam"};
 }
 
 namespace {
@@ -48,6 +50,21 @@ std::unique_ptr<Renderer> make_renderer(const RenderOptions& options) {
         h.window_test = window_test_of(options);
         h.approx = approximation_of(options);
         return std::make_unique<Hybrid>(h);
+    }
+    if (options.method == "raytrace" || options.method == "beam") {
+        if (options.max_reflections < 0 || options.max_reflections > kMaxReflections)
+            throw std::invalid_argument("the reflection limit must be 0 to " +
+                                        std::to_string(kMaxReflections));
+        if (!(options.grid_density > 0 && options.grid_density <= 1000))
+            throw std::invalid_argument("the grid density must be in (0, 1000] cells per piece");
+        TraceOptions t;
+        t.max_reflections = options.max_reflections;
+        t.grid_density = options.grid_density;
+        if (options.method == "raytrace") return std::make_unique<RayTraceRenderer>(t);
+        if (!(options.beam_threshold >= 0))
+            throw std::invalid_argument(
+                "the beam threshold must be >= 0 (inf for beams down to single pixels)");
+        return std::make_unique<BeamRayHybrid>(BeamOptions{options.beam_threshold, t});
     }
     std::string known;
     for (const auto& n : renderer_names())

@@ -14,6 +14,7 @@
 #include "host/scene/copies.h"
 #include "host/scene/lathe.h"
 #include "host/scene/scene_error.h"
+#include "host/scene/shell.h"
 
 namespace fb89::host {
 
@@ -121,6 +122,26 @@ GeneratedPolygons lathe_from_json(const JsonFields& o) {
     if (static_cast<long long>(profile.size() - 1) * segments > kMaxGeneratedFaces)
         o.fail("segments", fmt::format("at most {} faces in all", kMaxGeneratedFaces));
     return generate_lathe(profile, segments, caps);
+}
+
+GeneratedPolygons shell_from_json(const JsonFields& o) {
+    ShellOptions s;
+    s.turns = o.integer_or("turns", s.turns, 1, 64);
+    s.segments_per_turn = o.integer_or("segments_per_turn", s.segments_per_turn, 3, 4096);
+    s.sides = o.integer_or("sides", s.sides, 3, 4096);
+    s.growth = o.number_or("growth", s.growth, 1, 1e6);
+    s.size = o.number_or("size", s.size, 1e-9, 1e9);
+    s.tube = o.number_or("tube", s.tube, 1e-3, 0.999);
+    s.translation = o.number_or("translation", s.translation, 0, 100);
+    s.aspect = o.number_or("aspect", s.aspect, 0.05, 20);
+    // the apex is the aperture scaled by 1 / growth^turns: keep it well above rounding
+    if (std::pow(s.growth, s.turns) > 1e6)
+        o.fail("growth", fmt::format("growth^turns at most 1e6 (here {:.3g}^{} = {:.3g})", s.growth,
+                                     s.turns, std::pow(s.growth, s.turns)));
+    if (static_cast<long long>(shell_face_count(s)) > kMaxGeneratedFaces)
+        o.fail("sides", fmt::format("at most {} faces in all ({} here)", kMaxGeneratedFaces,
+                                    shell_face_count(s)));
+    return generate_shell(s);
 }
 
 // The parts of an `array` or `scatter`: generator objects, each with at most a colour.
@@ -359,9 +380,14 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
                      "random_yaw", "color_jitter", "parts", "material", "transform"});
         return scatter_from_json(o, scene);
     }
+    if (kind == "shell") {
+        o.only_keys({"generator", "turns", "segments_per_turn", "sides", "growth", "size", "tube",
+                     "translation", "aspect", "material", "transform"});
+        return shell_from_json(o);
+    }
     o.fail("generator",
            "one of \"box\", \"quad\", \"ideal\", \"random_triangles\", \"lathe\", "
-           "\"sphere\", \"array\", \"scatter\"");
+           "\"sphere\", \"array\", \"scatter\", \"shell\"");
 }
 
 }  // namespace fb89::host

@@ -1,6 +1,8 @@
 // Procedural scene objects: `box`, `quad`, the paper's ideal scene (§2, Fig. 2.3) and random
-// triangles here; surfaces of revolution (`lathe`, `sphere`) in lathe.h; copies of a group
-// of parts (`array`, `scatter`) in copies.h. Later methods add their own beside these.
+// triangles here; surfaces of revolution (`lathe`, `sphere`) in lathe.h; a sea shell swept
+// along a logarithmic helico-spiral (`shell`, for the paper's image I, §4) in shell.h; copies
+// of a group of parts (`array`, `scatter`) in copies.h. Later methods add their own beside
+// these.
 #pragma once
 
 #include <optional>

@@ -153,6 +153,8 @@ ScreenScene project_scene(const Scene& scene, ColorMode mode, Counters& counters
                          : protocol::Rgb{to_byte(scene.background.r), to_byte(scene.background.g),
                                          to_byte(scene.background.b)};
     out.face_count = scene.face_count;
+    out.world = &scene;
+    out.id_colors = mode == ColorMode::FaceId;
     const double w = scene.width, h = scene.height;
     const bool perspective = scene.projection == Projection::Perspective;
 

@@ -14,6 +14,8 @@
 
 namespace fb89::host {
 
+struct Scene;
+
 inline constexpr int kSubpixelBits = 8;  // vertices on the 1/256-pixel grid
 inline constexpr int64_t kSubpixel = int64_t{1} << kSubpixelBits;
 
@@ -60,6 +62,11 @@ struct ScreenScene {
     std::vector<SnappedPoint> points;
     std::vector<EdgeFunction> edges;  // edge i runs from points[i] to the face's next point
     uint32_t face_count = 0;          // distinct ids
+
+    // The world scene this was projected from, for methods that trace rays in world space
+    // (it must outlive this), and whether it was projected for the face-id pass.
+    const Scene* world = nullptr;
+    bool id_colors = false;
 
     PixelRect screen() const { return {0, 0, width, height}; }
     const SnappedPoint* points_of(const ScreenFace& f) const { return &points[f.first_point]; }

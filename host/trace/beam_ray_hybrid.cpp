@@ -1,0 +1,172 @@
+#include "host/trace/beam_ray_hybrid.h"
+
+#include <algorithm>
+
+#include "host/raster/scene_measures.h"
+
+namespace fb89::host {
+
+double expr_2_7_cost(double scene_faces, double window_faces, double depth, double area) {
+    return scene_faces * (16 * window_faces - depth) / (area * depth);
+}
+
+// What one frame carries through the recursion; counts are published once at its end.
+struct BeamRayHybrid::Frame {
+    protocol::CommandSink& sink;
+    TraceCounts rays;
+    BeamCounts beams;
+    uint64_t fills = 0, pixels_by_beams = 0, pixels_by_rays = 0, windows_to_rays = 0;
+};
+
+namespace {
+
+struct PixelTrace {
+    int x, y;
+    const RayTrace* trace;
+};
+
+// The window's corner pixels in the order the beam tracer takes them.
+void corner_pixels(const PixelRect& w, int xs[4], int ys[4]) {
+    xs[0] = w.x0, ys[0] = w.y0;
+    xs[1] = w.x1 - 1, ys[1] = w.y0;
+    xs[2] = w.x1 - 1, ys[2] = w.y1 - 1;
+    xs[3] = w.x0, ys[3] = w.y1 - 1;
+}
+
+}  // namespace
+
+void BeamRayHybrid::setup(const ScreenScene& scene) {
+    m_trace.build(scene, m_options.trace.max_reflections, m_options.trace.grid_density);
+    m_beams = std::make_unique<BeamTracer>(*m_trace.scene, *m_trace.grid);
+    m_depth = std::max(1.0, measure_scene(scene).depth_complexity);
+    m_width = scene.width;
+    const size_t pixels = static_cast<size_t>(scene.width) * scene.height;
+    m_pixels.assign(pixels, 0);
+    m_by_beam.assign(pixels, 0);
+}
+
+void BeamRayHybrid::render(const ScreenScene& scene, protocol::CommandSink& sink,
+                           HostStats& stats) {
+    std::fill(m_pixels.begin(), m_pixels.end(), 0);
+    std::fill(m_by_beam.begin(), m_by_beam.end(), 0);
+    Frame frame{sink, {}, {}};
+    const PixelRect screen = scene.screen();
+    if (!screen.empty()) {
+        int xs[4], ys[4];
+        corner_pixels(screen, xs, ys);
+        RayTrace traces[4];
+        const RayTrace* corners[4];
+        for (int i = 0; i < 4; ++i) {
+            corners[i] = &traces[i];
+            for (int j = 0; j < i; ++j)
+                if (xs[j] == xs[i] && ys[j] == ys[i]) corners[i] = corners[j];
+            if (corners[i] == &traces[i])
+                m_trace.tracer->trace_pixel(xs[i], ys[i], traces[i], frame.rays);
+        }
+        window(frame, screen, corners);
+    }
+    // ray-traced pixels leave as spans, row by row
+    uint64_t spans = 0;
+    for (int y = 0; y < scene.height; ++y)
+        spans +=
+            emit_packed_row(&m_pixels[static_cast<size_t>(y) * m_width], y, 0, scene.width, sink);
+
+    frame.rays.publish(stats.counters);
+    frame.beams.publish(stats.counters);
+    stats.counters.add("windows_to_rays", frame.windows_to_rays);
+    stats.counters.add("pixels_by_beams", frame.pixels_by_beams);
+    stats.counters.add("pixels_by_rays", frame.pixels_by_rays);
+    stats.counters.add("fills", frame.fills);
+    stats.counters.add("spans", spans);
+}
+
+void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]) {
+    if (w.area() == 1) {  // a single pixel: its ray is its corner's
+        rays_for_window(frame, w, corners);
+        return;
+    }
+    // classify the window's beam
+    if (m_beams->classify(corners, frame.beams) == BeamClass::Hit) {
+        const RayTrace& path = *corners[0];
+        if (path.count > 0) {
+            frame.sink.fill_rect({w.x0, w.y0, static_cast<uint32_t>(w.width()),
+                                  static_cast<uint32_t>(w.height()), path.color});
+            ++frame.fills;
+        }
+        for (int y = w.y0; y < w.y1; ++y)
+            std::fill_n(&m_by_beam[static_cast<size_t>(y) * m_width + w.x0], w.width(), 1);
+        frame.pixels_by_beams += static_cast<uint64_t>(w.area());
+        return;
+    }
+    // Expr. 2.7: go on with beams, or hand the window to the ray tracer
+    if (std::isfinite(m_options.threshold)) {
+        // the cost exceeds the threshold once F_w exceeds this; count no further than that,
+        // and not at all when even every face of the scene could not exceed it
+        const double scene_faces = m_trace.scene->face_count();
+        const double area = static_cast<double>(w.area());
+        const double enough =
+            (m_options.threshold * area * m_depth / std::max(scene_faces, 1.0) + m_depth) / 16;
+        if (enough < scene_faces) {
+            const double faces = m_beams->faces_in_beam(
+                corners, frame.beams, static_cast<uint32_t>(std::max(0.0, std::floor(enough))));
+            if (expr_2_7_cost(scene_faces, faces, m_depth, area) > m_options.threshold) {
+                rays_for_window(frame, w, corners);
+                return;
+            }
+        }
+    }
+    // subdivide into four, reusing every corner ray already traced
+    const int xm = w.width() > 1 ? w.x0 + w.width() / 2 : w.x1;
+    const int ym = w.height() > 1 ? w.y0 + w.height() / 2 : w.y1;
+    const PixelRect children[4] = {
+        {w.x0, w.y0, xm, ym}, {xm, w.y0, w.x1, ym}, {w.x0, ym, xm, w.y1}, {xm, ym, w.x1, w.y1}};
+    PixelTrace known[16];
+    int known_count = 0;
+    int xs[4], ys[4];
+    corner_pixels(w, xs, ys);
+    for (int i = 0; i < 4; ++i)
+        known[known_count++] = {xs[i], ys[i], corners[i]};
+    RayTrace traced[12];
+    int traced_count = 0;
+    for (const PixelRect& child : children) {
+        if (child.empty()) continue;
+        corner_pixels(child, xs, ys);
+        const RayTrace* child_corners[4];
+        for (int i = 0; i < 4; ++i) {
+            const PixelTrace* found = nullptr;
+            for (int k = 0; k < known_count && !found; ++k)
+                if (known[k].x == xs[i] && known[k].y == ys[i]) found = &known[k];
+            if (!found) {
+                RayTrace& t = traced[traced_count++];
+                m_trace.tracer->trace_pixel(xs[i], ys[i], t, frame.rays);
+                known[known_count] = {xs[i], ys[i], &t};
+                found = &known[known_count++];
+            }
+            child_corners[i] = found->trace;
+        }
+        window(frame, child, child_corners);
+    }
+}
+
+void BeamRayHybrid::rays_for_window(Frame& frame, const PixelRect& w,
+                                    const RayTrace* const corners[4]) {
+    int xs[4], ys[4];
+    corner_pixels(w, xs, ys);
+    RayTrace path;
+    for (int y = w.y0; y < w.y1; ++y)
+        for (int x = w.x0; x < w.x1; ++x) {
+            const RayTrace* t = nullptr;
+            for (int i = 0; i < 4 && !t; ++i)
+                if (xs[i] == x && ys[i] == y) t = corners[i];
+            if (!t) {
+                m_trace.tracer->trace_pixel(x, y, path, frame.rays);
+                t = &path;
+            }
+            m_pixels[static_cast<size_t>(y) * m_width + x] =
+                t->count > 0 ? packed_pixel(t->color) : 0;
+        }
+    frame.pixels_by_rays += static_cast<uint64_t>(w.area());
+    ++frame.windows_to_rays;
+}
+
+}  // namespace fb89::host

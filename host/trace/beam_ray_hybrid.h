@@ -1,0 +1,63 @@
+// The hybrid beam-ray tracer of the paper's §4 (the `beam` method). Warnock-style window
+// subdivision with beams for area samples and the ray tracer for point samples:
+//   - a window whose beam is a hit (beam_tracer.h) is filled with its path's colour by one
+//     FILL_RECT;
+//   - a partial or blocked hit is split into four (as evenly as integers allow; no empty
+//     window), unless Expr. 2.7, F (16 F_w − D) / (E_w² D), the cost per pixel of going on
+//     with beams, exceeds the threshold: then the ray tracer takes every pixel of the
+//     window, and ray-traced pixels leave at the end of the frame as DRAW_SPAN runs.
+// F is the scene's face count, F_w the faces meeting the window's first beam segment (a
+// query of its own), D the scene's depth complexity (measured at set-up), E_w² the window's
+// area in pixels (non-square windows). Threshold infinity is beam subdivision down to single
+// pixels; 0 hands every window that is not a hit to the ray tracer at once.
+//
+// Corner rays are shared: a sub-window reuses the corner it shares with its parent, and a
+// window given to the ray tracer does not trace its corners again; every ray traced is
+// counted. Every pixel shows what the ray tracer alone would show (tests/host/trace).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "host/raster/renderer.h"
+#include "host/trace/beam_tracer.h"
+#include "host/trace/ray_tracer.h"
+
+namespace fb89::host {
+
+struct BeamOptions {
+    double threshold = INFINITY;  // Expr. 2.7 threshold
+    TraceOptions trace;
+};
+
+// Expr. 2.7 for F scene faces, F_w window faces, depth complexity D and the window's area.
+double expr_2_7_cost(double scene_faces, double window_faces, double depth, double area);
+
+class BeamRayHybrid final : public Renderer {
+  public:
+    explicit BeamRayHybrid(BeamOptions options = {}) : m_options(options) {}
+    std::string_view name() const override { return "beam"; }
+    void setup(const ScreenScene& scene) override;
+    void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
+
+    // After render: per pixel, 1 when a beam decided it, 0 when the ray tracer did.
+    const std::vector<uint8_t>& beam_mask() const { return m_by_beam; }
+    double depth_complexity() const { return m_depth; }
+
+  private:
+    struct Frame;
+    void window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]);
+    void rays_for_window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]);
+
+    BeamOptions m_options;
+    TraceSetup m_trace;
+    std::unique_ptr<BeamTracer> m_beams;
+    double m_depth = 1;
+    int m_width = 0;
+    std::vector<uint32_t> m_pixels;  // ray-traced pixels, packed_pixel(); 0 elsewhere
+    std::vector<uint8_t> m_by_beam;
+};
+
+}  // namespace fb89::host

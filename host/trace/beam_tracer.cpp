@@ -1,0 +1,302 @@
+#include "host/trace/beam_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace fb89::host {
+
+void BeamCounts::publish(Counters& counters) const {
+    counters.add("beams", beams);
+    counters.add("beam_hits", hits);
+    counters.add("partial_hits", partial);
+    counters.add("blocked_hits", blocked);
+    counters.add("beam_queries", queries);
+    counters.add("window_face_counts", face_counts);
+    counters.add("query_cells", query_cells);
+    counters.add("query_face_tests", query_face_tests);
+}
+
+// A segment made ready for separating-axis tests: its eight points, its bounding box, its
+// bounding planes with the segment's extent along each, and its edge directions.
+struct BeamTracer::Hull {
+    glm::dvec3 points[8];
+    glm::dvec3 lo, hi;
+    glm::dvec3 planes[6];
+    double plane_min[6], plane_max[6];
+    int plane_count = 0;
+    glm::dvec3 edges[12];
+    int edge_count = 0;
+};
+
+namespace {
+
+glm::dvec3 newell(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                  const glm::dvec3& d) {
+    const glm::dvec3 p[4] = {a, b, c, d};
+    glm::dvec3 n(0);
+    for (int i = 0; i < 4; ++i) {
+        const glm::dvec3& u = p[i];
+        const glm::dvec3& v = p[(i + 1) % 4];
+        n += glm::dvec3((u.y - v.y) * (u.z + v.z), (u.z - v.z) * (u.x + v.x),
+                        (u.x - v.x) * (u.y + v.y));
+    }
+    return n;
+}
+
+// The extent of `count` points along `axis`.
+void project(const glm::dvec3* p, int count, const glm::dvec3& axis, double& lo, double& hi) {
+    lo = hi = glm::dot(p[0], axis);
+    for (int i = 1; i < count; ++i) {
+        const double d = glm::dot(p[i], axis);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+    }
+}
+
+// Unit `v`, or false when it is too short to be a direction (degenerate corners).
+bool unit(glm::dvec3& v, double scale) {
+    const double len = glm::length(v);
+    if (!(len > scale * 1e-12)) return false;
+    v /= len;
+    return true;
+}
+
+}  // namespace
+
+BeamTracer::BeamTracer(const TraceScene& scene, const UniformGrid& grid)
+    : m_scene(scene),
+      m_grid(grid),
+      m_stamp(scene.faces().size(), 0),
+      m_id_stamp(scene.face_count() + 1, 0) {
+    for (const auto& f : scene.faces())
+        if (f.id >= m_id_stamp.size()) m_id_stamp.resize(f.id + 1, 0);
+}
+
+BeamTracer::Hull BeamTracer::make_hull(const BeamSegment& s) const {
+    Hull h;
+    const double tol = m_scene.tolerance();
+    for (int i = 0; i < 4; ++i) {
+        h.points[i] = s.start[i];
+        h.points[4 + i] = s.end[i];
+    }
+    h.lo = h.hi = h.points[0];
+    for (const auto& p : h.points) {
+        h.lo = glm::min(h.lo, p);
+        h.hi = glm::max(h.hi, p);
+    }
+    const double scale = glm::length(h.hi - h.lo) + tol;
+    h.lo -= tol;
+    h.hi += tol;
+    // bounding planes: four sides, the end, the start (unless it is the eye's point)
+    auto add_plane = [&](glm::dvec3 n) {
+        if (!unit(n, scale * scale)) return;
+        h.planes[h.plane_count] = n;
+        project(h.points, 8, n, h.plane_min[h.plane_count], h.plane_max[h.plane_count]);
+        ++h.plane_count;
+    };
+    for (int i = 0; i < 4; ++i) {
+        const int j = (i + 1) % 4;
+        add_plane(newell(s.start[i], s.start[j], s.end[j], s.end[i]));
+    }
+    add_plane(newell(s.end[0], s.end[1], s.end[2], s.end[3]));
+    add_plane(newell(s.start[0], s.start[1], s.start[2], s.start[3]));
+    // edges: lateral, around the end, around the start
+    auto add_edge = [&](glm::dvec3 e) {
+        if (unit(e, scale)) h.edges[h.edge_count++] = e;
+    };
+    for (int i = 0; i < 4; ++i) {
+        const int j = (i + 1) % 4;
+        add_edge(s.end[i] - s.start[i]);
+        add_edge(s.end[j] - s.end[i]);
+        add_edge(s.start[j] - s.start[i]);
+    }
+    return h;
+}
+
+bool BeamTracer::touches(const Hull& h, uint32_t piece) const {
+    const TraceFace& f = m_scene.faces()[piece];
+    const glm::dvec3* v = m_scene.vertices_of(f);
+    const int n = static_cast<int>(f.vertex_count);
+    const double tol = m_scene.tolerance();
+    // bounding boxes first
+    glm::dvec3 lo = v[0], hi = v[0];
+    for (int i = 1; i < n; ++i) {
+        lo = glm::min(lo, v[i]);
+        hi = glm::max(hi, v[i]);
+    }
+    if (glm::any(glm::lessThan(hi, h.lo)) || glm::any(glm::greaterThan(lo, h.hi))) return false;
+    auto separated = [&](const glm::dvec3& axis, double hull_lo, double hull_hi) {
+        double lo_p, hi_p;
+        project(v, n, axis, lo_p, hi_p);
+        return hi_p + tol < hull_lo || hull_hi + tol < lo_p;
+    };
+    // the hull's planes, the piece's plane, then edge against edge
+    for (int k = 0; k < h.plane_count; ++k)
+        if (separated(h.planes[k], h.plane_min[k], h.plane_max[k])) return false;
+    double lo_h, hi_h;
+    project(h.points, 8, f.normal, lo_h, hi_h);
+    if (separated(f.normal, lo_h, hi_h)) return false;
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec3 edge = v[(i + 1) % n] - v[i];
+        for (int k = 0; k < h.edge_count; ++k) {
+            glm::dvec3 axis = glm::cross(edge, h.edges[k]);
+            if (!unit(axis, glm::length(edge) * 1e-6)) continue;  // parallel edges
+            project(h.points, 8, axis, lo_h, hi_h);
+            if (separated(axis, lo_h, hi_h)) return false;
+        }
+    }
+    return true;
+}
+
+template <class Visit>
+void BeamTracer::for_each_touching(const Hull& h, uint32_t skip_a, uint32_t skip_b, Visit&& visit,
+                                   BeamCounts& counts) const {
+    if (++m_query == 0) {  // the serial wrapped: forget every stamp
+        std::fill(m_stamp.begin(), m_stamp.end(), 0);
+        m_query = 1;
+    }
+    const uint32_t query = m_query;
+    const double tol = m_scene.tolerance();
+    glm::ivec3 first, last;
+    if (!m_grid.cell_range(h.lo, h.hi, first, last)) return;
+    const glm::dvec3 half = m_grid.cell_size() * 0.5;
+    uint64_t cells = 0, tests = 0;
+    for (int z = first.z; z <= last.z; ++z)
+        for (int y = first.y; y <= last.y; ++y)
+            for (int x = first.x; x <= last.x; ++x) {
+                // cull cells outside one of the hull's planes
+                const glm::dvec3 centre = m_grid.cell_lo(x, y, z) + half;
+                bool outside = false;
+                for (int k = 0; k < h.plane_count && !outside; ++k) {
+                    const double c = glm::dot(h.planes[k], centre);
+                    const double r = glm::dot(glm::abs(h.planes[k]), half);
+                    outside = c + r + tol < h.plane_min[k] || h.plane_max[k] + tol < c - r;
+                }
+                if (outside) continue;
+                ++cells;
+                for (uint32_t piece : m_grid.cell(m_grid.index(x, y, z))) {
+                    if (m_stamp[piece] == query) continue;
+                    m_stamp[piece] = query;
+                    if (piece == skip_a || piece == skip_b) continue;
+                    ++tests;
+                    if (touches(h, piece) && visit(piece)) {
+                        counts.query_cells += cells;
+                        counts.query_face_tests += tests;
+                        return;
+                    }
+                }
+            }
+    counts.query_cells += cells;
+    counts.query_face_tests += tests;
+}
+
+bool BeamTracer::segment_is_empty(const BeamSegment& segment, uint32_t skip_a, uint32_t skip_b,
+                                  BeamCounts& counts) const {
+    ++counts.queries;
+    bool empty = true;
+    for_each_touching(
+        make_hull(segment), skip_a, skip_b,
+        [&](uint32_t) {
+            empty = false;
+            return true;
+        },
+        counts);
+    return empty;
+}
+
+BeamSegment BeamTracer::to_far_side(const Ray* rays[4]) const {
+    BeamSegment s;
+    const glm::dvec3 lo = m_grid.lo(), hi = m_grid.hi();
+    for (int i = 0; i < 4; ++i) {
+        const Ray& r = *rays[i];
+        // beyond the farthest corner of the grid's box
+        const glm::dvec3 far = glm::max(glm::abs(lo - r.origin), glm::abs(hi - r.origin));
+        const double t = (glm::length(far) + m_scene.tolerance()) / glm::length(r.dir) * 1.001;
+        s.start[i] = r.origin;
+        s.end[i] = r.origin + t * r.dir;
+    }
+    return s;
+}
+
+uint32_t BeamTracer::faces_in_beam(const RayTrace* const corners[4], BeamCounts& counts,
+                                   uint32_t enough) const {
+    ++counts.face_counts;
+    const Ray* rays[4];
+    for (int i = 0; i < 4; ++i)
+        rays[i] = &corners[i]->primary;
+    const uint32_t query = m_query + 1;  // the serial for_each_touching is about to use
+    uint32_t faces = 0;
+    for_each_touching(
+        make_hull(to_far_side(rays)), kNoFace, kNoFace,
+        [&](uint32_t piece) {
+            const uint32_t id = m_scene.faces()[piece].id;
+            if (m_id_stamp[id] != query) {
+                m_id_stamp[id] = query;
+                ++faces;
+            }
+            return faces > enough;
+        },
+        counts);
+    return faces;
+}
+
+bool BeamTracer::inside_with_margin(uint32_t piece, const glm::dvec3& p) const {
+    const TraceFace& f = m_scene.faces()[piece];
+    const glm::dvec3* v = m_scene.vertices_of(f);
+    const double margin = 4 * m_scene.tolerance();
+    for (uint32_t i = 0; i < f.vertex_count; ++i) {
+        const glm::dvec3& a = v[i];
+        const glm::dvec3& b = v[(i + 1) % f.vertex_count];
+        const glm::dvec3 inward = glm::cross(f.normal, b - a);  // Newell's normal: CCW
+        if (glm::dot(inward, p - a) < margin * glm::length(inward)) return false;
+    }
+    return true;
+}
+
+BeamClass BeamTracer::classify(const RayTrace* const corners[4], BeamCounts& counts) const {
+    ++counts.beams;
+    const RayTrace& a = *corners[0];
+    auto result = [&](BeamClass c) {
+        (c == BeamClass::Hit       ? counts.hits
+         : c == BeamClass::Partial ? counts.partial
+                                   : counts.blocked)++;
+        return c;
+    };
+    // the lateral rays must share one path, well inside each face on it
+    for (int i = 1; i < 4; ++i) {
+        const RayTrace& b = *corners[i];
+        if (b.count != a.count || b.escaped != a.escaped) return result(BeamClass::Partial);
+        for (int k = 0; k < a.count; ++k)
+            if (!(b.hits[k] == a.hits[k])) return result(BeamClass::Partial);
+    }
+    for (int k = 0; k < a.count; ++k)
+        for (int i = 0; i < 4; ++i)
+            if (!inside_with_margin(a.hits[k].piece, corners[i]->points[k]))
+                return result(BeamClass::Partial);
+
+    // every segment along the path must be empty
+    for (int k = 0; k < a.count; ++k) {
+        BeamSegment s;
+        for (int i = 0; i < 4; ++i) {
+            s.start[i] = k == 0 ? corners[i]->primary.origin : corners[i]->points[k - 1];
+            s.end[i] = corners[i]->points[k];
+        }
+        const uint32_t from = k == 0 ? kNoFace : a.hits[k - 1].piece;
+        if (!segment_is_empty(s, from, a.hits[k].piece, counts)) return result(BeamClass::Blocked);
+    }
+    // and so must the beam the lateral rays leave by, when they hit nothing
+    if (a.escaped) {
+        const Ray* rays[4];
+        for (int i = 0; i < 4; ++i)
+            rays[i] = &corners[i]->last;
+        const uint32_t from = a.count > 0 ? a.hits[a.count - 1].piece : kNoFace;
+        if (!segment_is_empty(to_far_side(rays), from, kNoFace, counts))
+            return result(BeamClass::Partial);
+    }
+    return result(BeamClass::Hit);
+}
+
+}  // namespace fb89::host

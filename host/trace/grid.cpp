@@ -1,0 +1,119 @@
+#include "host/trace/grid.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace fb89::host {
+
+namespace {
+
+constexpr int kMaxCellsPerAxis = 256;
+
+struct Box {
+    glm::dvec3 lo, hi;
+};
+
+Box piece_box(const TraceScene& scene, const TraceFace& f, double margin) {
+    const glm::dvec3* v = scene.vertices_of(f);
+    Box b{v[0], v[0]};
+    for (uint32_t i = 1; i < f.vertex_count; ++i) {
+        b.lo = glm::min(b.lo, v[i]);
+        b.hi = glm::max(b.hi, v[i]);
+    }
+    b.lo -= margin;
+    b.hi += margin;
+    return b;
+}
+
+}  // namespace
+
+UniformGrid::UniformGrid(const TraceScene& scene, double density) {
+    const auto& faces = scene.faces();
+    const double margin = scene.tolerance();
+    // the box around every piece, never flat
+    if (faces.empty()) {
+        m_lo = glm::dvec3(-1);
+        m_hi = glm::dvec3(1);
+    } else {
+        m_lo = glm::dvec3(INFINITY);
+        m_hi = glm::dvec3(-INFINITY);
+        for (const auto& f : faces) {
+            const Box b = piece_box(scene, f, margin);
+            m_lo = glm::min(m_lo, b.lo);
+            m_hi = glm::max(m_hi, b.hi);
+        }
+    }
+    glm::dvec3 extent = m_hi - m_lo;
+    const double largest = std::max({extent.x, extent.y, extent.z});
+    for (int a = 0; a < 3; ++a) {
+        if (extent[a] < largest * 1e-3) {
+            const double grow = (largest * 1e-3 - extent[a]) / 2;
+            m_lo[a] -= grow;
+            m_hi[a] += grow;
+        }
+    }
+    extent = m_hi - m_lo;
+
+    // cell sizing: about `density` cells per piece, cubic where the box allows
+    const double target = std::max(1.0, density * static_cast<double>(faces.size()));
+    // an axis thinner than a cell gets one cell, and the others share the count
+    bool thin[3] = {false, false, false};
+    double side = 0;
+    for (int pass = 0; pass < 3; ++pass) {
+        double measure = 1;
+        int dims = 0;
+        for (int a = 0; a < 3; ++a)
+            if (!thin[a]) {
+                measure *= extent[a];
+                ++dims;
+            }
+        side = dims == 0 ? largest : std::pow(measure / target, 1.0 / dims);
+        bool changed = false;
+        for (int a = 0; a < 3; ++a)
+            if (!thin[a] && extent[a] < side) thin[a] = changed = true;
+        if (!changed) break;
+    }
+    for (int a = 0; a < 3; ++a) {
+        m_n[a] = std::clamp(static_cast<int>(std::ceil(extent[a] / side)), 1, kMaxCellsPerAxis);
+        m_cell[a] = extent[a] / m_n[a];
+    }
+
+    // list each piece in the cells its box overlaps and its plane passes through
+    const size_t cells = static_cast<size_t>(m_n.x) * m_n.y * m_n.z;
+    std::vector<std::vector<uint32_t>> lists(cells);
+    const glm::dvec3 half = m_cell * 0.5;
+    for (uint32_t p = 0; p < faces.size(); ++p) {
+        const TraceFace& f = faces[p];
+        const Box b = piece_box(scene, f, margin);
+        glm::ivec3 first, last;
+        if (!cell_range(b.lo, b.hi, first, last)) continue;
+        const double reach = glm::dot(glm::abs(f.normal), half) + margin;
+        for (int z = first.z; z <= last.z; ++z)
+            for (int y = first.y; y <= last.y; ++y)
+                for (int x = first.x; x <= last.x; ++x) {
+                    const glm::dvec3 centre = cell_lo(x, y, z) + half;
+                    if (std::abs(glm::dot(f.normal, centre) - f.plane) > reach) continue;
+                    lists[index(x, y, z)].push_back(p);
+                }
+    }
+    m_start.assign(cells + 1, 0);
+    for (size_t c = 0; c < cells; ++c)
+        m_start[c + 1] = m_start[c] + static_cast<uint32_t>(lists[c].size());
+    m_items.reserve(m_start[cells]);
+    for (const auto& list : lists)
+        m_items.insert(m_items.end(), list.begin(), list.end());
+}
+
+bool UniformGrid::cell_range(const glm::dvec3& lo, const glm::dvec3& hi, glm::ivec3& first,
+                             glm::ivec3& last) const {
+    for (int a = 0; a < 3; ++a) {
+        if (hi[a] < m_lo[a] || lo[a] > m_hi[a]) return false;
+        first[a] =
+            std::clamp(static_cast<int>(std::floor((lo[a] - m_lo[a]) / m_cell[a])), 0, m_n[a] - 1);
+        last[a] =
+            std::clamp(static_cast<int>(std::floor((hi[a] - m_lo[a]) / m_cell[a])), 0, m_n[a] - 1);
+    }
+    return true;
+}
+
+}  // namespace fb89::host

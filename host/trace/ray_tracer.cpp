@@ -1,0 +1,127 @@
+#include "host/trace/ray_tracer.h"
+
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace fb89::host {
+
+void TraceCounts::publish(Counters& counters) const {
+    counters.add("rays", rays);
+    counters.add("cells_visited", cells);
+    counters.add("ray_face_tests", face_tests);
+    counters.add("ray_ties", ties);
+}
+
+RayTracer::RayTracer(const TraceScene& scene, const UniformGrid& grid)
+    : m_scene(scene), m_grid(grid), m_mailbox(scene.faces().size(), 0) {}
+
+Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts) const {
+    if (++m_serial == 0) {  // the serial wrapped: forget every mailbox
+        std::fill(m_mailbox.begin(), m_mailbox.end(), 0);
+        m_serial = 1;
+    }
+    const uint32_t serial = m_serial;
+    const RaySpace space(ray.dir);
+    Hit best{INFINITY, kNoFace};
+    uint64_t tests = 0, ties = 0;
+    counts.cells += m_grid.walk(ray, tmin, INFINITY, [&](uint32_t cell, double t_exit) {
+        for (uint32_t piece : m_grid.cell(cell)) {
+            if (m_mailbox[piece] == serial || piece == skip) continue;
+            m_mailbox[piece] = serial;
+            ++tests;
+            double t;
+            if (!m_scene.intersect(ray, space, piece, tmin, t) || t > best.t) continue;
+            if (t == best.t) {
+                ++ties;
+                if (piece > best.piece) continue;
+            }
+            best = {t, piece};
+        }
+        return best.t <= t_exit;  // a hit beyond this cell may yet be beaten
+    });
+    counts.face_tests += tests;
+    counts.ties += ties;
+    return best;
+}
+
+void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) const {
+    out.primary = primary;
+    out.count = 0;
+    out.escaped = false;
+    Ray ray = primary;
+    double tmin = 0;
+    uint32_t skip = kNoFace;
+    for (int depth = 0;; ++depth) {
+        ++counts.rays;
+        const Hit hit = closest_hit(ray, tmin, skip, counts);
+        if (hit.piece == kNoFace) {
+            out.escaped = true;
+            out.last = ray;
+            break;
+        }
+        const TraceFace& f = m_scene.faces()[hit.piece];
+        const glm::dvec3 p = ray.origin + hit.t * ray.dir;
+        const double facing = glm::dot(f.normal, ray.dir);
+        out.hits[out.count] = {hit.piece, facing > 0};
+        out.points[out.count] = p;
+        ++out.count;
+        if (!(f.mirror > 0) || depth == m_scene.max_reflections()) break;
+        // reflect: the next ray starts on the mirror and never sees it again
+        ray = {p, ray.dir - 2.0 * facing * f.normal};
+        skip = hit.piece;
+        tmin = m_scene.tolerance() / glm::length(ray.dir);
+    }
+    if (out.count > 0) out.color = path_color(m_scene, out.hits, out.count);
+}
+
+uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::CommandSink& sink) {
+    uint64_t spans = 0;
+    int x = x0;
+    while (x < x1) {
+        const uint32_t value = row[x];
+        int end = x + 1;
+        while (end < x1 && row[end] == value)
+            ++end;
+        if (value != 0) {
+            const protocol::Rgb c{static_cast<uint8_t>(value >> 16),
+                                  static_cast<uint8_t>(value >> 8), static_cast<uint8_t>(value)};
+            sink.draw_span({y, x, end - 1, c});
+            ++spans;
+        }
+        x = end;
+    }
+    return spans;
+}
+
+void TraceSetup::build(const ScreenScene& screen, int max_reflections, double grid_density) {
+    if (!screen.world)
+        throw std::logic_error("tracing needs the world scene the screen scene came from");
+    scene = std::make_unique<TraceScene>(*screen.world, screen.id_colors, max_reflections);
+    grid = std::make_unique<UniformGrid>(*scene, grid_density);
+    tracer = std::make_unique<RayTracer>(*scene, *grid);
+}
+
+void RayTraceRenderer::setup(const ScreenScene& scene) {
+    m_trace.build(scene, m_options.max_reflections, m_options.grid_density);
+    m_row.assign(static_cast<size_t>(scene.width), 0);
+}
+
+void RayTraceRenderer::render(const ScreenScene& scene, protocol::CommandSink& sink,
+                              HostStats& stats) {
+    TraceCounts counts;
+    uint64_t spans = 0;
+    RayTrace path;
+    for (int y = 0; y < scene.height; ++y) {
+        for (int x = 0; x < scene.width; ++x) {
+            m_trace.tracer->trace_pixel(x, y, path, counts);
+            m_row[x] = path.count > 0 ? packed_pixel(path.color) : 0;
+        }
+        spans += emit_packed_row(m_row.data(), y, 0, scene.width, sink);
+    }
+    counts.publish(stats.counters);
+    stats.counters.add("pixels_by_rays", static_cast<uint64_t>(scene.width) * scene.height);
+    stats.counters.add("spans", spans);
+}
+
+}  // namespace fb89::host

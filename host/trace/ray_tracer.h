@@ -1,0 +1,104 @@
+// The ray tracer embedded in the paper's hybrid (§4), and the `raytrace` method: one ray
+// through each pixel centre, the nearest face by the uniform grid and the watertight test
+// (ties go to the lower piece, as the raster methods give them to the lower id), mirrors
+// followed up to a reflection limit, flat Lambertian shading, no shadows. Ray-traced pixels
+// leave as DRAW_SPAN runs of equal colour, row by row; background sends nothing.
+//
+// Each ray has a mailbox (the serial number of the last ray that tested each piece), so a
+// piece listed in several cells is tested once per ray. A reflected ray starts on the
+// mirror and skips it; faces nearer than the scene's tolerance to its start are skipped too
+// (the beam tracer counts any face that near as blocking, so both agree).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "host/raster/renderer.h"
+#include "host/trace/grid.h"
+#include "host/trace/trace_scene.h"
+
+namespace fb89::host {
+
+inline constexpr int kMaxReflections = 16;
+
+// Counted in locals by kernels, published once per frame.
+struct TraceCounts {
+    uint64_t rays = 0;        // every ray traced: primary and reflected
+    uint64_t cells = 0;       // grid cells visited
+    uint64_t face_tests = 0;  // ray-piece tests after the mailbox
+    uint64_t ties = 0;        // a piece hit at exactly the best distance so far
+    void publish(Counters& counters) const;
+};
+
+// What one pixel's ray saw: the faces along its path (mirrors, then the face finally seen),
+// where it hit them, and how the last ray left when it hit nothing.
+struct RayTrace {
+    Ray primary;  // the pixel's ray
+    int count = 0;
+    PathHit hits[kMaxReflections + 1];
+    glm::dvec3 points[kMaxReflections + 1];
+    bool escaped = false;  // the last ray (primary or reflected) hit nothing
+    Ray last;              // that last ray
+    protocol::Rgb color;   // the path's colour (when count > 0)
+};
+
+class RayTracer {
+  public:
+    RayTracer(const TraceScene& scene, const UniformGrid& grid);
+
+    // Nearest piece with tmin < t, never `skip`. Not thread-safe (the mailbox).
+    Hit closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts) const;
+    // The whole path of one primary ray, with its colour.
+    void trace(const Ray& primary, RayTrace& out, TraceCounts& counts) const;
+    void trace_pixel(int x, int y, RayTrace& out, TraceCounts& counts) const {
+        trace(m_scene.pixel_ray(x, y), out, counts);
+    }
+
+    const TraceScene& scene() const { return m_scene; }
+    const UniformGrid& grid() const { return m_grid; }
+
+  private:
+    const TraceScene& m_scene;
+    const UniformGrid& m_grid;
+    mutable std::vector<uint32_t> m_mailbox;
+    mutable uint32_t m_serial = 0;
+};
+
+// A pixel as the renderers keep it before sending: 0 is background (sends nothing), else
+// the colour packed as 0x01RRGGBB.
+inline uint32_t packed_pixel(protocol::Rgb c) {
+    return 0x1000000u | (uint32_t{c.r} << 16) | (uint32_t{c.g} << 8) | c.b;
+}
+// Sends row y's pixels x0..x1-1 as DRAW_SPAN runs of equal colour; returns the spans sent.
+uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::CommandSink& sink);
+
+// The scene built for tracing at set-up: world faces, grid and tracer.
+struct TraceSetup {
+    std::unique_ptr<TraceScene> scene;
+    std::unique_ptr<UniformGrid> grid;
+    std::unique_ptr<RayTracer> tracer;
+    // Builds from the world scene a ScreenScene was projected from (its `world`).
+    void build(const ScreenScene& screen, int max_reflections, double grid_density);
+};
+
+struct TraceOptions {
+    int max_reflections = 8;
+    double grid_density = 8.0;  // grid cells per face piece (RESULTS.md: best on H)
+};
+
+// `raytrace`: the ray tracer alone.
+class RayTraceRenderer final : public Renderer {
+  public:
+    explicit RayTraceRenderer(TraceOptions options = {}) : m_options(options) {}
+    std::string_view name() const override { return "raytrace"; }
+    void setup(const ScreenScene& scene) override;
+    void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
+
+  private:
+    TraceOptions m_options;
+    TraceSetup m_trace;
+    std::vector<uint32_t> m_row;
+};
+
+}  // namespace fb89::host

@@ -1,0 +1,112 @@
+#include "host/trace/trace_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "host/scene/polygon.h"
+#include "host/scene/projection.h"
+
+namespace fb89::host {
+
+namespace {
+
+uint8_t to_byte(double v) {
+    return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+}
+
+// Both sides' flat colours, the way the raster pipeline shades the side facing the eye.
+std::array<glm::dvec3, 2> local_colors(const Scene& scene, const Face& face,
+                                       const glm::dvec3& normal) {
+    std::array<glm::dvec3, 2> out;
+    for (int side = 0; side < 2; ++side) {
+        glm::dvec3 c = face.material.color;
+        if (scene.projection == Projection::Perspective) {
+            const glm::dvec3 n = side == 0 ? normal : -normal;
+            const double diffuse = std::max(0.0, glm::dot(n, -scene.light.direction));
+            c = c * (scene.light.ambient + (1.0 - scene.light.ambient) * diffuse);
+        }
+        out[side] = c + face.material.emission;
+    }
+    return out;
+}
+
+}  // namespace
+
+RaySpace::RaySpace(const glm::dvec3& d) {
+    const glm::dvec3 a = glm::abs(d);
+    kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    kx = (kz + 1) % 3;
+    ky = (kx + 1) % 3;
+    if (d[kz] < 0) std::swap(kx, ky);  // keep the winding
+    sx = d[kx] / d[kz];
+    sy = d[ky] / d[kz];
+    sz = 1.0 / d[kz];
+}
+
+TraceScene::TraceScene(const Scene& scene, bool id_colors, int max_reflections)
+    : m_width(scene.width),
+      m_height(scene.height),
+      m_id_colors(id_colors),
+      m_max_reflections(std::max(0, max_reflections)),
+      m_background(id_colors ? glm::dvec3(0) : scene.background),
+      m_face_count(scene.face_count),
+      m_orthographic(scene.projection == Projection::Screen) {
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const Face& face : scene.faces) {
+        TraceFace f;
+        f.first_vertex = static_cast<uint32_t>(m_vertices.size());
+        f.vertex_count = static_cast<uint32_t>(face.vertices.size());
+        f.normal = glm::normalize(newell_normal(face.vertices));
+        f.plane = glm::dot(f.normal, face.vertices[0]);
+        f.id = face.id;
+        f.mirror = face.material.mirror;
+        f.local_color = local_colors(scene, face, f.normal);
+        for (const auto& v : face.vertices) {
+            m_vertices.push_back(v);
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+        m_faces.push_back(f);
+    }
+    if (!m_orthographic) {
+        const Camera& cam = scene.camera;
+        m_eye = cam.eye;
+        m_forward = glm::normalize(cam.look_at - cam.eye);
+        const glm::dvec3 side = glm::normalize(glm::cross(m_forward, cam.up));
+        const glm::dvec3 up = glm::cross(side, m_forward);
+        const double half_h = std::tan(glm::radians(cam.fovy_degrees) / 2);
+        const double half_w = half_h * m_width / m_height;
+        m_right = side * half_w;
+        m_up = up * half_h;
+        lo = glm::min(lo, m_eye);
+        hi = glm::max(hi, m_eye);
+    }
+    const double size = m_faces.empty() ? 1.0 : std::max(glm::length(hi - lo), 1e-30);
+    m_tolerance = size * 1e-9;
+}
+
+Ray TraceScene::pixel_ray(int x, int y) const {
+    const double cx = x + 0.5, cy = y + 0.5;
+    if (m_orthographic) return {{cx, cy, -1.0}, {0, 0, 1}};
+    const double ndc_x = 2.0 * cx / m_width - 1.0;
+    const double ndc_y = 1.0 - 2.0 * cy / m_height;
+    return {m_eye, m_forward + ndc_x * m_right + ndc_y * m_up};
+}
+
+protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count) {
+    const auto& faces = scene.faces();
+    if (scene.id_colors())
+        return count == 0 ? protocol::Rgb{0, 0, 0} : face_id_color(faces[hits[count - 1].piece].id);
+    glm::dvec3 c = scene.background();
+    for (int i = count - 1; i >= 0; --i) {
+        const TraceFace& f = faces[hits[i].piece];
+        const glm::dvec3& local = f.local_color[hits[i].back ? 1 : 0];
+        c = f.mirror > 0 ? (1.0 - f.mirror) * local + f.mirror * c : local;
+    }
+    return {to_byte(c.r), to_byte(c.g), to_byte(c.b)};
+}
+
+}  // namespace fb89::host

@@ -1,0 +1,152 @@
+// The scene as rays and beams see it: faces in world space with their planes and both
+// sides' flat colours, the camera's pixel rays, and the watertight ray-polygon test.
+//
+// Ray-polygon test: Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection" (JCGT
+// 2013), extended from triangles to convex polygons. The vertices are moved into a space
+// where the ray is the +z axis (a permutation and a shear); the ray hits the polygon when
+// the 2D edge functions of its consecutive vertices around the origin all have one sign.
+// An edge shared by two faces gives exactly negated values in both, so a ray through a
+// shared edge or vertex hits at least one of them: no ray slips through a closed mesh. The
+// hit distance comes from the face's plane. Differences from the paper: it only needs a
+// ray tracer; ours must be watertight because beam corners lie on shared edges often.
+//
+// Shading (DESIGN.md "Scene model"): flat Lambertian with the scene's directional light plus
+// ambient, on the side the ray arrives at (faces are two-sided); a mirror of reflectance r
+// shows (1 − r) of its own colour plus r of what its reflection sees. No shadows.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "host/scene/scene.h"
+#include "protocol/command.h"
+
+namespace fb89::host {
+
+struct Ray {
+    glm::dvec3 origin;
+    glm::dvec3 dir;  // need not be unit length; distances t are in multiples of it
+};
+
+// A face piece as traced: pieces of a triangulated polygon keep its id.
+struct TraceFace {
+    uint32_t first_vertex = 0;  // into TraceScene::vertices
+    uint32_t vertex_count = 0;
+    glm::dvec3 normal{0};  // unit, by Newell's method
+    double plane = 0;      // dot(normal, p) for p on the face
+    uint32_t id = 0;
+    double mirror = 0;                      // reflectance in [0, 1]
+    std::array<glm::dvec3, 2> local_color;  // seen from the normal's side [0], the other [1]
+};
+
+inline constexpr uint32_t kNoFace = UINT32_MAX;
+
+// The closest hit along a ray; piece == kNoFace when nothing is hit.
+struct Hit {
+    double t = 0;
+    uint32_t piece = kNoFace;
+};
+
+// A ray prepared for the watertight test: the axis it runs along most (kz), the other two,
+// and the shear that makes it the +z axis.
+struct RaySpace {
+    int kx = 0, ky = 1, kz = 2;
+    double sx = 0, sy = 0, sz = 1;
+    explicit RaySpace(const glm::dvec3& dir);
+};
+
+class TraceScene {
+  public:
+    // `id_colors`: every face's colour is its id + 1 (the face-id pass), unshaded.
+    TraceScene(const Scene& scene, bool id_colors, int max_reflections);
+
+    const std::vector<TraceFace>& faces() const { return m_faces; }
+    const std::vector<glm::dvec3>& vertices() const { return m_vertices; }
+    const glm::dvec3* vertices_of(const TraceFace& f) const { return &m_vertices[f.first_vertex]; }
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+    bool id_colors() const { return m_id_colors; }
+    int max_reflections() const { return m_max_reflections; }
+    const glm::dvec3& background() const { return m_background; }
+    uint32_t face_count() const { return m_face_count; }  // distinct ids
+
+    // The ray through the centre of pixel (x, y): from the eye under gluLookAt +
+    // gluPerspective, or along +z for a scene given in screen space.
+    Ray pixel_ray(int x, int y) const;
+    bool orthographic() const { return m_orthographic; }
+
+    // The watertight test of one piece: true with t when the ray hits it at tmin < t.
+    bool intersect(const Ray& ray, const RaySpace& space, uint32_t piece, double tmin,
+                   double& t) const;
+
+    // Lengths below this are "touching" for beam queries (a billionth of the scene's size).
+    double tolerance() const { return m_tolerance; }
+
+  private:
+    std::vector<TraceFace> m_faces;
+    std::vector<glm::dvec3> m_vertices;
+    int m_width = 0, m_height = 0;
+    bool m_id_colors = false;
+    int m_max_reflections = 0;
+    glm::dvec3 m_background{0};
+    uint32_t m_face_count = 0;
+    bool m_orthographic = false;
+    glm::dvec3 m_eye{0}, m_forward{0}, m_right{0}, m_up{0};  // pixel ray frame
+    double m_tolerance = 0;
+};
+
+// The colour a path shows: hits[0] seen first; each mirror mixes in what follows it, and a
+// path that leaves through a mirror (or stops at the reflection limit) ends on the
+// background. In id mode the colour is the id + 1 of the face finally seen.
+struct PathHit {
+    uint32_t piece = kNoFace;
+    bool back = false;  // arrived from the side opposite the normal
+    bool operator==(const PathHit&) const = default;
+};
+
+protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count);
+
+// Inline: the ray tracer's innermost call.
+inline bool TraceScene::intersect(const Ray& ray, const RaySpace& s, uint32_t piece, double tmin,
+                                  double& t) const {
+    const TraceFace& f = m_faces[piece];
+    // plane first: most faces behind the best hit so far stop here
+    const double denom = glm::dot(f.normal, ray.dir);
+    if (denom == 0) return false;
+    const double th = (f.plane - glm::dot(f.normal, ray.origin)) / denom;
+    if (!(th > tmin)) return false;
+
+    // watertight inside test in ray space
+    const glm::dvec3* v = vertices_of(f);
+    auto sheared = [&](const glm::dvec3& p, double& x, double& y) {
+        const glm::dvec3 a = p - ray.origin;
+        x = a[s.kx] - s.sx * a[s.kz];
+        y = a[s.ky] - s.sy * a[s.kz];
+    };
+    double x0, y0, px, py;
+    sheared(v[0], x0, y0);
+    px = x0;
+    py = y0;
+    bool negative = false, positive = false;
+    double det = 0;
+    for (uint32_t i = 1; i <= f.vertex_count; ++i) {
+        double qx = x0, qy = y0;
+        if (i < f.vertex_count) sheared(v[i], qx, qy);
+        const double e = qx * py - qy * px;  // edge (p, q) around the origin
+        negative |= e < 0;
+        positive |= e > 0;
+        if (negative && positive) return false;
+        det += e;
+        px = qx;
+        py = qy;
+    }
+    if (det == 0) return false;  // edge-on
+    t = th;
+    return true;
+}
+
+}  // namespace fb89::host

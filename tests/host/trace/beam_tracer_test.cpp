@@ -1,0 +1,157 @@
+// Beam classification (the paper's Fig. 4.1) where it is known to be hard: lateral rays
+// through shared edges, faces sharing an edge with the hit face, coplanar overlaps,
+// reflected beams, and faces that only touch a segment.
+#include "host/trace/beam_tracer.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/host/trace/trace_test_util.h"
+
+namespace fb89::host {
+namespace {
+
+using testing::add_face;
+using testing::add_square;
+using testing::world_scene;
+
+// A scene, its grid and tracers, and the classification of one pixel window.
+struct Beams {
+    explicit Beams(const Scene& scene)
+        : trace(scene, true, 8), grid(trace), rays(trace, grid), beams(trace, grid) {}
+
+    BeamClass classify(const PixelRect& w) {
+        const int xs[4] = {w.x0, w.x1 - 1, w.x1 - 1, w.x0};
+        const int ys[4] = {w.y0, w.y0, w.y1 - 1, w.y1 - 1};
+        RayTrace traces[4];
+        const RayTrace* corners[4];
+        for (int i = 0; i < 4; ++i) {
+            rays.trace_pixel(xs[i], ys[i], traces[i], ray_counts);
+            corners[i] = &traces[i];
+        }
+        return beams.classify(corners, counts);
+    }
+
+    TraceScene trace;
+    UniformGrid grid;
+    RayTracer rays;
+    BeamTracer beams;
+    TraceCounts ray_counts;
+    BeamCounts counts;
+};
+
+TEST(BeamTracer, AWindowInsideOneFaceIsAHit) {
+    Scene s = world_scene(64, 64);
+    add_square(s, 0, 0, 0, 1, {1, 0, 0});
+    Beams b(s);
+    EXPECT_EQ(b.classify({24, 24, 40, 40}), BeamClass::Hit);
+    EXPECT_EQ(b.counts.queries, 1u);
+}
+
+TEST(BeamTracer, AWindowAcrossTwoFacesIsAPartialHit) {
+    Scene s = world_scene(64, 64);
+    add_square(s, -1, 0, 0, 1, {1, 0, 0});
+    add_square(s, 1, 0, 0, 1, {0, 1, 0});
+    Beams b(s);
+    EXPECT_EQ(b.classify({24, 24, 40, 40}), BeamClass::Partial);
+    EXPECT_EQ(b.counts.queries, 0u) << "differing lateral rays need no query";
+}
+
+TEST(BeamTracer, ASmallFaceInsideTheBeamBlocksIt) {
+    Scene s = world_scene(64, 64);
+    add_square(s, 0, 0, 0, 2, {1, 0, 0});
+    add_square(s, 0, 0, 1, 0.05, {0, 1, 0});  // between the corners' rays
+    Beams b(s);
+    EXPECT_EQ(b.classify({8, 8, 56, 56}), BeamClass::Blocked);
+    EXPECT_EQ(b.classify({8, 8, 20, 20}), BeamClass::Hit) << "it lies outside this one";
+}
+
+TEST(BeamTracer, AFaceBehindTheHitFaceDoesNotBlock) {
+    Scene s = world_scene(64, 64);
+    add_square(s, 0, 0, 0, 2, {1, 0, 0});
+    add_square(s, 0, 0, -1, 0.5, {0, 1, 0});
+    Beams b(s);
+    EXPECT_EQ(b.classify({8, 8, 56, 56}), BeamClass::Hit);
+}
+
+TEST(BeamTracer, LateralRaysOnASharedEdgeAreNeverAHit) {
+    // two faces meeting along x = 0; the window's right column lies exactly on the edge
+    Scene s = world_scene(65, 65);  // pixel column 32's rays lie in the plane x = 0
+    add_face(s, {{-6, -6, 0}, {0, -6, 0}, {0, 6, 0}, {-6, 6, 0}}, {1, 0, 0});
+    add_face(s, {{0, -6, 0}, {6, -6, 0}, {6, 6, 0}, {0, 6, 0}}, {0, 1, 0});
+    Beams b(s);
+    // a window whose corner rays hit the left face close to the edge: the neighbour
+    // sharing the edge touches the segment only if the corners reach the edge
+    EXPECT_EQ(b.classify({10, 10, 30, 30}), BeamClass::Hit);
+    EXPECT_NE(b.classify({10, 10, 33, 30}), BeamClass::Hit);
+}
+
+TEST(BeamTracer, CoplanarOverlappingFacesBlock) {
+    Scene s = world_scene(64, 64);
+    add_square(s, 0, 0, 0, 2, {1, 0, 0});
+    add_square(s, 0.5, 0, 0, 0.3, {0, 1, 0});  // the same plane, inside the first
+    Beams b(s);
+    EXPECT_EQ(b.classify({8, 8, 56, 56}), BeamClass::Blocked);
+}
+
+TEST(BeamTracer, AReflectedBeamIsAHitOnlyWhenItsSegmentIsEmpty) {
+    Scene s = world_scene(64, 64);
+    s.camera.eye = {0, 0, 3};
+    s.camera.look_at = {0, 0, 0};
+    // a mirror facing the eye, tilted so that its reflection looks at a wall to the side
+    add_face(s, {{-1, -1, 1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, 1}}, {1, 1, 1}, 1.0);
+    add_face(s, {{6, -6, -2}, {6, 6, -2}, {6, 6, 6}, {6, -6, 6}}, {0, 0, 1});
+    {
+        Beams b(s);
+        EXPECT_EQ(b.classify({16, 16, 48, 48}), BeamClass::Hit);
+        EXPECT_EQ(b.counts.queries, 2u) << "one query per segment";
+    }
+    // a small face between the mirror and the wall, out of the eye's sight, that no
+    // lateral ray meets
+    add_face(s, {{3, -0.1, -0.1}, {3, 0.1, -0.1}, {3, 0.1, 0.1}, {3, -0.1, 0.1}}, {1, 1, 0});
+    {
+        Beams b(s);
+        EXPECT_EQ(b.classify({16, 16, 48, 48}), BeamClass::Blocked);
+    }
+}
+
+TEST(BeamTracer, AFaceTouchingASegmentWithinTheToleranceCountsAsOccupied) {
+    Scene s = world_scene(64, 64);
+    add_square(s, 0, 0, 0, 2, {1, 0, 0});
+    Beams b(s);
+    BeamSegment seg;
+    for (int i = 0; i < 4; ++i)
+        seg.start[i] = {0, 0, 5};
+    seg.end[0] = {-1, -1, 0};
+    seg.end[1] = {1, -1, 0};
+    seg.end[2] = {1, 1, 0};
+    seg.end[3] = {-1, 1, 0};
+    EXPECT_FALSE(b.beams.segment_is_empty(seg, kNoFace, kNoFace, b.counts)) << "the end face";
+    EXPECT_TRUE(b.beams.segment_is_empty(seg, kNoFace, 0, b.counts)) << "skipped";
+    // pulled back from the face by less than the tolerance: still touching
+    for (auto& e : seg.end)
+        e.z = b.trace.tolerance() * 0.5;
+    EXPECT_FALSE(b.beams.segment_is_empty(seg, kNoFace, kNoFace, b.counts));
+    for (auto& e : seg.end)
+        e.z = b.trace.tolerance() * 10;
+    EXPECT_TRUE(b.beams.segment_is_empty(seg, kNoFace, kNoFace, b.counts));
+}
+
+TEST(BeamTracer, CountsTheFacesInAWindowsBeam) {
+    Scene s = world_scene(64, 64);
+    add_square(s, 0, 0, 0, 2, {1, 0, 0});
+    add_square(s, 0, 0, 1, 0.05, {0, 1, 0});
+    add_square(s, 0, 0, -1, 0.05, {0, 1, 0});  // behind, inside the beam
+    add_square(s, 5, 5, 1, 0.05, {0, 1, 0});   // outside every beam here
+    Beams b(s);
+    const int xs[4] = {8, 55, 55, 8}, ys[4] = {8, 8, 55, 55};
+    RayTrace traces[4];
+    const RayTrace* corners[4];
+    for (int i = 0; i < 4; ++i) {
+        b.rays.trace_pixel(xs[i], ys[i], traces[i], b.ray_counts);
+        corners[i] = &traces[i];
+    }
+    EXPECT_EQ(b.beams.faces_in_beam(corners, b.counts), 3u);
+}
+
+}  // namespace
+}  // namespace fb89::host
