@@ -8,6 +8,11 @@
 // threshold that wins on them may cost the light ones dearly. A threshold is eligible
 // only if no scene is more than --tolerance (default 3%) slower than with the pure
 // Z-buffer (threshold 0, always eligible): the paper's "negligible degradation".
+//
+// With --method beam it chooses the beam-ray hybrid's Expr. 2.7 threshold the same way
+// (§4: "determined using the same method"), on G, H, I and the mirrored Cornell box by
+// default, from 0 (the ray tracer at once) through a log ramp to infinity (beams down to
+// single pixels); every threshold shows the same frame, so only time decides.
 #include <unistd.h>
 
 #include <algorithm>
@@ -35,10 +40,57 @@ struct CalibrateArgs {
     int repeat = 5;
     double tolerance = 0.03;
     std::string csv;
+    std::string method = "hybrid";
     bool dry_run = false, quiet = false;
 };
 
+int run_calibrate_beam(const CalibrateArgs& a) {
+    ExperimentSettings s;
+    s.scenes = a.scenes;
+    if (s.scenes.empty())
+        s.scenes = {"scenes/G.json", "scenes/H.json", "scenes/I.json",
+                    "scenes/cornell_mirror.json"};
+    s.repeat = a.repeat;
+    s.progress = !a.quiet && isatty(STDERR_FILENO);
+    Table table = experiment_beam_threshold(s, beam_threshold_ramp());
+    if (!a.csv.empty()) write_text(a.csv, table.csv());
+    std::map<double, double> total;
+    double rays_total = 0;
+    for (const auto& row : table.rows()) {
+        if (row[1] == "raytrace") {
+            rays_total += std::stod(row[3]);
+            continue;
+        }
+        total[std::stod(row[1])] += std::stod(row[3]);
+    }
+    auto best = total.begin();
+    for (auto it = total.begin(); it != total.end(); ++it)
+        if (it->second < best->second) best = it;
+    nlohmann::json details;
+    details["scenes"] = s.scenes;
+    details["repeat"] = s.repeat;
+    details["raytrace_total_ms"] = rays_total;
+    details["total_ms_by_threshold"] = nlohmann::json::array();
+    for (const auto& [t, ms] : total)
+        details["total_ms_by_threshold"].push_back({std::isinf(t) ? 1e300 : t, ms});
+    details["chosen_total_ms"] = best->second;
+    if (!a.dry_run) save_beam_calibration(best->first, details.dump());
+    if (!a.quiet) {
+        std::cerr << fmt::format("{:>12}  {:>12}  {:>12}\n", "threshold", "total ms", "vs rays");
+        for (const auto& [t, ms] : total)
+            std::cerr << fmt::format("{:>12.6g}  {:>12.3f}  {:>12.3f}{}\n", t, ms, ms / rays_total,
+                                     t == best->first ? "  <- chosen" : "");
+        std::cerr << fmt::format(
+            "ray tracer alone {:.3f} ms, chosen {:.6g}: {:.3f} ms over {} scenes{}\n", rays_total,
+            best->first, best->second, s.scenes.size(),
+            a.dry_run ? " (not saved: --dry-run)" : " (saved to " + calibration_path() + ")");
+    }
+    std::cout << fmt::format("{:.6g}\n", best->first);
+    return kSuccess;
+}
+
 int run_calibrate(const CalibrateArgs& a) {
+    if (a.method == "beam") return run_calibrate_beam(a);
     if (!(a.from > 0 && a.to > a.from)) throw UsageError("--from and --to: need 0 < from < to");
     ExperimentSettings s;
     s.scenes = a.scenes;
@@ -107,7 +159,13 @@ void register_calibrate(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<CalibrateArgs>();
     CLI::App* sub = app.add_subcommand(
         "calibrate",
-        "Choose the hybrid's Expr. 3.1 threshold for this machine (the paper's §3 method)");
+        "Choose the hybrid's Expr. 3.1 threshold (or with --method beam the beam-ray "
+        "hybrid's Expr. 2.7 threshold) for this machine (the paper's §3 method)");
+    sub->add_option("--method", a->method,
+                    "hybrid (Warnock/Z-buffer, §3) or beam (beam-ray, §4; ramp 0, 0.01 ... "
+                    "1000, inf; --from/--to/--steps/--tolerance do not apply)")
+        ->check(CLI::IsMember({"hybrid", "beam"}))
+        ->capture_default_str();
     sub->add_option("scenes", a->scenes,
                     "Scenes to calibrate on (default scenes/A.json ... F.json)");
     sub->add_option("--from", a->from, "Smallest threshold of the ramp (> 0)")

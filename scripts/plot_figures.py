@@ -149,8 +149,74 @@ def accuracy(folder):
     fig.savefig(os.path.join(folder, "accuracy.png"), dpi=110)
 
 
+def fig4_8(folder):
+    """Figs. 4.8, 4.11 and §4's image I: whole-process time against resolution."""
+    rows = []
+    for name in ("fig4_8.csv", "fig4_11.csv", "fig4_12.csv"):
+        path = os.path.join(folder, name)
+        if os.path.exists(path):
+            rows += read(path)
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, axes = plt.subplots(1, len(scenes), figsize=(5.5 * len(scenes), 4.5), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        for method, marker in (("raytrace", "o"), ("beam", "s")):
+            sub = [r for r in rows if r["scene"] == scene and r["method"] == method]
+            pixels = [int(r["width"]) * int(r["height"]) for r in sub]
+            label = "ray tracer alone" if method == "raytrace" else "beam-ray hybrid"
+            ax.plot(pixels, [float(r["e2e_cpu_ms"]) for r in sub], marker + "-", label=label)
+            if method == "beam":
+                for x, r in zip(pixels, sub):
+                    ax.annotate(f"{float(r['pixels_by_beams_pct']):.0f}% beams", (x, float(r["e2e_cpu_ms"])),
+                                textcoords="offset points", xytext=(4, -12), fontsize=7)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xticks([int(r["width"]) * int(r["height"]) for r in rows if r["scene"] == scene and r["method"] == "beam"])
+        ax.set_xticklabels([f"{r['width']}x{r['height']}" for r in rows if r["scene"] == scene and r["method"] == "beam"],
+                           fontsize=7)
+        ax.set_xlabel("resolution")
+        ax.set_ylabel("ms, reading the scene to the last command (median CPU)")
+        ax.set_title(f"image {scene_label(scene)}")
+        ax.grid(which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Figs. 4.8 and 4.11 re-run: rendering time vs resolution")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "fig4_8.png"), dpi=110)
+
+
+def beam_threshold(folder):
+    rows = read(os.path.join(folder, "beam_threshold.csv"))
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
+    for scene in scenes:
+        sub = [r for r in rows if r["scene"] == scene and r["threshold"] not in ("raytrace", "inf")
+               and float(r["threshold"]) > 0]
+        t = [float(r["threshold"]) for r in sub]
+        line, = left.plot(t, [float(r["ratio_to_raytrace"]) for r in sub], "o-", label=scene_label(scene))
+        inf = [r for r in rows if r["scene"] == scene and r["threshold"] == "inf"]
+        if inf:
+            left.axhline(float(inf[0]["ratio_to_raytrace"]), color=line.get_color(), linestyle=":", linewidth=1)
+        right.plot(t, [float(r["pixels_by_beams_pct"]) for r in sub], "o-", label=scene_label(scene))
+    left.axhline(1.0, color="gray", linestyle="--", label="ray tracer alone")
+    left.set_ylabel("hidden-surface time / ray tracer's (dotted: threshold inf)")
+    right.set_ylabel("% of pixels decided by beams")
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.set_xlabel("threshold on Expr. 2.7")
+        ax.grid(which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Beam-ray hybrid against its threshold, 1024x780 (every frame equals the ray tracer's)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "beam_threshold.png"), dpi=110)
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "docs/figures"
+    if os.path.exists(os.path.join(folder, "fig4_8.csv")):
+        fig4_8(folder)
+    if os.path.exists(os.path.join(folder, "beam_threshold.csv")):
+        beam_threshold(folder)
+    if len(sys.argv) > 2 and sys.argv[2] == "--only-section-4":
+        return
     fig2_1(folder)
     fig2_4(folder)
     if os.path.exists(os.path.join(folder, "fig3_1.csv")):

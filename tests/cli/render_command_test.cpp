@@ -111,3 +111,42 @@ TEST(RenderCommand, UnwritableOutputExitsTwo) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RenderCommand, BeamWritesItsMaskAndStatsAndEqualsTheRayTracer) {
+    fs::path beam = scratch("g_beam.png"), rays = scratch("g_rays.png"),
+             mask = scratch("g_mask.png"), stats = scratch("g_beam.json");
+    CliRun b =
+        fb89("render " + kScenes + "/G.json --size 256x195 -q -m beam --beam-threshold 1 " +
+             "--png " + beam.string() + " --mask " + mask.string() + " --stats " + stats.string());
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    CliRun r =
+        fb89("render " + kScenes + "/G.json --size 256x195 -q -m raytrace --png " + rays.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(slurp(beam), slurp(rays));
+    nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    EXPECT_EQ(j["beam_threshold"].get<double>(), 1.0);
+    EXPECT_EQ(j["reflections"].get<int>(), 8);
+    const auto& c = j["host"]["counters"];
+    EXPECT_EQ(c["pixels_by_beams"].get<uint64_t>() + c["pixels_by_rays"].get<uint64_t>(),
+              256u * 195u);
+    // the mask is the frame with every ray-traced pixel black: it differs from the frame
+    auto masked = fb89::controller::read_png(mask);
+    auto frame = fb89::controller::read_png(beam);
+    ASSERT_EQ(masked.width, 256u);
+    EXPECT_NE(masked.pixels, frame.pixels);
+}
+
+TEST(RenderCommand, BadBeamOptionsAreUsageErrors) {
+    CliRun t = fb89("render " + kScenes + "/G.json -m beam --beam-threshold -3 -q");
+    EXPECT_EQ(t.exit_code, 2);
+    EXPECT_NE(t.err.find("--beam-threshold"), std::string::npos) << t.err;
+    CliRun m = fb89("render " + kScenes + "/G.json -m zbuffer --mask x.png -q");
+    EXPECT_EQ(m.exit_code, 2);
+    EXPECT_NE(m.err.find("--mask"), std::string::npos) << m.err;
+    CliRun r = fb89("render " + kScenes + "/G.json -m raytrace --reflections 99 -q");
+    EXPECT_EQ(r.exit_code, 2);
+}
+
+}  // namespace
