@@ -11,6 +11,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 
 def read(path):
@@ -170,6 +171,7 @@ def fig4_8(folder):
                                 textcoords="offset points", xytext=(4, -12), fontsize=7)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
         ax.set_xticks([int(r["width"]) * int(r["height"]) for r in rows if r["scene"] == scene and r["method"] == "beam"])
         ax.set_xticklabels([f"{r['width']}x{r['height']}" for r in rows if r["scene"] == scene and r["method"] == "beam"],
                            fontsize=7)

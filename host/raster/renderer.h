@@ -32,7 +32,7 @@ struct RenderOptions {
     std::string depth_estimate = "window";  // hybrid: "window" or "scene"
     int approx_min_side = 0;                // Warnock and hybrid: approximate fills (0: exact)
     double approx_epsilon = 0;
-    double beam_threshold = 0.5;  // beam: Expr. 2.7 threshold (inf: beams down to pixels)
+    double beam_threshold = 464.159;  // beam: Expr. 2.7 threshold (inf: down to pixels)
     int max_reflections = 8;      // raytrace and beam: mirror bounces followed
     double grid_density = 8;      // raytrace and beam: uniform-grid cells per face piece
 };
