@@ -1,5 +1,5 @@
-// Face-id buffer comparison with depth-tie classification, and our ids read off the
-// controller (see exactness.h).
+// Face-id buffer comparison with depth-tie classification, the id-boundary classification
+// of the ray peer, and our ids read off the controller (see exactness.h).
 #include "bench/peers/exactness.h"
 
 #include <algorithm>
@@ -86,6 +86,50 @@ Exactness compare_face_ids(const host::ScreenScene& scene, std::span<const uint3
         }
     }
     return e;
+}
+
+namespace {
+
+// Whether a neighbour of pixel (x, y) at one of the offsets holds an id other than `id`.
+bool other_id_near(std::span<const uint32_t> ids, int width, int height, int x, int y, uint32_t id,
+                   const int (*offsets)[2], int count) {
+    for (int k = 0; k < count; ++k) {
+        const int nx = x + offsets[k][0], ny = y + offsets[k][1];
+        if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+        if (ids[static_cast<size_t>(ny) * width + nx] != id) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+IdAgreement compare_with_boundaries(int width, int height, std::span<const uint32_t> ours,
+                                    std::span<const uint32_t> theirs) {
+    static constexpr int kEdges[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+    static constexpr int kCorners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    IdAgreement a;
+    a.pixels = static_cast<uint64_t>(width) * height;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const size_t i = static_cast<size_t>(y) * width + x;
+            const uint32_t id = ours[i];
+            if (id == theirs[i]) continue;
+            ++a.differ;
+            a.coverage += id == 0 || theirs[i] == 0;
+            // an id boundary of ours: a neighbour with another id (a miss is an id too)
+            if (other_id_near(ours, width, height, x, y, id, kEdges, 4)) {
+                ++a.on_boundary;
+            } else if (other_id_near(ours, width, height, x, y, id, kCorners, 4)) {
+                ++a.diagonal;
+            } else {
+                ++a.interior;
+                if (a.first_interior.empty())
+                    a.first_interior =
+                        fmt::format("({}, {}): ours id+1 {}, theirs {}", x, y, id, theirs[i]);
+            }
+        }
+    }
+    return a;
 }
 
 std::vector<uint32_t> controller_face_ids(const protocol::MemoryBuffer& frame) {

@@ -1,6 +1,7 @@
 // Comparing two face-id buffers of one scene the way REFERENCES.md expects them to differ:
 // not at all in coverage, and in ids only where two faces' depths tie within llvmpipe's
-// 24-bit depth resolution. Also: our own face-id buffer, read off the simulated controller.
+// 24-bit depth resolution. Also: our own face-id buffer, read off the simulated controller,
+// and, for the ray peer, where two id buffers differ relative to the id boundaries of ours.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +38,25 @@ struct Exactness {
 // `ours` and `theirs` hold id + 1 per pixel (0 = background), row 0 at the top.
 Exactness compare_face_ids(const host::ScreenScene& scene, std::span<const uint32_t> ours,
                            std::span<const uint32_t> theirs);
+
+// Where two id buffers differ, and whether each such pixel lies on an id boundary of `ours`
+// (a 4-neighbour with another id, a miss counting as an id), only touches one diagonally (an
+// 8-neighbour with another id: the tip of a sliver less than a pixel wide), or lies inside a
+// face.
+struct IdAgreement {
+    uint64_t pixels = 0;
+    uint64_t differ = 0;
+    uint64_t coverage = 0;       // of those, one side a miss
+    uint64_t on_boundary = 0;    // of those, on an id boundary of ours (4-neighbours)
+    uint64_t diagonal = 0;       // of those, with another id only among the diagonal neighbours
+    uint64_t interior = 0;       // of those, with all 8 neighbours of ours' id
+    std::string first_interior;  // the first interior disagreement, for messages
+    double agreement() const { return pixels ? 1.0 - double(differ) / double(pixels) : 1.0; }
+};
+
+// `ours` and `theirs` hold id + 1 per pixel (0 = miss), row 0 at the top.
+IdAgreement compare_with_boundaries(int width, int height, std::span<const uint32_t> ours,
+                                    std::span<const uint32_t> theirs);
 
 // Replays one frame of commands (a face-id pass) into the controller with the "ideal"
 // profile and decodes its framebuffer into ids + 1, as the conformance tests do.

@@ -1,5 +1,5 @@
-// Building the harness's scenes: ideal scenes on a cell grid, random triangles kept on
-// screen, and scene files (see peer_scenes.h).
+// Building the harnesses' scenes: ideal scenes on a cell grid, random triangles kept on
+// screen, scene files, and world scenes for the ray peer (see peer_scenes.h).
 #include "bench/peers/peer_scenes.h"
 
 #include <algorithm>
@@ -26,6 +26,14 @@ host::ScreenScene project_ids(const host::Scene& scene) {
     return screen;
 }
 
+// A PeerScene does not keep its world scene: a method that traces rays must say so rather
+// than read a scene that is gone.
+PeerScene peer_scene(std::string name, const host::Scene& scene) {
+    PeerScene out{std::move(name), project_ids(scene)};
+    out.screen.world = nullptr;
+    return out;
+}
+
 host::Scene screen_scene_of(int width, int height, host::GeneratedPolygons polygons) {
     host::Scene scene;
     scene.projection = host::Projection::Screen;
@@ -48,7 +56,7 @@ PeerScene ideal_scene(int width, int height, int layers, int f_v) {
     const double cell_w = static_cast<double>(width) / n, cell_h = static_cast<double>(height) / n;
     host::Scene scene = screen_scene_of(
         width, height, host::generate_ideal(width, height, layers, cell_w, cell_h, 0.5));
-    return {fmt::format("ideal D={} Fv={}", layers, f_v), project_ids(scene)};
+    return peer_scene(fmt::format("ideal D={} Fv={}", layers, f_v), scene);
 }
 
 PeerScene random_onscreen_triangles(int width, int height, int count, double area, uint64_t seed) {
@@ -80,12 +88,54 @@ PeerScene random_onscreen_triangles(int width, int height, int count, double are
         }
         triangles.push_back(std::move(t));
     }
-    return {fmt::format("random {}x{}px", count, area),
-            project_ids(screen_scene_of(width, height, std::move(triangles)))};
+    return peer_scene(fmt::format("random {}x{}px", count, area),
+                      screen_scene_of(width, height, std::move(triangles)));
 }
 
 PeerScene file_scene(const std::filesystem::path& file) {
-    return {file.filename().string(), project_ids(host::load_scene(file))};
+    return peer_scene(file.filename().string(), host::load_scene(file));
+}
+
+RayScene ray_file_scene(const std::filesystem::path& file, int width, int height) {
+    RayScene out;
+    out.world = std::make_unique<host::Scene>(host::load_scene(file));
+    out.world->width = width;
+    out.world->height = height;
+    out.name = fmt::format("{} {}x{}", file.stem().string(), width, height);
+    out.screen = project_ids(*out.world);
+    return out;
+}
+
+RayScene random_world_triangles(int width, int height, int count, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    auto uniform = [&rng](double lo, double hi) {
+        return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
+    };
+    auto unit_vector = [&] {
+        const double z = uniform(-1, 1), a = uniform(0, 6.283185307179586);
+        const double r = std::sqrt(1 - z * z);
+        return glm::dvec3(r * std::cos(a), r * std::sin(a), z);
+    };
+    auto world = std::make_unique<host::Scene>();
+    world->width = width;
+    world->height = height;
+    world->camera.eye = {0, 0, 3.5};
+    world->camera.look_at = {0, 0, 0};
+    world->camera.fovy_degrees = 45;
+    for (int i = 0; i < count; ++i) {
+        const glm::dvec3 centre(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+        host::Face f;
+        for (int k = 0; k < 3; ++k)
+            f.vertices.push_back(centre + 0.2 * unit_vector());
+        f.material.color = {uniform(0.2, 1), uniform(0.2, 1), uniform(0.2, 1)};
+        f.id = world->face_count++;
+        world->faces.push_back(std::move(f));
+    }
+    RayScene out;
+    out.name = fmt::format("random world {} tris {}x{}", count, width, height);
+    out.world = std::move(world);
+    out.screen = project_ids(*out.world);
+    return out;
 }
 
 }  // namespace fb89::peers

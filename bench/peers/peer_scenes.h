@@ -1,13 +1,16 @@
 // The scenes the llvmpipe harness and the peer tests render, each projected to screen space
 // in face-id mode. Every vertex of every scene lies on screen (llvmpipe's clipper differs
 // from ours at the borders, REFERENCES.md), so the face-id buffers can agree exactly.
+// The Embree harness's scenes (RayScene) keep their world scene too, for the ray tracers.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "host/scene/scene.h"
 #include "host/scene/screen_scene.h"
 
 namespace fb89::peers {
@@ -31,5 +34,22 @@ PeerScene random_onscreen_triangles(int width, int height, int count, double are
 
 // A scene file (.json or .tri), loaded and projected.
 PeerScene file_scene(const std::filesystem::path& file);
+
+// A world scene and its face-id projection (background black, so a miss reads as id + 1 =
+// 0). The Scene lives on the heap because `screen.world` points at it.
+struct RayScene {
+    std::string name;
+    std::unique_ptr<host::Scene> world;
+    host::ScreenScene screen;
+};
+
+// A scene file rendered at width x height (the camera and field of view as the file gives
+// them).
+RayScene ray_file_scene(const std::filesystem::path& file, int width, int height);
+
+// `count` seeded random triangles in the cube [-1, 1]^3 (centres uniform, vertices 0.2 from
+// the centre in uniform random directions, random colours), seen from (0, 0, 3.5) looking at
+// the origin with a 45 degree field of view.
+RayScene random_world_triangles(int width, int height, int count, uint64_t seed);
 
 }  // namespace fb89::peers

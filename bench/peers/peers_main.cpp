@@ -1,27 +1,91 @@
 // fb89_peers: our Z-buffer (and hybrid) side by side with Mesa's llvmpipe, in one process,
-// on ideal scenes, seeded random triangles and scenes A-F (docs/BENCHMARKS.md).
+// on ideal scenes, seeded random triangles and scenes A-F; with --rays, our ray tracer and
+// beam-ray hybrid side by side with Embree 3 on scenes G, H, I and the Cornell boxes
+// (docs/BENCHMARKS.md).
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "bench/peers/ray_side_by_side.h"
 #include "bench/peers/side_by_side.h"
 
-int main(int argc, char** argv) {
-    using namespace fb89::peers;
-    CLI::App app{"fb89_peers: Z-buffer and hybrid against Mesa llvmpipe (OSMesa), interleaved"};
-    SideBySideOptions options;
-    std::string scenes_dir = FB89_SCENES_DIR, csv;
+namespace {
+
+using namespace fb89::peers;
+
+struct Args {
+    int repeat = 21, warmup = 2;
+    bool repeat_given = false;
+    std::string scenes_dir = FB89_SCENES_DIR, csv, size = "1024x780", quality = "high";
     bool quick = false;
-    app.add_option("--repeat", options.repeat, "timed rounds per scene (median)")
-        ->check(CLI::Range(1, 1000));
-    app.add_option("--warmup", options.warmup, "untimed rounds first")->check(CLI::Range(0, 100));
-    app.add_option("--scenes-dir", scenes_dir, "where A.json ... F.json are");
-    app.add_option("--csv", csv, "write the rows as CSV to this file");
-    app.add_flag("--quick", quick, "three small scenes, for tests");
-    CLI11_PARSE(app, argc, argv);
+    double beam_threshold = 464.159;  // what calibrate --method beam chose (RESULTS.md)
+};
+
+// Embree against our raytrace and beam: the scenes that exist, at the chosen size (G also
+// at twice it), and a seeded world of 1,000 random triangles.
+int run_rays(const Args& args) {
+    RaySideBySideOptions options;
+    options.repeat = args.repeat_given ? args.repeat : 9;
+    options.warmup = args.warmup;
+    options.beam_threshold = args.beam_threshold;
+    options.quality = parse_embree_quality(args.quality);
+    int w = 0, h = 0;
+    if (std::sscanf(args.size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1)
+        throw std::invalid_argument("--size must be WxH, not '" + args.size + "'");
+    if (args.quick) w = 256, h = 195;
+
+    std::vector<RayRow> rows;
+    auto run = [&](const RayScene& scene) {
+        std::cerr << "  " << scene.name << "...\n";
+        rows.push_back(measure_ray_side_by_side(scene, options));
+        if (rows.size() == 1) std::cerr << "peer: " << rows.front().embree << "\n";
+    };
+    for (const char* name : {"G", "H", "I", "cornell_box", "cornell_mirror"}) {
+        const std::filesystem::path file = args.scenes_dir + "/" + name + ".json";
+        if (!std::filesystem::exists(file)) {
+            std::cerr << "  " << file.string() << " does not exist: skipped\n";
+            continue;
+        }
+        run(ray_file_scene(file, w, h));
+        if (name[0] == 'G' && !args.quick) run(ray_file_scene(file, 2 * w, 2 * h));
+    }
+    if (!args.quick) run(random_world_triangles(w, h, 1000, 1989));
+
+    std::cout << ray_human_table(rows);
+    if (!args.csv.empty()) {
+        std::ofstream out(args.csv);
+        out << ray_csv_header() << "\n";
+        for (const RayRow& r : rows)
+            out << ray_csv_row(r) << "\n";
+        if (!out) throw std::runtime_error("cannot write " + args.csv);
+    }
+    // exit 1 when our ray tracer and Embree's robust mode disagree inside a face, or when
+    // the beam hybrid's ids differ from the ray tracer's
+    int status = 0;
+    for (const RayRow& r : rows) {
+        if (r.vs_robust.interior)
+            std::cerr << r.scene << ": first interior disagreement with Embree robust "
+                      << r.vs_robust.first_interior << "\n";
+        if (r.vs_robust.interior || r.beam_vs_raytrace) {
+            std::cerr << "fb89_peers: " << r.scene << " disagrees off id boundaries\n";
+            status = 1;
+        }
+    }
+    return status;
+}
+
+int run_llvmpipe(const Args& args) {
+    SideBySideOptions options;
+    options.repeat = args.repeat;
+    options.warmup = args.warmup;
+    const std::string& scenes_dir = args.scenes_dir;
+    const std::string& csv = args.csv;
+    const bool quick = args.quick;
 
     // single-threaded llvmpipe unless told otherwise, read when the context is made
     setenv("LP_NUM_THREADS", "0", 0);
@@ -29,55 +93,80 @@ int main(int argc, char** argv) {
     std::cerr << "LP_NUM_THREADS=" << std::getenv("LP_NUM_THREADS")
               << " GLIBC_TUNABLES=" << (tunables ? tunables : "(unset)") << "\n";
 
-    try {
-        LlvmpipeRenderer llvmpipe;
-        std::vector<SideBySideRow> rows;
-        auto run = [&](const PeerScene& scene) {
-            std::cerr << "  " << scene.name << "...\n";
-            rows.push_back(measure_side_by_side(llvmpipe, scene, options));
-            if (rows.size() == 1) std::cerr << "peer: " << llvmpipe.renderer_string() << "\n";
-        };
-        const int w = 1024, h = 780;
-        if (quick) {
-            run(random_onscreen_triangles(w, h, 1000, 700, 1989));
-            run(ideal_scene(w, h, 2, 1024));
-            run(file_scene(scenes_dir + "/A.json"));
-        } else {
-            for (int layers : {1, 2, 4})
-                for (int f_v : {64, 1024, 16384})
-                    run(ideal_scene(w, h, layers, f_v));
-            run(random_onscreen_triangles(w, h, 100, 8000, 1989));
-            run(random_onscreen_triangles(w, h, 1000, 700, 1989));
-            run(random_onscreen_triangles(w, h, 10000, 270, 1989));
-            run(random_onscreen_triangles(w, h, 100000, 8, 1989));
-            for (const char* name : {"A", "B", "C", "D", "E", "F"})
-                run(file_scene(scenes_dir + "/" + name + ".json"));
-        }
+    LlvmpipeRenderer llvmpipe;
+    std::vector<SideBySideRow> rows;
+    auto run = [&](const PeerScene& scene) {
+        std::cerr << "  " << scene.name << "...\n";
+        rows.push_back(measure_side_by_side(llvmpipe, scene, options));
+        if (rows.size() == 1) std::cerr << "peer: " << llvmpipe.renderer_string() << "\n";
+    };
+    const int w = 1024, h = 780;
+    if (quick) {
+        run(random_onscreen_triangles(w, h, 1000, 700, 1989));
+        run(ideal_scene(w, h, 2, 1024));
+        run(file_scene(scenes_dir + "/A.json"));
+    } else {
+        for (int layers : {1, 2, 4})
+            for (int f_v : {64, 1024, 16384})
+                run(ideal_scene(w, h, layers, f_v));
+        run(random_onscreen_triangles(w, h, 100, 8000, 1989));
+        run(random_onscreen_triangles(w, h, 1000, 700, 1989));
+        run(random_onscreen_triangles(w, h, 10000, 270, 1989));
+        run(random_onscreen_triangles(w, h, 100000, 8, 1989));
+        for (const char* name : {"A", "B", "C", "D", "E", "F"})
+            run(file_scene(scenes_dir + "/" + name + ".json"));
+    }
 
-        std::cout << human_table(rows);
-        if (!csv.empty()) {
-            std::ofstream out(csv);
-            out << csv_header() << "\n";
-            for (const SideBySideRow& r : rows)
-                out << csv_row(r) << "\n";
-            if (!out) throw std::runtime_error("cannot write " + csv);
+    std::cout << human_table(rows);
+    if (!csv.empty()) {
+        std::ofstream out(csv);
+        out << csv_header() << "\n";
+        for (const SideBySideRow& r : rows)
+            out << csv_row(r) << "\n";
+        if (!out) throw std::runtime_error("cannot write " + csv);
+    }
+    // exit 1 when a check failed: coverage, or an id mismatch that is neither a depth tie
+    // nor within llvmpipe's float error, or the hybrid differing from the Z-buffer
+    int status = 0;
+    for (const SideBySideRow& r : rows) {
+        const Exactness& e = r.exactness;
+        if (e.real_mismatches) std::cerr << r.scene << ": first mismatch " << e.first << "\n";
+        if (e.coverage_mismatches || e.real_mismatches > e.within_float_error ||
+            (r.hybrid_diff && *r.hybrid_diff)) {
+            std::cerr << "fb89_peers: " << r.scene << " is not exact\n";
+            status = 1;
         }
-        // exit 1 when a check failed: coverage, or an id mismatch that is neither a depth tie
-        // nor within llvmpipe's float error, or the hybrid differing from the Z-buffer
-        int status = 0;
-        for (const SideBySideRow& r : rows) {
-            const Exactness& e = r.exactness;
-            if (e.real_mismatches) std::cerr << r.scene << ": first mismatch " << e.first << "\n";
-            if (e.coverage_mismatches || e.real_mismatches > e.within_float_error ||
-                (r.hybrid_diff && *r.hybrid_diff)) {
-                std::cerr << "fb89_peers: " << r.scene << " is not exact\n";
-                status = 1;
-            }
-        }
-        return status;
+    }
+    return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "fb89_peers: Z-buffer and hybrid against Mesa llvmpipe (OSMesa), or with "
+        "--rays the ray tracer and beam-ray hybrid against Embree 3, interleaved"};
+    Args args;
+    bool rays = false;
+    app.add_flag("--rays", rays, "Embree against our raytrace and beam instead of llvmpipe");
+    app.add_option("--repeat", args.repeat, "timed rounds per scene (median; 21, with --rays 9)")
+        ->check(CLI::Range(1, 1000));
+    app.add_option("--warmup", args.warmup, "untimed rounds first")->check(CLI::Range(0, 100));
+    app.add_option("--scenes-dir", args.scenes_dir, "where the scene files are");
+    app.add_option("--csv", args.csv, "write the rows as CSV to this file");
+    app.add_flag("--quick", args.quick, "a few small scenes, for tests");
+    app.add_option("--size", args.size, "--rays: image size WxH (G also at twice it)");
+    app.add_option("--beam-threshold", args.beam_threshold,
+                   "--rays: the beam method's Expr. 2.7 threshold");
+    app.add_option("--embree-quality", args.quality, "--rays: Embree build quality")
+        ->check(CLI::IsMember({"low", "medium", "high"}));
+    CLI11_PARSE(app, argc, argv);
+    args.repeat_given = app.count("--repeat") > 0;
+
+    try {
+        return rays ? run_rays(args) : run_llvmpipe(args);
     } catch (const std::exception& e) {
         std::cerr << "fb89_peers: error: " << e.what() << "\n";
         return 2;
     }
-    return 0;
 }

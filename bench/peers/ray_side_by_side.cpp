@@ -1,0 +1,216 @@
+// Interleaved timing of Embree against our ray tracer and beam-ray hybrid, face-id
+// agreement, and the CSV and human table of the results (see ray_side_by_side.h).
+#include "bench/peers/ray_side_by_side.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "host/raster/renderer.h"
+#include "host/stats.h"
+#include "protocol/memory_buffer.h"
+
+namespace fb89::peers {
+
+namespace {
+
+double median_of(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// One of our methods with no reflections, set up for the scene (untimed), the buffer its
+// frames go to and the last frame's stats.
+struct Ours {
+    std::unique_ptr<host::Renderer> renderer;
+    protocol::MemoryBuffer frame;
+    host::HostStats stats;
+    std::vector<double> samples;
+
+    Ours(const host::ScreenScene& scene, const std::string& method, double beam_threshold) {
+        host::RenderOptions options;
+        options.method = method;
+        options.max_reflections = 0;
+        options.beam_threshold = beam_threshold;
+        renderer = host::make_renderer(options);
+        renderer->setup(scene);
+    }
+    double render(const host::ScreenScene& scene) {
+        frame.clear();
+        stats = {};
+        return host::render_frame(*renderer, scene, frame, stats).wall_ms;
+    }
+};
+
+// One Embree frame, timed like render_frame: wall-clock ms.
+template <class Trace>
+double time_embree(Trace&& trace) {
+    const auto start = std::chrono::steady_clock::now();
+    trace();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+uint64_t differing_pixels(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+    uint64_t n = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        n += a[i] != b[i];
+    return n;
+}
+
+double mrays(double pixels, double ms) {
+    return ms > 0 ? pixels / ms / 1000.0 : 0;
+}
+
+std::string ratio(double num, double den) {
+    return den > 0 ? fmt::format("{:.2f}", num / den) : "";
+}
+
+std::string agreement_cell(const IdAgreement& a) {
+    return fmt::format("{:.4f}% ({} px: {} edge, {} diag, {} inside)", 100.0 * a.agreement(),
+                       a.differ, a.on_boundary, a.diagonal, a.interior);
+}
+
+}  // namespace
+
+std::vector<uint32_t> our_ray_face_ids(const RayScene& scene, const std::string& method,
+                                       double beam_threshold) {
+    Ours ours(scene.screen, method, beam_threshold);
+    ours.render(scene.screen);
+    return controller_face_ids(ours.frame);
+}
+
+RayRow measure_ray_side_by_side(const RayScene& scene, const RaySideBySideOptions& options) {
+    const host::ScreenScene& s = scene.screen;
+    // set-up, untimed: Embree's BVHs and our grids
+    EmbreeOptions eo;
+    eo.quality = options.quality;
+    EmbreeTracer embree(*scene.world, eo);
+    eo.robust = true;
+    EmbreeTracer robust(*scene.world, eo);
+    Ours raytrace(s, "raytrace", options.beam_threshold);
+    Ours beam(s, "beam", options.beam_threshold);
+
+    // warm-up, then interleaved rounds: Embree single, raytrace, packets, beam, robust, ...
+    std::vector<uint32_t> single_ids, packet_ids, robust_ids;
+    std::vector<double> single_t, packet_t, robust_t;
+    for (int round = 0; round < options.warmup + options.repeat; ++round) {
+        const bool timed = round >= options.warmup;
+        const double t1 = time_embree([&] { embree.trace_single(single_ids); });
+        const double t_ray = raytrace.render(s);
+        const double t16 = time_embree([&] { embree.trace_packets(packet_ids); });
+        const double t_beam = beam.render(s);
+        const double t_robust = time_embree([&] { robust.trace_single(robust_ids); });
+        if (!timed) continue;
+        single_t.push_back(t1);
+        raytrace.samples.push_back(t_ray);
+        packet_t.push_back(t16);
+        beam.samples.push_back(t_beam);
+        robust_t.push_back(t_robust);
+    }
+
+    RayRow row;
+    row.scene = scene.name;
+    row.width = s.width;
+    row.height = s.height;
+    row.faces = s.face_count;
+    row.triangles = embree.triangles();
+    row.embree = embree.description();
+    row.embree_single_ms = median_of(single_t);
+    row.embree_packets_ms = median_of(packet_t);
+    row.embree_robust_ms = median_of(robust_t);
+    row.raytrace_ms = median_of(raytrace.samples);
+    row.beam_ms = median_of(beam.samples);
+
+    // agreement, off the clock, from the last frames
+    const std::vector<uint32_t> ours = controller_face_ids(raytrace.frame);
+    row.vs_robust = compare_with_boundaries(s.width, s.height, ours, robust_ids);
+    row.vs_default = compare_with_boundaries(s.width, s.height, ours, single_ids);
+    row.packets_vs_single = differing_pixels(packet_ids, single_ids);
+    row.beam_vs_raytrace = differing_pixels(controller_face_ids(beam.frame), ours);
+
+    // our counters, from the last frames
+    const host::Counters& rc = raytrace.stats.counters;
+    row.rays = rc.get("rays");
+    row.cells = rc.get("cells_visited");
+    row.face_tests = rc.get("ray_face_tests");
+    row.beam_rays = beam.stats.counters.get("rays");
+    row.pixels_by_beams = beam.stats.counters.get("pixels_by_beams");
+    return row;
+}
+
+std::string ray_csv_header() {
+    return "scene,width,height,faces,triangles,embree_single_ms,embree_packets_ms,"
+           "embree_robust_ms,raytrace_ms,beam_ms,embree_single_mrays,embree_packets_mrays,"
+           "embree_robust_mrays,raytrace_mrays,beam_mpixels,raytrace_over_embree_single,"
+           "raytrace_over_embree_robust,beam_over_embree_single,beam_over_embree_packets,"
+           "vs_robust_differ,vs_robust_coverage,vs_robust_boundary,vs_robust_diagonal,"
+           "vs_robust_interior,vs_default_differ,vs_default_coverage,vs_default_boundary,"
+           "vs_default_diagonal,vs_default_interior,"
+           "packets_vs_single,beam_vs_raytrace,raytrace_rays,cells_per_ray,face_tests_per_ray,"
+           "beam_rays,pixels_by_beams";
+}
+
+std::string ray_csv_row(const RayRow& r) {
+    const double px = r.pixels();
+    const IdAgreement &a = r.vs_robust, &b = r.vs_default;
+    const double rays = r.rays ? double(r.rays) : 1.0;
+    return fmt::format(
+        "\"{}\",{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.2f},{:.2f},{:.2f},"
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.2f},{},{}",
+        r.scene, r.width, r.height, r.faces, r.triangles, r.embree_single_ms, r.embree_packets_ms,
+        r.embree_robust_ms, r.raytrace_ms, r.beam_ms, mrays(px, r.embree_single_ms),
+        mrays(px, r.embree_packets_ms), mrays(px, r.embree_robust_ms), mrays(px, r.raytrace_ms),
+        mrays(px, r.beam_ms), ratio(r.embree_single_ms, r.raytrace_ms),
+        ratio(r.embree_robust_ms, r.raytrace_ms), ratio(r.embree_single_ms, r.beam_ms),
+        ratio(r.embree_packets_ms, r.beam_ms), a.differ, a.coverage, a.on_boundary, a.diagonal,
+        a.interior, b.differ, b.coverage, b.on_boundary, b.diagonal, b.interior,
+        r.packets_vs_single, r.beam_vs_raytrace, r.rays, double(r.cells) / rays,
+        double(r.face_tests) / rays, r.beam_rays, r.pixels_by_beams);
+}
+
+std::string ray_human_table(const std::vector<RayRow>& rows) {
+    std::string out = fmt::format(
+        "{:<32} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>6}\n", "scene", "faces",
+        "embree1", "embree16", "robust1", "raytrace", "beam", "rt/e1", "rt/rb", "bm/e1", "bm/e16");
+    for (const RayRow& r : rows)
+        out += fmt::format(
+            "{:<32} {:>6} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>6} {:>6} {:>6} {:>6}\n",
+            r.scene, r.faces, r.embree_single_ms, r.embree_packets_ms, r.embree_robust_ms,
+            r.raytrace_ms, r.beam_ms, ratio(r.embree_single_ms, r.raytrace_ms),
+            ratio(r.embree_robust_ms, r.raytrace_ms), ratio(r.embree_single_ms, r.beam_ms),
+            ratio(r.embree_packets_ms, r.beam_ms));
+    out += "ms: median wall-clock per frame; ratios: Embree time / ours (> 1: ours is faster)\n\n";
+
+    out += fmt::format("{:<32} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "Mrays/s",
+                       "embree1", "embree16", "robust1", "raytrace", "beam*", "cells/r", "tests/r",
+                       "beam rays");
+    for (const RayRow& r : rows) {
+        const double px = r.pixels(), rays = r.rays ? double(r.rays) : 1.0;
+        out += fmt::format(
+            "{:<32} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.2f} {:>9}\n",
+            r.scene, mrays(px, r.embree_single_ms), mrays(px, r.embree_packets_ms),
+            mrays(px, r.embree_robust_ms), mrays(px, r.raytrace_ms), mrays(px, r.beam_ms),
+            double(r.cells) / rays, double(r.face_tests) / rays, r.beam_rays);
+    }
+    out +=
+        "beam*: Mpixels/s (it traces fewer rays than pixels); cells/r, tests/r: our raytrace's\n"
+        "grid cells visited and ray-face tests per ray\n\n";
+
+    out += fmt::format("{:<32} {:<46} {:<46} {:>9} {:>9}\n", "agreement (our raytrace)",
+                       "vs Embree robust", "vs Embree default", "e16!=e1", "beam!=rt");
+    for (const RayRow& r : rows)
+        out +=
+            fmt::format("{:<32} {:<46} {:<46} {:>9} {:>9}\n", r.scene, agreement_cell(r.vs_robust),
+                        agreement_cell(r.vs_default), r.packets_vs_single, r.beam_vs_raytrace);
+    out +=
+        "edge: on an id boundary of ours (a 4-neighbour with another id); diag: another id\n"
+        "only diagonally; inside: all 8 neighbours have ours' id\n";
+    return out;
+}
+
+}  // namespace fb89::peers

@@ -1,0 +1,100 @@
+// Peers: Embree 3 (bench/peers/embree_tracer.h), tracing exactly our pixel rays in float,
+// sees what our ray tracer sees. In its robust (watertight) mode it agrees with our
+// `raytrace` on at least 99.5% of the pixels, and every disagreement lies on an id boundary
+// of ours, where single precision and a tie-break may pick the other face of an edge. Its
+// 4x4 coherent packets give exactly the ids of its single rays.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bench/peers/embree_tracer.h"
+#include "bench/peers/exactness.h"
+#include "bench/peers/peer_scenes.h"
+#include "bench/peers/ray_side_by_side.h"
+
+namespace fb89::peers {
+namespace {
+
+constexpr int kWidth = 256, kHeight = 195;  // 195 rows: the last row of packets is partial
+
+// Loads the scene at the test size; false when its file is not there yet.
+bool load(const char* name, RayScene& scene) {
+    const std::filesystem::path file = std::string(FB89_SCENES_DIR) + "/" + name + ".json";
+    if (!std::filesystem::exists(file)) return false;
+    scene = ray_file_scene(file, kWidth, kHeight);
+    return true;
+}
+
+void expect_robust_agrees_with_raytrace(const char* name) {
+    RayScene scene;
+    if (!load(name, scene)) GTEST_SKIP() << name << ".json does not exist yet";
+    EmbreeOptions options;
+    options.robust = true;
+    EmbreeTracer embree(*scene.world, options);
+    std::vector<uint32_t> theirs;
+    embree.trace_single(theirs);
+    const std::vector<uint32_t> ours = our_ray_face_ids(scene, "raytrace");
+
+    const IdAgreement a = compare_with_boundaries(kWidth, kHeight, ours, theirs);
+    EXPECT_GE(a.agreement(), 0.995) << name << ": " << a.differ << " pixels differ";
+    EXPECT_EQ(a.interior, 0u) << name << ": first interior disagreement " << a.first_interior;
+    // not a vacuous agreement: the scene fills most of the image
+    uint64_t covered = 0;
+    for (uint32_t id : ours)
+        covered += id != 0;
+    EXPECT_GT(covered, ours.size() / 2) << name;
+}
+
+void expect_packets_equal_single_rays(const char* name) {
+    RayScene scene;
+    if (!load(name, scene)) GTEST_SKIP() << name << ".json does not exist yet";
+    for (bool robust : {false, true}) {
+        EmbreeOptions options;
+        options.robust = robust;
+        EmbreeTracer embree(*scene.world, options);
+        std::vector<uint32_t> single, packets;
+        embree.trace_single(single);
+        embree.trace_packets(packets);
+        ASSERT_EQ(single.size(), packets.size());
+        uint64_t differ = 0;
+        for (size_t i = 0; i < single.size(); ++i)
+            differ += single[i] != packets[i];
+        EXPECT_EQ(differ, 0u) << name << (robust ? ", robust" : ", default");
+    }
+}
+
+TEST(EmbreePeer, RobustAgreesWithOurRayTracerOnTheCornellBox) {
+    expect_robust_agrees_with_raytrace("cornell_box");
+}
+
+TEST(EmbreePeer, RobustAgreesWithOurRayTracerOnSceneG) {
+    expect_robust_agrees_with_raytrace("G");
+}
+
+TEST(EmbreePeer, PacketsGiveTheIdsOfSingleRaysOnTheCornellBox) {
+    expect_packets_equal_single_rays("cornell_box");
+}
+
+TEST(EmbreePeer, PacketsGiveTheIdsOfSingleRaysOnSceneG) {
+    expect_packets_equal_single_rays("G");
+}
+
+TEST(EmbreePeer, SeesTheFacesOfEveryPieceUnderTheirIds) {
+    // a fan-triangulated world scene: every id Embree reports is a face id + 1 of the scene
+    RayScene scene = random_world_triangles(kWidth, kHeight, 200, 7);
+    EmbreeTracer embree(*scene.world);
+    EXPECT_EQ(embree.triangles(), 200u);
+    std::vector<uint32_t> ids;
+    embree.trace_single(ids);
+    uint64_t hits = 0;
+    for (uint32_t id : ids) {
+        EXPECT_LE(id, scene.world->face_count);
+        hits += id != 0;
+    }
+    EXPECT_GT(hits, 0u);
+}
+
+}  // namespace
+}  // namespace fb89::peers
