@@ -34,7 +34,7 @@ struct RenderOptions {
     double approx_epsilon = 0;
     double beam_threshold = 464.159;  // beam: Expr. 2.7 threshold (inf: down to pixels)
     int max_reflections = 8;      // raytrace and beam: mirror bounces followed
-    double grid_density = 8;      // raytrace and beam: uniform-grid cells per face piece
+    double grid_density = 0.5;    // raytrace and beam: top-level grid cells per face piece
 };
 
 // Throws std::invalid_argument naming the known methods when `method` is unknown.

@@ -30,6 +30,9 @@ Box piece_box(const TraceScene& scene, const TraceFace& f, double margin) {
 UniformGrid::UniformGrid(const TraceScene& scene, double density) {
     const auto& faces = scene.faces();
     const double margin = scene.tolerance();
+    std::vector<uint32_t> all(faces.size());
+    for (uint32_t p = 0; p < all.size(); ++p)
+        all[p] = p;
     // the box around every piece, never flat
     if (faces.empty()) {
         m_lo = glm::dvec3(-1);
@@ -52,10 +55,37 @@ UniformGrid::UniformGrid(const TraceScene& scene, double density) {
             m_hi[a] += grow;
         }
     }
-    extent = m_hi - m_lo;
+    build(scene, all, density);
+
+    // crowded cells get a finer grid of their own for rays to walk
+    m_sub_of.assign(cell_count(), -1);
+    for (uint32_t c = 0; c < cell_count(); ++c) {
+        const auto list = cell(c);
+        if (list.size() <= kCrowded) continue;
+        const int x = static_cast<int>(c % m_n.x), y = static_cast<int>((c / m_n.x) % m_n.y),
+                  z = static_cast<int>(c / (static_cast<uint32_t>(m_n.x) * m_n.y));
+        const glm::dvec3 lo = cell_lo(x, y, z) - margin, hi = cell_lo(x, y, z) + m_cell + margin;
+        m_sub_of[c] = static_cast<int32_t>(m_subs.size());
+        m_subs.push_back(std::unique_ptr<UniformGrid>(new UniformGrid(
+            scene, std::vector<uint32_t>(list.begin(), list.end()), lo, hi, kSubDensity)));
+    }
+}
+
+UniformGrid::UniformGrid(const TraceScene& scene, const std::vector<uint32_t>& pieces,
+                         const glm::dvec3& lo, const glm::dvec3& hi, double density)
+    : m_lo(lo), m_hi(hi) {
+    build(scene, pieces, density);
+}
+
+void UniformGrid::build(const TraceScene& scene, const std::vector<uint32_t>& pieces,
+                        double density) {
+    const auto& faces = scene.faces();
+    const double margin = scene.tolerance();
+    const glm::dvec3 extent = m_hi - m_lo;
+    const double largest = std::max({extent.x, extent.y, extent.z});
 
     // cell sizing: about `density` cells per piece, cubic where the box allows
-    const double target = std::max(1.0, density * static_cast<double>(faces.size()));
+    const double target = std::max(1.0, density * static_cast<double>(pieces.size()));
     // an axis thinner than a cell gets one cell, and the others share the count
     bool thin[3] = {false, false, false};
     double side = 0;
@@ -82,7 +112,7 @@ UniformGrid::UniformGrid(const TraceScene& scene, double density) {
     const size_t cells = static_cast<size_t>(m_n.x) * m_n.y * m_n.z;
     std::vector<std::vector<uint32_t>> lists(cells);
     const glm::dvec3 half = m_cell * 0.5;
-    for (uint32_t p = 0; p < faces.size(); ++p) {
+    for (uint32_t p : pieces) {
         const TraceFace& f = faces[p];
         const Box b = piece_box(scene, f, margin);
         glm::ivec3 first, last;

@@ -3,18 +3,24 @@
 // along a ray by Amanatides and Woo's 3D-DDA (1987). The beam tracer and the ray tracer
 // share it: rays walk it, beam queries take the cells of a box.
 //
-// How ours is built: about `density` cells per piece (8 by default), cubic cells as far as the
+// How ours is built: about `density` cells per piece (0.5 by default: coarse, since
+// crowded cells are refined, below), cubic cells as far as the
 // box's shape allows, at most 256 per axis. A piece is listed in a cell when its bounding box
 // overlaps the cell and its plane passes through it, both with a margin of the scene's
 // tolerance, so a hit near a cell boundary is never lost to rounding. The walk hands each
 // cell and the distance at which the ray leaves it to a visitor; the visitor stops the walk
 // only when its hit lies no farther than that exit (REFERENCES.md: a hit found in a cell may
 // lie beyond it). Direction components of zero are guarded.
+//
+// Two levels (a "hierarchical uniform grid", as in Jevans and Wyvill 1989): a cell listing
+// more than kCrowded pieces carries a grid of its own, so a small detailed object in a large
+// room (the goblets of H, the shell of I) does not force fine cells on the whole room.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,7 +32,7 @@ namespace fb89::host {
 
 class UniformGrid {
   public:
-    explicit UniformGrid(const TraceScene& scene, double density = 8.0);
+    explicit UniformGrid(const TraceScene& scene, double density = 0.5);
 
     const glm::dvec3& lo() const { return m_lo; }
     const glm::dvec3& hi() const { return m_hi; }
@@ -46,29 +52,46 @@ class UniformGrid {
     glm::dvec3 cell_lo(int x, int y, int z) const { return m_lo + glm::dvec3(x, y, z) * m_cell; }
     const glm::dvec3& cell_size() const { return m_cell; }
 
+    // The finer grid of a crowded cell (more than kCrowded pieces), or null. It covers the
+    // cell's box and lists the cell's pieces again; rays walk it inside the cell, queries
+    // need not (the cell's own list is complete).
+    const UniformGrid* sub(uint32_t cell) const {
+        return m_sub_of.empty() || m_sub_of[cell] < 0 ? nullptr : m_subs[m_sub_of[cell]].get();
+    }
+    static constexpr size_t kCrowded = 8;
+    static constexpr double kSubDensity = 8;  // cells per piece of a crowded cell's grid
+
     // Walks the cells the ray crosses for tmin < t < tmax, in order; `visit(cell index,
     // t_exit)` returns true to stop. Returns the number of cells visited.
     template <class Visit>
     uint64_t walk(const Ray& ray, double tmin, double tmax, Visit&& visit) const;
 
   private:
+    UniformGrid(const TraceScene& scene, const std::vector<uint32_t>& pieces, const glm::dvec3& lo,
+                const glm::dvec3& hi, double density);
+    void build(const TraceScene& scene, const std::vector<uint32_t>& pieces, double density);
+
     glm::dvec3 m_lo{0}, m_hi{0}, m_cell{1};
     glm::ivec3 m_n{1};
     std::vector<uint32_t> m_start;  // per cell, into m_items; one more than cells
     std::vector<uint32_t> m_items;  // piece indices
+    std::vector<int32_t> m_sub_of;  // per cell: index into m_subs, or -1
+    std::vector<std::unique_ptr<UniformGrid>> m_subs;
 };
 
 template <class Visit>
 uint64_t UniformGrid::walk(const Ray& ray, double tmin, double tmax, Visit&& visit) const {
     // clip the ray to the grid's box
     double t0 = tmin, t1 = tmax;
+    double inv[3];
     for (int a = 0; a < 3; ++a) {
         if (ray.dir[a] == 0) {
             if (ray.origin[a] < m_lo[a] || ray.origin[a] > m_hi[a]) return 0;
+            inv[a] = 0;
             continue;
         }
-        const double inv = 1.0 / ray.dir[a];
-        double ta = (m_lo[a] - ray.origin[a]) * inv, tb = (m_hi[a] - ray.origin[a]) * inv;
+        inv[a] = 1.0 / ray.dir[a];
+        double ta = (m_lo[a] - ray.origin[a]) * inv[a], tb = (m_hi[a] - ray.origin[a]) * inv[a];
         if (ta > tb) std::swap(ta, tb);
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);
@@ -85,13 +108,13 @@ uint64_t UniformGrid::walk(const Ray& ray, double tmin, double tmax, Visit&& vis
         if (ray.dir[a] > 0) {
             step[a] = 1;
             end[a] = m_n[a];
-            next[a] = (m_lo[a] + (cell[a] + 1) * m_cell[a] - ray.origin[a]) / ray.dir[a];
-            delta[a] = m_cell[a] / ray.dir[a];
+            next[a] = (m_lo[a] + (cell[a] + 1) * m_cell[a] - ray.origin[a]) * inv[a];
+            delta[a] = m_cell[a] * inv[a];
         } else if (ray.dir[a] < 0) {
             step[a] = -1;
             end[a] = -1;
-            next[a] = (m_lo[a] + cell[a] * m_cell[a] - ray.origin[a]) / ray.dir[a];
-            delta[a] = -m_cell[a] / ray.dir[a];
+            next[a] = (m_lo[a] + cell[a] * m_cell[a] - ray.origin[a]) * inv[a];
+            delta[a] = -m_cell[a] * inv[a];
         } else {
             step[a] = 0;
             end[a] = -2;

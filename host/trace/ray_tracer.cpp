@@ -25,8 +25,8 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
     const RaySpace space(ray.dir);
     Hit best{INFINITY, kNoFace};
     uint64_t tests = 0, ties = 0;
-    counts.cells += m_grid.walk(ray, tmin, INFINITY, [&](uint32_t cell, double t_exit) {
-        for (uint32_t piece : m_grid.cell(cell)) {
+    auto test_list = [&](std::span<const uint32_t> pieces) {
+        for (uint32_t piece : pieces) {
             if (m_mailbox[piece] == serial || piece == skip) continue;
             m_mailbox[piece] = serial;
             ++tests;
@@ -38,8 +38,24 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
             }
             best = {t, piece};
         }
+    };
+    uint64_t cells = 0;
+    cells += m_grid.walk(ray, tmin, INFINITY, [&](uint32_t cell, double t_exit) {
+        if (const UniformGrid* sub = m_grid.sub(cell)) {
+            // a crowded cell: walk its own grid; should rounding let the ray miss that
+            // grid's box, test the whole cell
+            const uint64_t inner = sub->walk(ray, tmin, t_exit, [&](uint32_t c, double t) {
+                test_list(sub->cell(c));
+                return best.t <= t;
+            });
+            if (inner == 0) test_list(m_grid.cell(cell));
+            cells += inner;
+        } else {
+            test_list(m_grid.cell(cell));
+        }
         return best.t <= t_exit;  // a hit beyond this cell may yet be beaten
     });
+    counts.cells += cells;
     counts.face_tests += tests;
     counts.ties += ties;
     return best;
@@ -72,7 +88,10 @@ void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) co
         skip = hit.piece;
         tmin = m_scene.tolerance() / glm::length(ray.dir);
     }
-    if (out.count > 0) out.color = path_color(m_scene, out.hits, out.count);
+    if (out.count == 1)  // the common path, its colour worked out in advance
+        out.color = m_scene.faces()[out.hits[0].piece].end_color[out.hits[0].back ? 1 : 0];
+    else if (out.count > 1)
+        out.color = path_color(m_scene, out.hits, out.count);
 }
 
 uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::CommandSink& sink) {

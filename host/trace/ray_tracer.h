@@ -84,7 +84,7 @@ struct TraceSetup {
 
 struct TraceOptions {
     int max_reflections = 8;
-    double grid_density = 8.0;  // grid cells per face piece (RESULTS.md: best on H)
+    double grid_density = 0.5;  // top-level grid cells per face piece (RESULTS.md)
 };
 
 // `raytrace`: the ray tracer alone.

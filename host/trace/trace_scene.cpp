@@ -71,6 +71,11 @@ TraceScene::TraceScene(const Scene& scene, bool id_colors, int max_reflections)
         }
         m_faces.push_back(f);
     }
+    for (uint32_t p = 0; p < m_faces.size(); ++p)
+        for (int side = 0; side < 2; ++side) {
+            const PathHit only{p, side == 1};
+            m_faces[p].end_color[side] = path_color(*this, &only, 1);
+        }
     if (!m_orthographic) {
         const Camera& cam = scene.camera;
         m_eye = cam.eye;

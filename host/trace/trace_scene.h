@@ -39,8 +39,9 @@ struct TraceFace {
     glm::dvec3 normal{0};  // unit, by Newell's method
     double plane = 0;      // dot(normal, p) for p on the face
     uint32_t id = 0;
-    double mirror = 0;                      // reflectance in [0, 1]
-    std::array<glm::dvec3, 2> local_color;  // seen from the normal's side [0], the other [1]
+    double mirror = 0;                       // reflectance in [0, 1]
+    std::array<glm::dvec3, 2> local_color;   // seen from the normal's side [0], the other [1]
+    std::array<protocol::Rgb, 2> end_color;  // path_color() of a path that ends here at once
 };
 
 inline constexpr uint32_t kNoFace = UINT32_MAX;
