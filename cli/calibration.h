@@ -12,7 +12,7 @@ inline constexpr double kPaperThreshold = 0.04;
 // The beam-ray hybrid's Expr. 2.7 threshold before `fb89 calibrate --method beam` has run.
 // The paper gives no value; this is the one `calibrate --method beam` chose on G, H, I and
 // the mirrored Cornell box when the figures were made (docs/figures/calibration.json).
-inline constexpr double kDefaultBeamThreshold = 464.159;
+inline constexpr double kDefaultBeamThreshold = 1000;
 
 // Both thresholds live in one file: "threshold" (the Warnock/Z-buffer hybrid's) and
 // "beam_threshold" (the beam-ray hybrid's), each with the details of its calibration.

@@ -32,7 +32,7 @@ struct RenderOptions {
     std::string depth_estimate = "window";  // hybrid: "window" or "scene"
     int approx_min_side = 0;                // Warnock and hybrid: approximate fills (0: exact)
     double approx_epsilon = 0;
-    double beam_threshold = 464.159;  // beam: Expr. 2.7 threshold (inf: down to pixels)
+    double beam_threshold = 1000;  // beam: Expr. 2.7 threshold (inf: down to pixels)
     int max_reflections = 8;      // raytrace and beam: mirror bounces followed
     double grid_density = 0.5;    // raytrace and beam: top-level grid cells per face piece
 };
