@@ -36,7 +36,7 @@ struct RenderArgs {
     std::string depth_estimate = "window";
     std::string beam_threshold = "calibrated";
     int reflections = 8;
-    double grid_density = 8;
+    double grid_density = 0.5;
     std::string mask;
     int approx_min_side = 0;
     double approx_epsilon = 0;
@@ -286,8 +286,10 @@ void register_render(CLI::App& app, int& exit_code) {
                     "Raytrace and beam: mirror bounces followed (0: primary visibility)")
         ->check(CLI::Range(0, 16))
         ->capture_default_str();
-    sub->add_option("--grid-density", args->grid_density,
-                    "Raytrace and beam: uniform-grid cells per face piece")
+    sub->add_option(
+           "--grid-density", args->grid_density,
+           "Raytrace and beam: top-level grid cells per face piece (crowded cells get a grid of "
+           "their own)")
         ->check(CLI::Range(0.01, 1000.0))
         ->capture_default_str();
     sub->add_option("--mask", args->mask,
