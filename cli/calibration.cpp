@@ -1,5 +1,6 @@
 #include "cli/calibration.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -44,8 +45,10 @@ std::optional<double> read_threshold(const char* key) {
     if (j.is_null() || !j.contains(key)) return std::nullopt;
     const auto& v = j.at(key);
     if (v.is_number() && v.get<double>() >= 0) return v.get<double>();
-    throw std::runtime_error(fmt::format(
-        "{}: \"{}\" must be a number >= 0; run fb89 calibrate again", calibration_path(), key));
+    if (v == "inf") return std::numeric_limits<double>::infinity();  // JSON has no infinity
+    throw std::runtime_error(
+        fmt::format("{}: \"{}\" must be a number >= 0 or \"inf\"; run fb89 calibrate again",
+                    calibration_path(), key));
 }
 
 // Writes `key` and its details, keeping what the file says of the other threshold.
@@ -58,7 +61,10 @@ void save_threshold(const char* key, const char* details_key, double threshold,
         j = nullptr;  // a broken file is replaced
     }
     if (j.is_null()) j = nlohmann::json::object();
-    j[key] = threshold;
+    if (std::isinf(threshold))
+        j[key] = "inf";  // JSON has no infinity
+    else
+        j[key] = threshold;
     j[details_key] = nlohmann::json::parse(details_json);
     write_json(calibration_path(), j);
 }

@@ -52,5 +52,6 @@ void register_trim(CLI::App& app, int& exit_code);
 void register_diff(CLI::App& app, int& exit_code);
 void register_controller(CLI::App& app, int& exit_code);
 void register_view(CLI::App& app, int& exit_code);
+void register_radiosity(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

@@ -14,6 +14,9 @@
 //   fig4.7  beam-ray frames of G, H and I with the ray-traced pixels blacked out (paper
 //           Figs. 4.7, 4.10), written to --out-dir.
 //   beam-threshold  time and pixels by beams against the Expr. 2.7 threshold.
+//   radiosity  flux tracing against the decahedral hybrid on the garish room and the
+//           programmer's cell: rays, volume queries, form-factor time (the paper's §5 table).
+//   ff-error, radiosity-error  form-factor (and radiosity) error against time per method.
 #include <unistd.h>
 
 #include <iostream>
@@ -39,6 +42,8 @@ struct ExperimentArgs {
     std::string beam_threshold = "calibrated";
     std::vector<std::string> sizes;
     std::string out_dir = "out/masks";
+    int patches = 0;
+    int reference_rays = 4;
     bool quiet = false;
 };
 
@@ -48,6 +53,8 @@ std::vector<std::string> default_scenes(const std::string& name) {
     if (name == "fig4.11") return {"scenes/H.json"};
     if (name == "fig4.12") return {"scenes/I.json"};
     if (name == "fig4.7") return {"scenes/G.json", "scenes/H.json", "scenes/I.json"};
+    if (name == "radiosity" || name == "ff-error" || name == "radiosity-error")
+        return {"scenes/garish_room.json", "scenes/programmers_cell.json"};
     if (name == "beam-threshold")
         return {"scenes/G.json", "scenes/H.json", "scenes/I.json", "scenes/cornell_mirror.json"};
     std::vector<std::string> out;
@@ -88,10 +95,15 @@ int run_experiment(const ExperimentArgs& args) {
                                       args.out_dir);
     else if (args.name == "beam-threshold")
         table = experiment_beam_threshold(settings, beam_threshold_ramp());
+    else if (args.name == "radiosity")
+        table = experiment_radiosity(settings, args.patches);
+    else if (args.name == "ff-error" || args.name == "radiosity-error")
+        table = experiment_form_factor_error(settings, args.patches > 0 ? args.patches : 250,
+                                             args.reference_rays, args.name == "radiosity-error");
     else
         throw UsageError(fmt::format(
             "unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, hybrid, accuracy, fig4.7, "
-            "fig4.8, fig4.11, fig4.12, beam-threshold)",
+            "fig4.8, fig4.11, fig4.12, beam-threshold, radiosity, ff-error, radiosity-error)",
             args.name));
 
     if (!args.csv.empty()) write_text(args.csv, table.csv());
@@ -110,7 +122,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "scene), accuracy (approximate fills: time vs pixels wrong), fig4.8 / "
                     "fig4.11 / fig4.12 (beam-ray hybrid vs ray tracer against resolution on G, "
                     "H, I), fig4.7 (masks of ray-traced pixels), beam-threshold (time and "
-                    "pixels by beams vs Expr. 2.7 threshold)")
+                    "pixels by beams vs Expr. 2.7 threshold), radiosity (flux vs decahedral "
+                    "hybrid), ff-error and radiosity-error (error vs time per method)")
         ->required();
     sub->add_option("scenes", args->scenes, "Scenes (default scenes/A.json ... scenes/F.json)");
     sub->add_option("--csv", args->csv, "Write the results as CSV ('-' for stdout)");
@@ -130,6 +143,16 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "fig4.8/4.11/4.12: image sizes WxH (default 256x195 512x390 1024x780 "
                     "2048x1560)");
     sub->add_option("--out-dir", args->out_dir, "fig4.7: where the frames and masks go")
+        ->capture_default_str();
+    sub->add_option("--patches", args->patches,
+                    "radiosity, ff-error, radiosity-error: patches asked per room (0: what "
+                    "gives the paper's 832 and 1,348 on the two rooms; 250 for the error "
+                    "experiments)")
+        ->check(CLI::Range(0, 100000));
+    sub->add_option("--reference-rays", args->reference_rays,
+                    "ff-error, radiosity-error: the reference's points per patch side (n^4 "
+                    "rays per pair)")
+        ->check(CLI::Range(2, 16))
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_experiment(*args); });

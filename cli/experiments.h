@@ -90,4 +90,14 @@ Table experiment_beam_threshold(const ExperimentSettings& settings,
                                 const std::vector<double>& thresholds);
 std::vector<double> beam_threshold_ramp();  // 0, 0.01 ... 1000 on a log scale, inf
 
+// §5 (cli/radiosity_experiments.cpp). The paper's table: rays, volume queries and
+// form-factor time of flux tracing and the decahedral hybrid per room, interleaved; about
+// `patches` patches per room (0: the paper's count for the bundled rooms, else 800).
+Table experiment_radiosity(const ExperimentSettings& settings, int patches);
+// Form-factor error against time per method (flux, hybrid, disk, hemicubes), against a
+// reference of exact form factors times fractional visibility from reference_n^4 rays per
+// pair; with `solve`, also the radiosity error of each method's solution.
+Table experiment_form_factor_error(const ExperimentSettings& settings, int patches,
+                                   int reference_n, bool solve);
+
 }  // namespace fb89::cli

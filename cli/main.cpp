@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     register_diff(app, exit_code);
     register_controller(app, exit_code);
     register_view(app, exit_code);
+    register_radiosity(app, exit_code);
 
     try {
         app.parse(argc, argv);

@@ -4,6 +4,7 @@
 // the same commands then go, as a stream, to an `fb89 controller` process on that socket;
 // the socket is opened only after the host has finished, so no host time includes it.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -182,7 +183,10 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
         j["threshold"] = resolve_threshold(args.threshold);
         j["depth_estimate"] = args.depth_estimate;
     }
-    if (args.method == "beam") j["beam_threshold"] = resolve_beam_threshold(args.beam_threshold);
+    if (args.method == "beam") {
+        const double t = resolve_beam_threshold(args.beam_threshold);
+        j["beam_threshold"] = std::isinf(t) ? nlohmann::json("inf") : nlohmann::json(t);
+    }
     if (args.method == "beam" || args.method == "raytrace") j["reflections"] = args.reflections;
     j["host"] = run.stats.to_json();
     j["host"]["commands"] = run.commands.size();

@@ -211,13 +211,43 @@ def beam_threshold(folder):
     fig.savefig(os.path.join(folder, "beam_threshold.png"), dpi=110)
 
 
+def ff_error(folder):
+    """§5: form-factor and radiosity error against time per method."""
+    rows = read(os.path.join(folder, "radiosity_error.csv"))
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    for column, ax, label in (("ff_error", axes[0], "form-factor error (area-weighted mean |F - F_ref| row sum)"),
+                              ("radiosity_rms_error", axes[1], "radiosity error (relative RMS)")):
+        for scene, marker in zip(scenes, "os^v"):
+            sub = [r for r in rows if r["scene"] == scene and r[column]]
+            ax.scatter([float(r["cpu_ms"]) for r in sub], [float(r[column]) for r in sub], marker=marker,
+                       label=scene_label(scene))
+            for r in sub:
+                ax.annotate(r["method"], (float(r["cpu_ms"]), float(r[column])), textcoords="offset points",
+                            xytext=(4, 3), fontsize=7)
+        ref = [float(r["reference_error"]) for r in rows]
+        if ref:
+            ax.axhline(max(ref), color="gray", linestyle=":", linewidth=1) if column == "ff_error" else None
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("form-factor time, ms (median CPU)")
+        ax.set_ylabel(label)
+        ax.grid(which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Speed against accuracy in radiosity (dotted: the reference's own error estimate)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "radiosity_error.png"), dpi=110)
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "docs/figures"
     if os.path.exists(os.path.join(folder, "fig4_8.csv")):
         fig4_8(folder)
     if os.path.exists(os.path.join(folder, "beam_threshold.csv")):
         beam_threshold(folder)
-    if len(sys.argv) > 2 and sys.argv[2] == "--only-section-4":
+    if os.path.exists(os.path.join(folder, "radiosity_error.csv")):
+        ff_error(folder)
+    if len(sys.argv) > 2 and sys.argv[2].startswith("--only-section"):
         return
     fig2_1(folder)
     fig2_4(folder)

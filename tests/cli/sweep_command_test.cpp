@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_runner.h"
@@ -52,12 +53,13 @@ TEST(SweepCommand, BadArgumentsExitTwo) {
 }
 
 TEST(CalibrateCommand, SavesTheChosenThresholdForRender) {
+    fs::remove(test_dir() / "calibration.json");  // nothing left from a last run
     CliRun r = fb89("calibrate scenes/A.json scenes/C.json --steps 3 --repeat 1");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const double chosen = std::stod(r.out);
     nlohmann::json saved = nlohmann::json::parse(slurp(test_dir() / "calibration.json"));
     EXPECT_DOUBLE_EQ(saved["threshold"].get<double>(), chosen);
-    EXPECT_EQ(saved["scenes"].size(), 2u);
+    EXPECT_EQ(saved["hybrid"]["scenes"].size(), 2u);
     // render picks it up by default
     CliRun render = fb89("render scenes/A.json --method hybrid --size 128x98 -q --stats -");
     ASSERT_EQ(render.exit_code, 0) << render.err;
@@ -99,6 +101,31 @@ TEST(ExperimentCommand, AccuracyCountsNoWrongPixelForExactSettings) {
         EXPECT_EQ(rest.substr(rest.rfind(',') + 1), "0") << line;
     }
     EXPECT_EQ(exact_rows, 3u);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(CalibrateCommand, KeepsBothThresholdsInOneFile) {
+    fs::remove(test_dir() / "calibration.json");
+    CliRun hybrid = fb89("calibrate scenes/A.json --steps 2 --repeat 1");
+    ASSERT_EQ(hybrid.exit_code, 0) << hybrid.err;
+    CliRun beam = fb89("calibrate --method beam scenes/G.json --repeat 1");
+    ASSERT_EQ(beam.exit_code, 0) << beam.err;
+    nlohmann::json saved = nlohmann::json::parse(slurp(test_dir() / "calibration.json"));
+    EXPECT_DOUBLE_EQ(saved["threshold"].get<double>(), std::stod(hybrid.out));
+    // a number, or "inf" (JSON has no infinity)
+    auto as_text = [](const nlohmann::json& v) {
+        return v.is_string() ? v.get<std::string>() : fmt::format("{:.6g}", v.get<double>());
+    };
+    const std::string chosen = beam.out.substr(0, beam.out.find('\n'));
+    EXPECT_EQ(as_text(saved["beam_threshold"]), chosen);
+    EXPECT_EQ(saved["beam"]["scenes"].size(), 1u);
+    // render --method beam picks the beam threshold up
+    CliRun render = fb89("render scenes/G.json --method beam --size 64x49 -q --stats -");
+    ASSERT_EQ(render.exit_code, 0) << render.err;
+    EXPECT_EQ(as_text(nlohmann::json::parse(render.out)["beam_threshold"]), chosen);
 }
 
 }  // namespace

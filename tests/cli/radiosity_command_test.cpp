@@ -1,0 +1,150 @@
+// `fb89 radiosity` as a user runs it: outputs, counters, exit codes and messages.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "controller_sim/png_io.h"
+#include "tests/cli/cli_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using fb89::testing::CliRun;
+using fb89::testing::slurp;
+using fb89::testing::test_dir;
+
+CliRun fb89(const std::string& args) {
+    return fb89::testing::run_fb89(args);
+}
+
+fs::path scratch(const std::string& name) {
+    return test_dir() / name;
+}
+
+const std::string kScenes = FB89_SCENES_DIR;
+const std::string kGarish = kScenes + "/garish_room.json";
+// a small run: a coarse mesh and a small image
+const std::string kSmall = " --patches 120 --size 256x195 ";
+
+void expect_usage_error(const std::string& args, const std::string& names) {
+    CliRun r = fb89(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(names), std::string::npos) << args << "\n" << r.err;
+}
+
+TEST(RadiosityCommand, BadOptionsExitTwoNamingTheOption) {
+    expect_usage_error("radiosity " + kGarish + " --ff beams", "--ff");
+    expect_usage_error("radiosity " + kGarish + " --patches 0", "--patches");
+    expect_usage_error("radiosity " + kGarish + " --patches 100000", "--patches");
+    expect_usage_error("radiosity " + kGarish + " --solver jacobi", "--solver");
+    expect_usage_error("radiosity " + kGarish + " --size 12", "--size");
+    expect_usage_error("radiosity " + kGarish + " --hemicube-res 64", "--hemicube-res");
+    expect_usage_error("radiosity " + kGarish + " --adaptive-passes 2", "--adaptive-passes");
+    expect_usage_error("radiosity " + kGarish + " --adaptive -1", "--adaptive");
+    EXPECT_EQ(fb89("radiosity").exit_code, 2);
+    EXPECT_EQ(fb89("radiosity " + kScenes + "/no_such_scene.json").exit_code, 2);
+}
+
+TEST(RadiosityCommand, SceneWithoutEmitterIsAnError) {
+    CliRun r = fb89("radiosity " + kScenes + "/A.json" + kSmall);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("emits"), std::string::npos) << r.err;
+}
+
+TEST(RadiosityCommand, WritesImageStreamAndStatsWithTheCounters) {
+    fs::path png = scratch("room.png"), stats = scratch("room.json"), stream = scratch("room.fb89"),
+             replayed = scratch("replayed.png");
+    CliRun r = fb89("radiosity " + kGarish + kSmall + "--png " + png.string() + " --stats " +
+                    stats.string() + " --stream " + stream.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* word : {"patches", "visibility", "form factors", "solving", "rendering",
+                             "flux_rays", "DRAW_SPAN"})
+        EXPECT_NE(r.out.find(word), std::string::npos) << word << "\n" << r.out;
+
+    auto image = fb89::controller::read_png(png);
+    EXPECT_EQ(image.width, 256u);
+    EXPECT_EQ(image.height, 195u);
+
+    nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    EXPECT_EQ(j["scene"]["faces"], 29);
+    EXPECT_EQ(j["radiosity"]["ff"], "flux");
+    EXPECT_TRUE(j["radiosity"]["converged"].get<bool>());
+    EXPECT_GT(j["radiosity"]["patches"].get<int>(), 29);
+    const auto& counters = j["host"]["counters"];
+    EXPECT_GT(counters["flux_rays"].get<uint64_t>(), 0u);
+    EXPECT_EQ(counters["flux_rays"], counters["radiosity_facing_pairs"]);
+    for (const char* stage :
+         {"load", "meshing", "visibility", "form_factors", "solving", "rendering", "end_to_end"})
+        EXPECT_TRUE(j["host"]["times"][stage].contains("cpu_ms")) << stage;
+    EXPECT_GT(j["render"]["counters"]["spans"].get<uint64_t>(), 0u);
+    EXPECT_TRUE(j["controller"].is_object());
+
+    // the stream replays to the same picture
+    CliRun replay = fb89("replay " + stream.string() + " -q --png " + replayed.string());
+    ASSERT_EQ(replay.exit_code, 0) << replay.err;
+    EXPECT_EQ(slurp(replayed), slurp(png));
+}
+
+TEST(RadiosityCommand, FluxAndHybridGiveTheSameImage) {
+    fs::path flux = scratch("flux.png"), hybrid = scratch("hybrid.png"),
+             stats = scratch("hybrid.json");
+    ASSERT_EQ(fb89("radiosity " + kGarish + kSmall + "-q --png " + flux.string()).exit_code, 0);
+    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --ff hybrid --png " + hybrid.string() +
+                    " --stats " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(slurp(flux), slurp(hybrid));
+    nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    const auto& counters = j["host"]["counters"];
+    EXPECT_GT(counters["volume_queries"].get<uint64_t>(), 0u);
+    EXPECT_LE(counters["flux_rays"].get<uint64_t>(),
+              counters["radiosity_facing_pairs"].get<uint64_t>());
+}
+
+TEST(RadiosityCommand, BothSolversGiveTheSamePicture) {
+    fs::path gs = scratch("gs.png"), pr = scratch("pr.png");
+    ASSERT_EQ(fb89("radiosity " + kGarish + kSmall + "-q --tolerance 1e-6 --png " + gs.string())
+                  .exit_code,
+              0);
+    ASSERT_EQ(fb89("radiosity " + kGarish + kSmall +
+                   "-q --tolerance 1e-6 --solver progressive --png " + pr.string())
+                  .exit_code,
+              0);
+    auto a = fb89::controller::read_png(gs);
+    auto b = fb89::controller::read_png(pr);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    int worst = 0;
+    for (size_t k = 0; k < a.pixels.size(); ++k)
+        worst = std::max(worst, std::abs(int(a.pixels[k]) - int(b.pixels[k])));
+    EXPECT_LE(worst, 1);
+}
+
+TEST(RadiosityCommand, AdaptiveRefinementAddsPatches) {
+    fs::path stats = scratch("adaptive.json");
+    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --adaptive 0.3 --adaptive-passes 2 " +
+                    "--stats " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    const auto& passes = j["radiosity"]["adaptive"]["patches_per_pass"];
+    ASSERT_GE(passes.size(), 2u);
+    EXPECT_GT(passes[1].get<int>(), passes[0].get<int>());
+    EXPECT_EQ(passes.back(), j["radiosity"]["patches"]);
+}
+
+TEST(RadiosityCommand, OtherFormFactorsRunAndQuietPrintsNothing) {
+    for (const std::string ff : {"disk", "exact", "hemicube --hemicube-res 16"}) {
+        CliRun r = fb89("radiosity " + kScenes +
+                        "/cornell_box.json --patches 60 --size 128x98 -q "
+                        "--ff " +
+                        ff);
+        EXPECT_EQ(r.exit_code, 0) << ff << "\n" << r.err;
+        EXPECT_EQ(r.out, "") << ff;
+    }
+}
+
+}  // namespace
