@@ -86,21 +86,22 @@ void save_beam_calibration(double threshold, const std::string& details_json) {
     save_threshold("beam_threshold", "beam", threshold, details_json);
 }
 
-double resolve_threshold(const std::string& text, std::string* source) {
-    auto said = [&](const char* s) {
+namespace {
+
+// A threshold given on the command line: "inf", a number >= 0, or "calibrated" (the saved
+// one, else `fallback`, described as `fallback_name`). Throws UsageError naming `option`.
+double resolve(const std::string& option, const std::string& text, std::optional<double> saved,
+               double fallback, const char* fallback_name, const char* forms, std::string* source) {
+    auto said = [&](const std::string& s) {
         if (source) *source = s;
     };
-    if (text == "paper") {
-        said("paper");
-        return kPaperThreshold;
-    }
     if (text == "calibrated") {
-        if (auto t = calibrated_threshold()) {
+        if (saved) {
             said("calibrated");
-            return *t;
+            return *saved;
         }
-        said("paper (not calibrated yet)");
-        return kPaperThreshold;
+        said(std::string(fallback_name) + " (not calibrated yet)");
+        return fallback;
     }
     if (text == "inf" || text == "infinity") {
         said("given");
@@ -115,37 +116,27 @@ double resolve_threshold(const std::string& text, std::string* source) {
         }
     } catch (const std::exception&) {
     }
-    throw UsageError(fmt::format(
-        "--threshold: expected a number >= 0, inf, paper or calibrated, got '{}'", text));
+    throw UsageError(fmt::format("{}: expected {}, got '{}'", option, forms, text));
+}
+
+}  // namespace
+
+double resolve_threshold(const std::string& text, std::string* source) {
+    if (text == "paper") {
+        if (source) *source = "paper";
+        return kPaperThreshold;
+    }
+    const std::optional<double> saved =
+        text == "calibrated" ? calibrated_threshold() : std::optional<double>{};
+    return resolve("--threshold", text, saved, kPaperThreshold, "paper",
+                   "a number >= 0, inf, paper or calibrated", source);
 }
 
 double resolve_beam_threshold(const std::string& text, std::string* source) {
-    auto said = [&](const char* s) {
-        if (source) *source = s;
-    };
-    if (text == "calibrated") {
-        if (auto t = calibrated_beam_threshold()) {
-            said("calibrated");
-            return *t;
-        }
-        said("default (not calibrated yet)");
-        return kDefaultBeamThreshold;
-    }
-    if (text == "inf" || text == "infinity") {
-        said("given");
-        return std::numeric_limits<double>::infinity();
-    }
-    try {
-        size_t used = 0;
-        double t = std::stod(text, &used);
-        if (used == text.size() && t >= 0) {
-            said("given");
-            return t;
-        }
-    } catch (const std::exception&) {
-    }
-    throw UsageError(
-        fmt::format("--beam-threshold: expected a number >= 0, inf or calibrated, got '{}'", text));
+    const std::optional<double> saved =
+        text == "calibrated" ? calibrated_beam_threshold() : std::optional<double>{};
+    return resolve("--beam-threshold", text, saved, kDefaultBeamThreshold, "default",
+                   "a number >= 0, inf or calibrated", source);
 }
 
 }  // namespace fb89::cli
