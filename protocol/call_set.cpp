@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -173,6 +174,9 @@ class CallSetParser {
         if (path.empty()) fail_at(at, "'@' needs a file name");
         if (m_depth >= kMaxFileDepth)
             fail_at(at, fmt::format("@{}: @files nested more than {} deep", path, kMaxFileDepth));
+        std::error_code ec;
+        if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+            fail_at(at, fmt::format("call-set file '{}' is not a regular file", path));
         std::ifstream in(path, std::ios::binary);
         if (!in) fail_at(at, fmt::format("cannot read call-set file '{}'", path));
         std::ostringstream ss;

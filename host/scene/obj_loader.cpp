@@ -1,6 +1,10 @@
 #include "host/scene/obj_loader.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
+#include <string>
 
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
@@ -9,9 +13,44 @@
 
 namespace fb89::host {
 
+namespace {
+
+// tinyobjloader reads a coordinate it cannot parse ("nan", "abc", a missing one) as 0 and
+// an overflowing one as inf: check every vertex line first, so that is an error naming it.
+void check_vertex_lines(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::string line;
+    for (size_t number = 1; std::getline(in, line); ++number) {
+        std::istringstream words(line);
+        std::string tag;
+        if (!(words >> tag) || tag != "v") continue;
+        for (int k = 0; k < 3; ++k) {
+            std::string word;
+            words >> word;
+            char* end = nullptr;
+            const double x = std::strtod(word.c_str(), &end);
+            if (word.empty() || *end != '\0' || !std::isfinite(x))
+                throw SceneError(fmt::format(
+                    "{}: line {}: vertex coordinate {}: expected a finite number, got '{}'",
+                    file.string(), number, k + 1, word));
+        }
+    }
+}
+
+}  // namespace
+
 GeneratedPolygons load_obj(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw SceneError(fmt::format("{}: is a directory, not an OBJ file", file.string()));
+    if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+        throw SceneError(
+            fmt::format("{}: not a regular file (a device or a pipe could be "
+                        "endless), not an OBJ file",
+                        file.string()));
     if (!std::ifstream(file).good())
         throw SceneError(fmt::format("{}: cannot open the OBJ file", file.string()));
+    check_vertex_lines(file);
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // faces stay whole convex polygons
     config.vertex_color = false;

@@ -109,6 +109,13 @@ PolygonResult prepare_polygon(const std::vector<glm::dvec3>& input) {
             result.reason = "a vertex coordinate is NaN or infinite";
             return result;
         }
+        if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate) {
+            result.verdict = PolygonVerdict::NotFinite;
+            result.reason =
+                "a vertex coordinate is beyond ±1e12 (clipping such a face in double "
+                "precision would lose it)";
+            return result;
+        }
     }
     std::vector<glm::dvec3> v = without_repeats(input);
     glm::dvec3 n = v.size() >= 3 ? newell_normal(v) : glm::dvec3(0);

@@ -12,11 +12,15 @@
 
 namespace fb89::host {
 
+// Largest |coordinate| a face may have: far beyond it, clipping to the guard band in double
+// precision loses the face (a face of 1e20 extent vanished; 1e15 still rendered exactly).
+inline constexpr double kMaxCoordinate = 1e12;
+
 enum class PolygonVerdict {
     Ok,            // planar and convex: use as is
     Triangulated,  // non-planar or non-convex: replaced by triangles
     Degenerate,    // fewer than 3 distinct vertices or zero area: dropped
-    NotFinite,     // NaN or Inf coordinate: an error for the caller to report
+    NotFinite,     // NaN, Inf or beyond kMaxCoordinate: an error for the caller to report
 };
 
 struct PolygonResult {

@@ -19,6 +19,14 @@ namespace fb89::host {
 namespace {
 
 std::string read_file(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw SceneError(fmt::format("{}: is a directory, not a scene file", file.string()));
+    if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+        throw SceneError(
+            fmt::format("{}: not a regular file (a device or a pipe could be "
+                        "endless), not a scene file",
+                        file.string()));
     std::ifstream in(file, std::ios::binary);
     if (!in) throw SceneError(fmt::format("{}: cannot open the scene file", file.string()));
     std::ostringstream ss;

@@ -16,6 +16,7 @@ struct BeamRayHybrid::Frame {
     TraceCounts rays;
     BeamCounts beams;
     uint64_t fills = 0, pixels_by_beams = 0, pixels_by_rays = 0, windows_to_rays = 0;
+    uint64_t level = 0, max_depth = 0;  // the current window's recursion level; the deepest
 };
 
 namespace {
@@ -78,9 +79,11 @@ void BeamRayHybrid::render(const ScreenScene& scene, protocol::CommandSink& sink
     stats.counters.add("pixels_by_rays", frame.pixels_by_rays);
     stats.counters.add("fills", frame.fills);
     stats.counters.add("spans", spans);
+    stats.counters.set("max_depth", frame.max_depth);
 }
 
 void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]) {
+    frame.max_depth = std::max(frame.max_depth, frame.level);
     if (w.area() == 1) {  // a single pixel: its ray is its corner's
         rays_for_window(frame, w, corners);
         return;
@@ -144,7 +147,9 @@ void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* con
             }
             child_corners[i] = found->trace;
         }
+        ++frame.level;
         window(frame, child, child_corners);
+        --frame.level;
     }
 }
 

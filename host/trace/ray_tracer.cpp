@@ -16,7 +16,8 @@ void TraceCounts::publish(Counters& counters) const {
 RayTracer::RayTracer(const TraceScene& scene, const UniformGrid& grid)
     : m_scene(scene), m_grid(grid), m_mailbox(scene.faces().size(), 0) {}
 
-Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts) const {
+Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
+                           double tmax) const {
     if (++m_serial == 0) {  // the serial wrapped: forget every mailbox
         std::fill(m_mailbox.begin(), m_mailbox.end(), 0);
         m_serial = 1;
@@ -31,7 +32,7 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
             m_mailbox[piece] = serial;
             ++tests;
             double t;
-            if (!m_scene.intersect(ray, space, piece, tmin, t) || t > best.t) continue;
+            if (!m_scene.intersect(ray, space, piece, tmin, t) || t > best.t || t > tmax) continue;
             if (t == best.t) {
                 ++ties;
                 if (piece > best.piece) continue;
@@ -40,7 +41,7 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
         }
     };
     uint64_t cells = 0;
-    cells += m_grid.walk(ray, tmin, INFINITY, [&](uint32_t cell, double t_exit) {
+    cells += m_grid.walk(ray, tmin, tmax, [&](uint32_t cell, double t_exit) {
         if (const UniformGrid* sub = m_grid.sub(cell)) {
             // a crowded cell: walk its own grid; should rounding let the ray miss that
             // grid's box, test the whole cell
@@ -67,10 +68,11 @@ void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) co
     out.escaped = false;
     Ray ray = primary;
     double tmin = 0;
+    double tmax = m_scene.primary_length();  // the primary ray ends at the far plane
     uint32_t skip = kNoFace;
     for (int depth = 0;; ++depth) {
         ++counts.rays;
-        const Hit hit = closest_hit(ray, tmin, skip, counts);
+        const Hit hit = closest_hit(ray, tmin, skip, counts, tmax);
         if (hit.piece == kNoFace) {
             out.escaped = true;
             out.last = ray;
@@ -87,6 +89,7 @@ void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) co
         ray = {p, ray.dir - 2.0 * facing * f.normal};
         skip = hit.piece;
         tmin = m_scene.tolerance() / glm::length(ray.dir);
+        tmax = INFINITY;
     }
     if (out.count == 1)  // the common path, its colour worked out in advance
         out.color = m_scene.faces()[out.hits[0].piece].end_color[out.hits[0].back ? 1 : 0];

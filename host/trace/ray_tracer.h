@@ -47,8 +47,9 @@ class RayTracer {
   public:
     RayTracer(const TraceScene& scene, const UniformGrid& grid);
 
-    // Nearest piece with tmin < t, never `skip`. Not thread-safe (the mailbox).
-    Hit closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts) const;
+    // Nearest piece with tmin < t <= tmax, never `skip`. Not thread-safe (the mailbox).
+    Hit closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
+                    double tmax = INFINITY) const;
     // The whole path of one primary ray, with its colour.
     void trace(const Ray& primary, RayTrace& out, TraceCounts& counts) const;
     void trace_pixel(int x, int y, RayTrace& out, TraceCounts& counts) const {

@@ -86,6 +86,8 @@ TraceScene::TraceScene(const Scene& scene, bool id_colors, int max_reflections)
         const double half_w = half_h * m_width / m_height;
         m_right = side * half_w;
         m_up = up * half_h;
+        m_near = cam.near;
+        m_primary_length = cam.far - cam.near;
         lo = glm::min(lo, m_eye);
         hi = glm::max(hi, m_eye);
     }
@@ -98,7 +100,8 @@ Ray TraceScene::pixel_ray(int x, int y) const {
     if (m_orthographic) return {{cx, cy, -1.0}, {0, 0, 1}};
     const double ndc_x = 2.0 * cx / m_width - 1.0;
     const double ndc_y = 1.0 - 2.0 * cy / m_height;
-    return {m_eye, m_forward + ndc_x * m_right + ndc_y * m_up};
+    const glm::dvec3 dir = m_forward + ndc_x * m_right + ndc_y * m_up;
+    return {m_eye + m_near * dir, dir};  // dir's depth component is 1: t is depth
 }
 
 protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count) {

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -75,9 +76,12 @@ class TraceScene {
     const glm::dvec3& background() const { return m_background; }
     uint32_t face_count() const { return m_face_count; }  // distinct ids
 
-    // The ray through the centre of pixel (x, y): from the eye under gluLookAt +
-    // gluPerspective, or along +z for a scene given in screen space.
+    // The ray through the centre of pixel (x, y), under gluLookAt + gluPerspective: it
+    // starts on the near plane, and its parameter t grows by one per unit of depth, so it
+    // leaves the view volume at t = primary_length() (the far plane), as the raster methods
+    // clip. A scene given in screen space is seen along +z, unclipped.
     Ray pixel_ray(int x, int y) const;
+    double primary_length() const { return m_primary_length; }
     bool orthographic() const { return m_orthographic; }
 
     // The watertight test of one piece: true with t when the ray hits it at tmin < t.
@@ -97,6 +101,8 @@ class TraceScene {
     uint32_t m_face_count = 0;
     bool m_orthographic = false;
     glm::dvec3 m_eye{0}, m_forward{0}, m_right{0}, m_up{0};  // pixel ray frame
+    double m_near = 0;
+    double m_primary_length = INFINITY;
     double m_tolerance = 0;
 };
 
