@@ -97,7 +97,7 @@ Table experiment_radiosity(const ExperimentSettings& settings, int patches);
 // Form-factor error against time per method (flux, hybrid, disk, hemicubes), against a
 // reference of exact form factors times fractional visibility from reference_n^4 rays per
 // pair; with `solve`, also the radiosity error of each method's solution.
-Table experiment_form_factor_error(const ExperimentSettings& settings, int patches,
-                                   int reference_n, bool solve);
+Table experiment_form_factor_error(const ExperimentSettings& settings, int patches, int reference_n,
+                                   bool solve);
 
 }  // namespace fb89::cli

@@ -33,8 +33,8 @@ struct RenderOptions {
     int approx_min_side = 0;                // Warnock and hybrid: approximate fills (0: exact)
     double approx_epsilon = 0;
     double beam_threshold = 1000;  // beam: Expr. 2.7 threshold (inf: down to pixels)
-    int max_reflections = 8;      // raytrace and beam: mirror bounces followed
-    double grid_density = 0.5;    // raytrace and beam: top-level grid cells per face piece
+    int max_reflections = 8;       // raytrace and beam: mirror bounces followed
+    double grid_density = 0.5;     // raytrace and beam: top-level grid cells per face piece
 };
 
 // Throws std::invalid_argument naming the known methods when `method` is unknown.

@@ -45,23 +45,6 @@ Scene mirror_room(int width, int height) {
     return s;
 }
 
-// Screen-space triangles with vertices on pixel centres: beam corners on shared edges.
-Scene lattice(int size, int cells) {
-    Scene s;
-    s.projection = Projection::Screen;
-    s.width = s.height = size;
-    const int step = (size - 1) / cells;
-    auto v = [&](int i, int j) {
-        return glm::dvec3(0.5 + i * step, 0.5 + j * step, 0.25 + 0.01 * ((i + 2 * j) % 3));
-    };
-    for (int j = 0; j < cells; ++j)
-        for (int i = 0; i < cells; ++i) {
-            add_face(s, {v(i, j), v(i + 1, j), v(i + 1, j + 1)}, {0.1 * (i % 7), 0.5, 0.2});
-            add_face(s, {v(i, j), v(i + 1, j + 1), v(i, j + 1)}, {0.5, 0.1 * (j % 7), 0.2});
-        }
-    return s;
-}
-
 void expect_same_as_rays(const Scene& scene, const char* what) {
     const auto rays = render_trace(scene, trace_options("raytrace"));
     for (double threshold : {0.0, 0.5, 5.0, double{INFINITY}}) {
@@ -81,7 +64,7 @@ TEST(BeamRayHybrid, ShowsWhatTheRayTracerShowsInAMirrorRoom) {
 }
 
 TEST(BeamRayHybrid, ShowsWhatTheRayTracerShowsWhereCornersLieOnSharedEdges) {
-    expect_same_as_rays(lattice(97, 6), "lattice");
+    expect_same_as_rays(testing::lattice_through_pixel_centres(97, 6), "lattice");
 }
 
 TEST(BeamRayHybrid, ShowsWhatTheRayTracerShowsOnRandomTriangles) {

@@ -16,27 +16,8 @@ using testing::render_trace;
 using testing::trace_options;
 using testing::world_scene;
 
-// Screen-space triangles with every vertex on a pixel centre: a pixel ray meets the mesh
-// exactly on its shared edges and vertices.
-Scene fan_of_triangles_through_pixel_centres(int size, int cells) {
-    Scene s;
-    s.projection = Projection::Screen;
-    s.width = s.height = size;
-    const int step = (size - 1) / cells;
-    // vertex (i, j) of the lattice, folded in depth so that no two neighbours are coplanar
-    auto vertex = [&](int i, int j) {
-        return glm::dvec3(0.5 + i * step, 0.5 + j * step, 0.25 + 0.01 * ((i + 2 * j) % 3));
-    };
-    for (int j = 0; j < cells; ++j)
-        for (int i = 0; i < cells; ++i) {
-            add_face(s, {vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1)}, {1, 0, 0});
-            add_face(s, {vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1)}, {0, 1, 0});
-        }
-    return s;
-}
-
 TEST(RayTracer, NoRaySlipsThroughSharedEdgesOrVertices) {
-    const Scene scene = fan_of_triangles_through_pixel_centres(61, 6);
+    const Scene scene = testing::lattice_through_pixel_centres(61, 6);
     TraceScene trace(scene, true, 0);
     UniformGrid grid(trace);
     RayTracer tracer(trace, grid);

@@ -46,6 +46,26 @@ inline uint32_t add_square(host::Scene& s, double cx, double cy, double z, doubl
         color, mirror);
 }
 
+// Screen-space triangles with every vertex on a pixel centre, `cells` x `cells` squares of
+// two triangles each, folded in depth so that no two neighbours are coplanar: a pixel ray
+// (and a beam's corner) meets the mesh exactly on its shared edges and vertices. Colours
+// vary by row and column.
+inline host::Scene lattice_through_pixel_centres(int size, int cells) {
+    host::Scene s;
+    s.projection = host::Projection::Screen;
+    s.width = s.height = size;
+    const int step = (size - 1) / cells;
+    auto v = [&](int i, int j) {
+        return glm::dvec3(0.5 + i * step, 0.5 + j * step, 0.25 + 0.01 * ((i + 2 * j) % 3));
+    };
+    for (int j = 0; j < cells; ++j)
+        for (int i = 0; i < cells; ++i) {
+            add_face(s, {v(i, j), v(i + 1, j), v(i + 1, j + 1)}, {0.1 * (i % 7), 0.5, 0.2});
+            add_face(s, {v(i, j), v(i + 1, j + 1), v(i, j + 1)}, {0.5, 0.1 * (j % 7), 0.2});
+        }
+    return s;
+}
+
 struct Frame {
     std::vector<uint32_t> ids;    // id + 1 per pixel (face-id pass)
     std::vector<uint8_t> pixels;  // the shaded frame, as the controller holds it
