@@ -23,48 +23,24 @@
 #include "controller_sim/controller.h"
 #include "protocol/socket_stream.h"
 #include "protocol/stream_writer.h"
+#include "tests/cli/cli_process.h"
 #include "tests/cli/cli_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
+using fb89::testing::Process;
 using fb89::testing::slurp;
+using fb89::testing::spawn_fb89;
 using fb89::testing::test_dir;
+using fb89::testing::wait_until_listening;
 using namespace fb89::protocol;
 namespace controller = fb89::controller;
 
 // Generous: a sanitizer build replays the million commands several times slower.
 constexpr auto kGenerous = 120s;
 constexpr uint32_t kWidth = 640, kHeight = 480;
-
-// A child process running fb89 with its output in files; killed if still running at the end.
-struct Process {
-    pid_t pid = -1;
-    fs::path out, err;
-    ~Process() {
-        if (pid > 0) {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, nullptr, 0);
-        }
-    }
-    Process() = default;
-    Process(Process&& o) noexcept : pid(o.pid), out(std::move(o.out)), err(std::move(o.err)) {
-        o.pid = -1;
-    }
-    Process& operator=(Process&&) = delete;
-    // The exit code, -signal if killed, or -1000 if it did not end within the bound.
-    int wait(std::chrono::seconds bound = kGenerous) {
-        const auto deadline = std::chrono::steady_clock::now() + bound;
-        int status = 0;
-        while (::waitpid(pid, &status, WNOHANG) == 0) {
-            if (std::chrono::steady_clock::now() > deadline) return -1000;
-            std::this_thread::sleep_for(2ms);
-        }
-        pid = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-    }
-};
 
 // One frame's commands, made on the fly: `count` commands between FRAME_BEGIN and
 // FRAME_END, every fifth a FILL_RECT, the rest DRAW_SPANs, all inside the frame.
@@ -148,35 +124,11 @@ class ControllerLoad : public ::testing::Test {
     void TearDown() override { fs::remove(m_socket); }
 
     Process start_controller(const std::vector<std::string>& extra) {
-        Process p;
-        p.out = test_dir() / "controller.out";
-        p.err = test_dir() / "controller.err";
-        std::vector<std::string> args = {FB89_CLI_PATH, "controller", "--listen", m_socket};
+        std::vector<std::string> args = {"controller", "--listen", m_socket};
         args.insert(args.end(), extra.begin(), extra.end());
-        p.pid = ::fork();
-        if (p.pid == 0) {
-            const int out = ::open(p.out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            const int err = ::open(p.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            ::dup2(out, 1);
-            ::dup2(err, 2);
-            std::vector<char*> argv;
-            for (auto& a : args)
-                argv.push_back(a.data());
-            argv.push_back(nullptr);
-            ::execv(FB89_CLI_PATH, argv.data());
-            ::_exit(127);
-        }
-        // ready once a connection succeeds; the controller ignores such empty probes
-        const auto deadline = std::chrono::steady_clock::now() + kGenerous;
-        while (std::chrono::steady_clock::now() < deadline) {
-            try {
-                connect_socket(m_socket);
-                return p;
-            } catch (const std::runtime_error&) {
-                std::this_thread::sleep_for(2ms);
-            }
-        }
-        ADD_FAILURE() << "the controller did not listen on " << m_socket;
+        Process p = spawn_fb89(args, "controller");
+        if (!wait_until_listening(m_socket, kGenerous))
+            ADD_FAILURE() << "the controller did not listen on " << m_socket;
         return p;
     }
 
@@ -197,7 +149,7 @@ TEST_F(ControllerLoad, MillionCommandStreamKeepsEveryFrameAndItsCounts) {
         commands += f.commands();
     ASSERT_GE(commands, 1'000'000u);
     EXPECT_EQ(reply, fmt::format("ok {} commands, 5 frames", commands));
-    ASSERT_EQ(ctl.wait(), 0) << slurp(ctl.err);
+    ASSERT_EQ(ctl.wait(kGenerous), 0) << slurp(ctl.err);
 
     const std::string out = slurp(ctl.out);
     for (const FramePlan& f : frames)
@@ -261,9 +213,9 @@ TEST_F(ControllerLoad, SeveralHostsInTurnKeepEveryFrame) {
     for (pid_t pid : hosts) {
         Process host;
         host.pid = pid;
-        EXPECT_EQ(host.wait(), 0) << "host process " << pid;
+        EXPECT_EQ(host.wait(kGenerous), 0) << "host process " << pid;
     }
-    ASSERT_EQ(ctl.wait(), 0) << slurp(ctl.err);
+    ASSERT_EQ(ctl.wait(kGenerous), 0) << slurp(ctl.err);
     const std::string out = slurp(ctl.out);
     EXPECT_NE(out.find(fmt::format("all {} connections: {} frames kept, 0 cut", kHosts,
                                    kHosts * kFrames)),

@@ -19,6 +19,7 @@
 #include "controller_sim/png_io.h"
 #include "protocol/socket_stream.h"
 #include "protocol/stream_writer.h"
+#include "tests/cli/cli_process.h"
 #include "tests/cli/cli_runner.h"
 
 namespace {
@@ -26,55 +27,15 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using fb89::testing::CliRun;
+using fb89::testing::Process;
 using fb89::testing::slurp;
+using fb89::testing::spawn_fb89;
 using fb89::testing::test_dir;
+using fb89::testing::wait_until_listening;
 using namespace fb89::protocol;
 
 const std::string kScenes = FB89_SCENES_DIR;
 constexpr auto kGenerous = 30s;
-
-// A child process running fb89 with its output in files; killed if still running at the end.
-struct Process {
-    pid_t pid = -1;
-    fs::path out, err;
-    ~Process() {
-        if (pid > 0) {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, nullptr, 0);
-        }
-    }
-    // The exit code, -signal if killed, or -1000 if it did not end within the bound.
-    int wait(std::chrono::seconds bound = kGenerous) {
-        const auto deadline = std::chrono::steady_clock::now() + bound;
-        int status = 0;
-        while (::waitpid(pid, &status, WNOHANG) == 0) {
-            if (std::chrono::steady_clock::now() > deadline) return -1000;
-            std::this_thread::sleep_for(2ms);
-        }
-        pid = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-    }
-};
-
-Process spawn_fb89(const std::vector<std::string>& args, const std::string& tag) {
-    Process p;
-    p.out = test_dir() / (tag + ".out");
-    p.err = test_dir() / (tag + ".err");
-    p.pid = ::fork();
-    if (p.pid == 0) {
-        const int out = ::open(p.out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int err = ::open(p.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        ::dup2(out, 1);
-        ::dup2(err, 2);
-        std::vector<char*> argv{const_cast<char*>(FB89_CLI_PATH)};
-        for (const auto& a : args)
-            argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        ::execv(FB89_CLI_PATH, argv.data());
-        ::_exit(127);
-    }
-    return p;
-}
 
 class ControllerProcess : public ::testing::Test {
   protected:
@@ -88,17 +49,8 @@ class ControllerProcess : public ::testing::Test {
     Process start_controller(std::vector<std::string> args) {
         args.insert(args.begin(), {"controller", "--listen", m_socket});
         Process p = spawn_fb89(args, "controller");
-        // ready once a connection succeeds; the controller ignores such empty probes
-        const auto deadline = std::chrono::steady_clock::now() + kGenerous;
-        while (std::chrono::steady_clock::now() < deadline) {
-            try {
-                connect_socket(m_socket);
-                return p;
-            } catch (const std::runtime_error&) {
-                std::this_thread::sleep_for(2ms);
-            }
-        }
-        ADD_FAILURE() << "the controller did not listen on " << m_socket;
+        if (!wait_until_listening(m_socket, kGenerous))
+            ADD_FAILURE() << "the controller did not listen on " << m_socket;
         return p;
     }
 
@@ -116,7 +68,7 @@ TEST_F(ControllerProcess, ControllerImageEqualsInProcessRender) {
     CliRun host = render("A.json", "256x195", "--png " + local.string());
     EXPECT_EQ(host.exit_code, 0) << host.err;
     EXPECT_NE(host.err.find("controller at " + m_socket + ": ok "), std::string::npos) << host.err;
-    EXPECT_EQ(ctl.wait(), 0) << slurp(ctl.err);
+    EXPECT_EQ(ctl.wait(kGenerous), 0) << slurp(ctl.err);
     const std::string out = slurp(ctl.out);
     EXPECT_NE(out.find("frame 0 (connection 1)"), std::string::npos) << out;
     EXPECT_NE(out.find("stream complete: 1 frames"), std::string::npos) << out;
@@ -131,7 +83,7 @@ TEST_F(ControllerProcess, TwoHostsInTurnAreBothKept) {
     Process ctl = start_controller({"--max-clients", "2", "--stats", stats.string()});
     EXPECT_EQ(render("A.json", "128x98", "").exit_code, 0);
     EXPECT_EQ(render("B.json", "128x98", "").exit_code, 0);
-    EXPECT_EQ(ctl.wait(), 0) << slurp(ctl.err);
+    EXPECT_EQ(ctl.wait(kGenerous), 0) << slurp(ctl.err);
     const std::string out = slurp(ctl.out);
     EXPECT_NE(out.find("connection 2 (scene"), std::string::npos) << out;
     EXPECT_NE(out.find("all 2 connections: 2 frames kept, 0 cut"), std::string::npos) << out;
@@ -171,7 +123,7 @@ TEST_F(ControllerProcess, HostKilledMidStreamDropsOnlyThePartialFrame) {
         ::raise(SIGKILL);
     }
     ::waitpid(host, nullptr, 0);
-    EXPECT_EQ(ctl.wait(), 2);
+    EXPECT_EQ(ctl.wait(kGenerous), 2);
     const std::string err = slurp(ctl.err);
     EXPECT_NE(err.find("host closed the connection in frame 1 after command 7: partial frame "
                        "(3 commands) dropped; 1 complete frames kept"),
@@ -187,7 +139,7 @@ TEST_F(ControllerProcess, HostKilledMidStreamDropsOnlyThePartialFrame) {
 TEST_F(ControllerProcess, QuietHostIsCutAfterTheIdleTimeout) {
     Process ctl = start_controller({"--once", "--idle-timeout", "0.2"});
     UniqueFd silent = connect_socket(m_socket);  // connects, then sends nothing
-    EXPECT_EQ(ctl.wait(), 2);
+    EXPECT_EQ(ctl.wait(kGenerous), 2);
     const std::string err = slurp(ctl.err);
     EXPECT_NE(err.find("idle time-out"), std::string::npos) << err;
     EXPECT_NE(err.find(m_socket), std::string::npos) << err;
@@ -200,7 +152,7 @@ TEST_F(ControllerProcess, HostReportsAControllerThatIsKilledMidStream) {
     writer.frame_begin(FrameBegin{0, 64, 48, Rgb{}});
     writer.frame_end(FrameEnd{});
     ::kill(ctl.pid, SIGKILL);
-    EXPECT_EQ(ctl.wait(), -SIGKILL);
+    EXPECT_EQ(ctl.wait(kGenerous), -SIGKILL);
     const auto start = std::chrono::steady_clock::now();
     std::string error;
     try {
@@ -246,12 +198,12 @@ TEST_F(ControllerProcess, ConnectingWhereNobodyListensExitsTwoNamingThePath) {
 TEST_F(ControllerProcess, SecondControllerIsRefusedAndSigtermRemovesTheSocket) {
     Process first = start_controller({});
     Process second = spawn_fb89({"controller", "--listen", m_socket}, "second");
-    EXPECT_EQ(second.wait(), 2);
+    EXPECT_EQ(second.wait(kGenerous), 2);
     const std::string err = slurp(second.err);
     EXPECT_NE(err.find("in use"), std::string::npos) << err;
     EXPECT_NE(err.find(m_socket), std::string::npos) << err;
     ::kill(first.pid, SIGTERM);
-    EXPECT_EQ(first.wait(), 0) << slurp(first.err);
+    EXPECT_EQ(first.wait(kGenerous), 0) << slurp(first.err);
     EXPECT_FALSE(fs::exists(m_socket));
 }
 
