@@ -1,18 +1,8 @@
-// fb89 calibrate [SCENE...]: the paper's calibration (§3), done for this machine. The
-// hybrid is timed along a ramp of Expr. 3.1 thresholds on a set of scenes (default A-F),
-// interleaved; the threshold with the least total time over the set is chosen, printed,
-// and saved where `render --method hybrid` picks it up (cli/calibration.h). The paper's
-// 0.04 is always on the ramp and stays available as `--threshold paper`.
-//
-// One addition to the paper's rule: a total is dominated by the slowest scenes, so a
-// threshold that wins on them may cost the light ones dearly. A threshold is eligible
-// only if no scene is more than --tolerance (default 3%) slower than with the pure
-// Z-buffer (threshold 0, always eligible): the paper's "negligible degradation".
-//
-// With --method beam it chooses the beam-ray hybrid's Expr. 2.7 threshold the same way
-// (§4: "determined using the same method"), on G, H, I and the mirrored Cornell box by
-// default, from 0 (the ray tracer at once) through a log ramp to infinity (beams down to
-// single pixels); every threshold shows the same frame, so only time decides.
+// fb89 calibrate [SCENE...]: the paper's calibration (§3) for this machine, chosen by
+// experiments/calibration.h on A-F by default (with --method beam, on G, H, I and the
+// mirrored Cornell box), printed, and saved where `render --method hybrid|beam` picks it up
+// (cli/calibration.h). The paper's 0.04 is always on the ramp and stays available as
+// `--threshold paper`.
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,14 +10,15 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
-#include <map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli/calibration.h"
 #include "cli/common.h"
-#include "cli/experiments.h"
+#include "experiments/calibration.h"
+#include "experiments/experiments.h"
+#include "host/raster/hybrid.h"
 
 namespace fb89::cli {
 
@@ -45,111 +36,85 @@ struct CalibrateArgs {
 };
 
 int run_calibrate_beam(const CalibrateArgs& a) {
-    ExperimentSettings s;
+    experiments::ExperimentSettings s;
     s.scenes = a.scenes;
     if (s.scenes.empty())
         s.scenes = {"scenes/G.json", "scenes/H.json", "scenes/I.json",
                     "scenes/cornell_mirror.json"};
     s.repeat = a.repeat;
     s.progress = !a.quiet && isatty(STDERR_FILENO);
-    Table table = experiment_beam_threshold(s, beam_threshold_ramp());
-    if (!a.csv.empty()) write_text(a.csv, table.csv());
-    std::map<double, double> total;
-    double rays_total = 0;
-    for (const auto& row : table.rows()) {
-        if (row[1] == "raytrace") {
-            rays_total += std::stod(row[3]);
-            continue;
-        }
-        total[std::stod(row[1])] += std::stod(row[3]);
-    }
-    auto best = total.begin();
-    for (auto it = total.begin(); it != total.end(); ++it)
-        if (it->second < best->second) best = it;
+    const experiments::Calibration c = experiments::calibrate_beam(s);
+    if (!a.csv.empty()) write_text(a.csv, c.sweep.csv());
     nlohmann::json details;
     details["scenes"] = s.scenes;
     details["repeat"] = s.repeat;
-    details["raytrace_total_ms"] = rays_total;
+    details["raytrace_total_ms"] = c.reference_ms;
     details["total_ms_by_threshold"] = nlohmann::json::array();
-    for (const auto& [t, ms] : total)
+    for (const auto& [t, ms] : c.total)
         details["total_ms_by_threshold"].push_back({std::isinf(t) ? 1e300 : t, ms});
-    details["chosen_total_ms"] = best->second;
-    if (!a.dry_run) save_beam_calibration(best->first, details.dump());
+    details["chosen_total_ms"] = c.total.at(c.chosen);
+    if (!a.dry_run) save_beam_calibration(c.chosen, details.dump());
     if (!a.quiet) {
         std::cerr << fmt::format("{:>12}  {:>12}  {:>12}\n", "threshold", "total ms", "vs rays");
-        for (const auto& [t, ms] : total)
-            std::cerr << fmt::format("{:>12.6g}  {:>12.3f}  {:>12.3f}{}\n", t, ms, ms / rays_total,
-                                     t == best->first ? "  <- chosen" : "");
+        for (const auto& [t, ms] : c.total)
+            std::cerr << fmt::format("{:>12.6g}  {:>12.3f}  {:>12.3f}{}\n", t, ms,
+                                     ms / c.reference_ms, t == c.chosen ? "  <- chosen" : "");
         std::cerr << fmt::format(
-            "ray tracer alone {:.3f} ms, chosen {:.6g}: {:.3f} ms over {} scenes{}\n", rays_total,
-            best->first, best->second, s.scenes.size(),
+            "ray tracer alone {:.3f} ms, chosen {:.6g}: {:.3f} ms over {} scenes{}\n",
+            c.reference_ms, c.chosen, c.total.at(c.chosen), s.scenes.size(),
             a.dry_run ? " (not saved: --dry-run)" : " (saved to " + calibration_path() + ")");
     }
-    std::cout << fmt::format("{:.6g}\n", best->first);
+    std::cout << fmt::format("{:.6g}\n", c.chosen);
     return kSuccess;
 }
 
 int run_calibrate(const CalibrateArgs& a) {
     if (a.method == "beam") return run_calibrate_beam(a);
     if (!(a.from > 0 && a.to > a.from)) throw UsageError("--from and --to: need 0 < from < to");
-    ExperimentSettings s;
+    experiments::ExperimentSettings s;
     s.scenes = a.scenes;
     if (s.scenes.empty())
         for (char c = 'A'; c <= 'F'; ++c)
             s.scenes.push_back(fmt::format("scenes/{}.json", c));
     s.repeat = a.repeat;
     s.progress = !a.quiet && isatty(STDERR_FILENO);
-    std::vector<double> thresholds{0.0, kPaperThreshold};
-    for (double t : threshold_ramp(a.from, a.to, a.steps))
-        thresholds.push_back(t);
-    std::sort(thresholds.begin(), thresholds.end());
-    thresholds.erase(std::unique(thresholds.begin(), thresholds.end()), thresholds.end());
-
-    Table table = sweep_threshold(s, thresholds, host::RenderOptions{});
-    if (!a.csv.empty()) write_text(a.csv, table.csv());
-
-    // total of the per-scene medians, and the worst scene against the Z-buffer, per threshold
-    std::map<double, double> total, worst;
-    for (const auto& row : table.rows()) {
-        const double t = std::stod(row[1]);
-        total[t] += std::stod(row[3]);
-        worst[t] = std::max(worst[t], row[4].empty() ? 1.0 : std::stod(row[4]));
-    }
-    auto best = total.find(0.0);
-    for (auto it = total.begin(); it != total.end(); ++it)
-        if (worst[it->first] <= 1.0 + a.tolerance && it->second < best->second) best = it;
-    const double zbuffer = total.at(0.0), paper = total.at(kPaperThreshold);
+    const experiments::Calibration c = experiments::calibrate_hybrid(
+        s, experiments::threshold_ramp(a.from, a.to, a.steps), a.tolerance);
+    if (!a.csv.empty()) write_text(a.csv, c.sweep.csv());
+    const double zbuffer = c.reference_ms, paper = c.total.at(host::kPaperThreshold);
+    const double chosen_ms = c.total.at(c.chosen);
 
     nlohmann::json details;
     details["scenes"] = s.scenes;
     details["repeat"] = s.repeat;
     details["total_ms_by_threshold"] = nlohmann::json::array();
-    for (const auto& [t, ms] : total)
+    for (const auto& [t, ms] : c.total)
         details["total_ms_by_threshold"].push_back({t, ms});
     details["zbuffer_total_ms"] = zbuffer;
     details["tolerance"] = a.tolerance;
     details["worst_ratio_by_threshold"] = nlohmann::json::array();
-    for (const auto& [t, w] : worst)
+    for (const auto& [t, w] : c.worst)
         details["worst_ratio_by_threshold"].push_back({t, w});
-    details["chosen_total_ms"] = best->second;
+    details["chosen_total_ms"] = chosen_ms;
     details["calibrated_at_unix"] = std::chrono::duration_cast<std::chrono::seconds>(
                                         std::chrono::system_clock::now().time_since_epoch())
                                         .count();
-    if (!a.dry_run) save_calibration(best->first, details.dump());
+    if (!a.dry_run) save_calibration(c.chosen, details.dump());
 
     if (!a.quiet) {
         std::cerr << fmt::format("{:>12}  {:>12}  {:>10}  {:>12}\n", "threshold", "total ms",
                                  "vs zbuffer", "worst scene");
-        for (const auto& [t, ms] : total)
+        for (const auto& [t, ms] : c.total)
             std::cerr << fmt::format("{:>12.6g}  {:>12.3f}  {:>10.3f}  {:>12.3f}{}\n", t, ms,
-                                     ms / zbuffer, worst[t], t == best->first ? "  <- chosen" : "");
+                                     ms / zbuffer, c.worst.at(t),
+                                     t == c.chosen ? "  <- chosen" : "");
         std::cerr << fmt::format(
             "pure Z-buffer {:.3f} ms, paper's 0.04 {:.3f} ms, chosen {:.6g}: {:.3f} ms over {} "
             "scenes{}\n",
-            zbuffer, paper, best->first, best->second, s.scenes.size(),
+            zbuffer, paper, c.chosen, chosen_ms, s.scenes.size(),
             a.dry_run ? " (not saved: --dry-run)" : " (saved to " + calibration_path() + ")");
     }
-    std::cout << fmt::format("{:.6g}\n", best->first);
+    std::cout << fmt::format("{:.6g}\n", c.chosen);
     return kSuccess;
 }
 

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "host/raster/hybrid.h"
+#include "host/trace/beam_ray_hybrid.h"
 
 namespace fb89::cli {
 
@@ -124,18 +126,18 @@ double resolve(const std::string& option, const std::string& text, std::optional
 double resolve_threshold(const std::string& text, std::string* source) {
     if (text == "paper") {
         if (source) *source = "paper";
-        return kPaperThreshold;
+        return host::kPaperThreshold;
     }
     const std::optional<double> saved =
         text == "calibrated" ? calibrated_threshold() : std::optional<double>{};
-    return resolve("--threshold", text, saved, kPaperThreshold, "paper",
+    return resolve("--threshold", text, saved, host::kPaperThreshold, "paper",
                    "a number >= 0, inf, paper or calibrated", source);
 }
 
 double resolve_beam_threshold(const std::string& text, std::string* source) {
     const std::optional<double> saved =
         text == "calibrated" ? calibrated_beam_threshold() : std::optional<double>{};
-    return resolve("--beam-threshold", text, saved, kDefaultBeamThreshold, "default",
+    return resolve("--beam-threshold", text, saved, host::kDefaultBeamThreshold, "default",
                    "a number >= 0, inf or calibrated", source);
 }
 

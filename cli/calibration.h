@@ -8,12 +8,6 @@
 
 namespace fb89::cli {
 
-inline constexpr double kPaperThreshold = 0.04;
-// The beam-ray hybrid's Expr. 2.7 threshold before `fb89 calibrate --method beam` has run.
-// The paper gives no value; this is the one `calibrate --method beam` chose on G, H, I and
-// the mirrored Cornell box when the figures were made (docs/figures/calibration.json).
-inline constexpr double kDefaultBeamThreshold = 1000;
-
 // Both thresholds live in one file: "threshold" (the Warnock/Z-buffer hybrid's) and
 // "beam_threshold" (the beam-ray hybrid's), each with the details of its calibration.
 std::string calibration_path();
@@ -25,7 +19,8 @@ void save_beam_calibration(double threshold, const std::string& details_json);
 // "--threshold" values: a number, "inf", "paper" (0.04) or "calibrated" (this machine's,
 // else the paper's). Throws UsageError.
 double resolve_threshold(const std::string& text, std::string* source = nullptr);
-// "--beam-threshold" values: a number, "inf" or "calibrated" (else the default above).
+// "--beam-threshold" values: a number, "inf" or "calibrated" (this machine's, else
+// host::kDefaultBeamThreshold).
 double resolve_beam_threshold(const std::string& text, std::string* source = nullptr);
 
 }  // namespace fb89::cli

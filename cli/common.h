@@ -8,6 +8,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "experiments/settings.h"
+
 namespace fb89::cli {
 
 // DESIGN.md "Command line": 0 success, 1 a check failed, 2 usage, I/O or corrupt input.
@@ -19,9 +21,7 @@ class UsageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-struct ImageSize {
-    int width = 0, height = 0;
-};
+using experiments::ImageSize;
 // "WxH", e.g. "1024x780"; throws UsageError.
 ImageSize parse_size(const std::string& text);
 

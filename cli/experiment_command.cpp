@@ -25,9 +25,11 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
-#include "cli/experiments.h"
+#include "experiments/experiments.h"
 
 namespace fb89::cli {
+
+using namespace experiments;
 
 namespace {
 

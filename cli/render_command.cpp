@@ -10,17 +10,16 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/beam_mask.h"
 #include "cli/calibration.h"
 #include "cli/common.h"
-#include "cli/id_pass.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
-#include "host/raster/renderer.h"
+#include "experiments/beam_mask.h"
+#include "experiments/id_pass.h"
+#include "host/methods.h"
 #include "host/raster/scene_measures.h"
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
-#include "host/trace/beam_ray_hybrid.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/socket_stream.h"
 #include "protocol/stream_writer.h"
@@ -36,8 +35,8 @@ struct RenderArgs {
     std::string threshold = "calibrated";
     std::string depth_estimate = "window";
     std::string beam_threshold = "calibrated";
-    int reflections = 8;
-    double grid_density = 0.5;
+    int reflections = host::TraceOptions{}.max_reflections;
+    double grid_density = host::TraceOptions{}.grid_density;
     std::string mask;
     int approx_min_side = 0;
     double approx_epsilon = 0;
@@ -47,6 +46,12 @@ struct RenderArgs {
     int repeat = 1;
     bool quiet = false;
 };
+
+host::WindowTest window_test_named(const std::string& name) {
+    if (name == "area") return host::WindowTest::Area;
+    if (name == "centres") return host::WindowTest::Centres;
+    throw std::invalid_argument("unknown window test '" + name + "' (known: area, centres)");
+}
 
 struct HostRun {
     host::Scene scene;
@@ -93,7 +98,7 @@ HostRun run_host(const RenderArgs& args, host::Renderer& renderer) {
 // The face-id pass: the same method through the same sink and controller, every face
 // coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer.
 void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Renderer& renderer) {
-    controller::Framebuffer ids = id_framebuffer(scene, renderer);
+    controller::Framebuffer ids = experiments::id_framebuffer(scene, renderer);
     make_parent_dirs(args.ids);
     controller::write_png(args.ids, ids);
 }
@@ -103,7 +108,7 @@ void write_beam_mask(const std::string& path, const controller::Framebuffer& fra
                      const host::Renderer& renderer) {
     const auto& beam = dynamic_cast<const host::BeamRayHybrid&>(renderer);
     make_parent_dirs(path);
-    controller::write_png(path, masked_by_beams(frame, beam.beam_mask()));
+    controller::write_png(path, experiments::masked_by_beams(frame, beam.beam_mask()));
 }
 
 protocol::Properties stream_properties(const RenderArgs& args, const HostRun& run) {
@@ -204,30 +209,30 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
 
 int run_render(const RenderArgs& args) {
     Console console{args.quiet};
-    host::RenderOptions options;
-    options.method = args.method;
-    options.window_test = args.window_test;
-    std::string threshold_source;
-    options.threshold = resolve_threshold(args.threshold, &threshold_source);
-    options.depth_estimate = args.depth_estimate;
-    options.approx_min_side = args.approx_min_side;
-    options.approx_epsilon = args.approx_epsilon;
-    std::string beam_source;
-    options.beam_threshold = resolve_beam_threshold(args.beam_threshold, &beam_source);
-    options.max_reflections = args.reflections;
-    options.grid_density = args.grid_density;
-    if (!args.mask.empty() && args.method != "beam")
-        throw UsageError("--mask: only the beam method decides pixels by beams");
+    host::MethodOptions options;
+    std::string threshold_source, beam_source;
     std::unique_ptr<host::Renderer> renderer;
     try {
+        options.method = host::method_named(args.method);
+        options.warnock.window_test = window_test_named(args.window_test);
+        options.warnock.approx = {args.approx_min_side, args.approx_epsilon};
+        options.hybrid.threshold = resolve_threshold(args.threshold, &threshold_source);
+        options.hybrid.depth = args.depth_estimate == "scene" ? host::DepthEstimate::Scene
+                                                              : host::DepthEstimate::Window;
+        options.beam.threshold = resolve_beam_threshold(args.beam_threshold, &beam_source);
+        options.trace.max_reflections = args.reflections;
+        options.trace.grid_density = args.grid_density;
         renderer = host::make_renderer(options);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
-    if (args.method == "hybrid")
-        console.note(fmt::format("hybrid threshold {} ({})", options.threshold, threshold_source));
-    if (args.method == "beam")
-        console.note(fmt::format("beam threshold {} ({})", options.beam_threshold, beam_source));
+    if (!args.mask.empty() && options.method != host::Method::Beam)
+        throw UsageError("--mask: only the beam method decides pixels by beams");
+    if (options.method == host::Method::Hybrid)
+        console.note(
+            fmt::format("hybrid threshold {} ({})", options.hybrid.threshold, threshold_source));
+    if (options.method == host::Method::Beam)
+        console.note(fmt::format("beam threshold {} ({})", options.beam.threshold, beam_source));
     controller::CostProfile profile = controller::load_profile(args.profile);
 
     HostRun run = run_host(args, *renderer);
@@ -288,13 +293,13 @@ void register_render(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option("--reflections", args->reflections,
                     "Raytrace and beam: mirror bounces followed (0: primary visibility)")
-        ->check(CLI::Range(0, 16))
+        ->check(CLI::Range(0, host::kMaxReflections))
         ->capture_default_str();
     sub->add_option(
            "--grid-density", args->grid_density,
            "Raytrace and beam: top-level grid cells per face piece (crowded cells get a grid of "
            "their own)")
-        ->check(CLI::Range(0.01, 1000.0))
+        ->check(CLI::Range(host::kMinGridDensity, host::kMaxGridDensity))
         ->capture_default_str();
     sub->add_option("--mask", args->mask,
                     "Beam: write the image with every pixel the ray tracer decided blacked out "

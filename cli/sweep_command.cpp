@@ -11,9 +11,11 @@
 #include <fmt/format.h>
 
 #include "cli/common.h"
-#include "cli/experiments.h"
+#include "experiments/experiments.h"
 
 namespace fb89::cli {
+
+using namespace experiments;
 
 namespace {
 
@@ -42,9 +44,11 @@ int run_sweep(const SweepArgs& a) {
     for (double t : threshold_ramp(a.from, a.to, a.steps))
         thresholds.push_back(t);
     thresholds.push_back(std::numeric_limits<double>::infinity());
-    host::RenderOptions base;
-    base.window_test = a.window_test;
-    base.depth_estimate = a.depth_estimate;
+    host::MethodOptions base(host::Method::Hybrid);
+    base.warnock.window_test =
+        a.window_test == "centres" ? host::WindowTest::Centres : host::WindowTest::Area;
+    base.hybrid.depth =
+        a.depth_estimate == "scene" ? host::DepthEstimate::Scene : host::DepthEstimate::Window;
     Table table = sweep_threshold(s, thresholds, base);
     if (!a.csv.empty()) write_text(a.csv, table.csv());
     if (!a.quiet && a.csv != "-") std::cout << table.text();

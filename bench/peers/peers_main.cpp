@@ -13,6 +13,7 @@
 
 #include "bench/peers/ray_side_by_side.h"
 #include "bench/peers/side_by_side.h"
+#include "host/trace/beam_ray_hybrid.h"
 
 namespace {
 
@@ -23,7 +24,7 @@ struct Args {
     bool repeat_given = false;
     std::string scenes_dir = FB89_SCENES_DIR, csv, size = "1024x780", quality = "high";
     bool quick = false;
-    double beam_threshold = 464.159;  // what calibrate --method beam chose (RESULTS.md)
+    double beam_threshold = fb89::host::kDefaultBeamThreshold;  // what calibrate chose (RESULTS.md)
 };
 
 // Embree against our raytrace and beam: the scenes that exist, at the chosen size (G also

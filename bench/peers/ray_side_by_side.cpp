@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "host/raster/renderer.h"
+#include "host/methods.h"
 #include "host/stats.h"
 #include "protocol/memory_buffer.h"
 
@@ -32,10 +32,9 @@ struct Ours {
     std::vector<double> samples;
 
     Ours(const host::ScreenScene& scene, const std::string& method, double beam_threshold) {
-        host::RenderOptions options;
-        options.method = method;
-        options.max_reflections = 0;
-        options.beam_threshold = beam_threshold;
+        host::MethodOptions options(host::method_named(method));
+        options.trace.max_reflections = 0;
+        options.beam.threshold = beam_threshold;
         renderer = host::make_renderer(options);
         renderer->setup(scene);
     }

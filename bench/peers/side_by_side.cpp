@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "host/raster/renderer.h"
+#include "host/methods.h"
 #include "host/stats.h"
 #include "protocol/memory_buffer.h"
 
@@ -36,11 +36,9 @@ struct Ours {
 };
 
 std::unique_ptr<Ours> make_ours(const std::string& method, const host::ScreenScene& scene) {
-    host::RenderOptions options;
-    options.method = method;
     auto ours = std::make_unique<Ours>();
     try {
-        ours->renderer = host::make_renderer(options);
+        ours->renderer = host::make_renderer(host::method_named(method));
     } catch (const std::invalid_argument&) {
         return nullptr;  // a method this build does not have
     }

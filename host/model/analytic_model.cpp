@@ -4,6 +4,7 @@
 // one recursive call per term of the paper's recurrence, so each checks the other.
 #include "host/model/analytic_model.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <stdexcept>
@@ -86,7 +87,11 @@ double expr_2_6(double f_w, double d, double e_w) {
 }
 
 double expr_3_1(double f_w, double d, double e_w) {
-    return (f_w * log4(f_w / d) + f_w) / (e_w * e_w);
+    return expr_3_1_area(f_w, d, e_w * e_w);
+}
+
+double expr_3_1_area(double f_w, double d, double area) {
+    return (f_w * log4(f_w / d) + f_w) / area;
 }
 
 double samples_per_rendered_pixel(double f_vw, double e_fw) {
@@ -94,7 +99,15 @@ double samples_per_rendered_pixel(double f_vw, double e_fw) {
 }
 
 double expr_2_7(double f, double f_w, double d, double e_w) {
-    return f * (16 * f_w - d) / (e_w * e_w * d);
+    return expr_2_7_area(f, f_w, d, e_w * e_w);
+}
+
+double expr_2_7_area(double f, double f_w, double d, double area) {
+    return f * (16 * f_w - d) / (area * d);
+}
+
+double expr_2_7_faces_at(double cost, double f, double d, double area) {
+    return (cost * area * d / std::max(f, 1.0) + d) / 16;
 }
 
 // --- recurrences ----------------------------------------------------------------------------

@@ -53,6 +53,8 @@ double expr_2_5(double f_w, double d, double f_vw, double e_fw);
 double expr_2_6(double f_w, double d, double e_w);
 // Expr. 3.1: the hybrid's estimate, Expr. 2.6 / 4 = (F_w log4(F_w/D) + F_w) / E_w^2.
 double expr_3_1(double f_w, double d, double e_w);
+// Expr. 3.1 for a window of any shape: E_w^2 is its area in pixels (the hybrid's form).
+double expr_3_1_area(double f_w, double d, double area);
 // Samples per rendered pixel when every sample costs the same (the unnumbered expression
 // before 2.7): ((F_vw - 1) / (3 F_vw) + 5) / (E_fw^2 / 4).
 double samples_per_rendered_pixel(double f_vw, double e_fw);
@@ -60,6 +62,11 @@ double samples_per_rendered_pixel(double f_vw, double e_fw);
 // proportional to all F faces (beam tracing). The paper drops a constant: it equals
 // (3/4) F samples_per_rendered_pixel(F_w / D, E_fw).
 double expr_2_7(double f, double f_w, double d, double e_w);
+// Expr. 2.7 for a window of any shape: E_w^2 is its area in pixels (the beam hybrid's form).
+double expr_2_7_area(double f, double f_w, double d, double area);
+// Expr. 2.7 solved for F_w: the window face count at which the cost per pixel reaches
+// `cost`, (cost E_w^2 D / F + D) / 16 (F taken as at least 1).
+double expr_2_7_faces_at(double cost, double f, double d, double area);
 
 // --- exact recurrences on the ideal scene ---------------------------------------------------
 

@@ -3,16 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host/model/analytic_model.h"
+
 namespace fb89::host {
 
 double expr_3_1_cost(double faces, double depth, double area) {
     if (faces <= 0 || area <= 0) return 0;
-    const double sorting = faces > depth ? faces * (std::log(faces / depth) / std::log(4.0)) : 0;
-    return (sorting + faces) / area;
+    // F_w <= D: log4(F_w / D) taken as 0, which is Expr. 3.1 with D = F_w
+    return model::expr_3_1_area(faces, std::min(depth, faces), area);
 }
 
-Hybrid::Hybrid(HybridOptions options)
-    : m_options(options), m_warnock(options.window_test, options.approx) {}
+Hybrid::Hybrid(HybridOptions options, WarnockOptions warnock)
+    : m_options(options), m_warnock(warnock) {}
 
 void Hybrid::setup(const ScreenScene& scene) {
     m_warnock.setup(scene);

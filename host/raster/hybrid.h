@@ -24,20 +24,21 @@ namespace fb89::host {
 
 enum class DepthEstimate { Window, Scene };
 
+// The paper's calibrated threshold for Expr. 3.1 (§3).
+inline constexpr double kPaperThreshold = 0.04;
+
 struct HybridOptions {
-    double threshold = 0.04;  // the paper's calibrated value
+    double threshold = kPaperThreshold;
     DepthEstimate depth = DepthEstimate::Window;
-    WindowTest window_test = WindowTest::Area;
-    Approximation approx;
 };
 
-// Expr. 3.1 for a window of `faces` faces, depth complexity `depth` and `area` pixels,
-// with the conventions above.
+// Expr. 3.1 (host/model) for a window of `faces` faces, depth complexity `depth` and `area`
+// pixels, with the conventions above.
 double expr_3_1_cost(double faces, double depth, double area);
 
 class Hybrid final : public Renderer, private WindowHandoff {
   public:
-    explicit Hybrid(HybridOptions options = {});
+    explicit Hybrid(HybridOptions options = {}, WarnockOptions warnock = {});
     std::string_view name() const override { return "hybrid"; }
     void setup(const ScreenScene& scene) override;
     void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;

@@ -47,6 +47,12 @@ struct Approximation {
     double epsilon = 0;
 };
 
+// Warnock's options, shared by the hybrid, which runs Warnock's looker.
+struct WarnockOptions {
+    WindowTest window_test = WindowTest::Area;  // the paper's
+    Approximation approx;                       // exact
+};
+
 struct WarnockCounts {
     uint64_t samples = 0;        // thinker calls (window samples)
     uint64_t face_sorts = 0;     // face computations: a face into exactly one sub-window
@@ -69,8 +75,8 @@ struct WarnockCounts {
 
 class Warnock final : public Renderer {
   public:
-    explicit Warnock(WindowTest test = WindowTest::Area, Approximation approx = {})
-        : m_test(test), m_approx(approx) {}
+    explicit Warnock(WarnockOptions options = {})
+        : m_test(options.window_test), m_approx(options.approx) {}
     // The looker offers every window to `handoff` before sampling it (null: never).
     void set_handoff(WindowHandoff* handoff) { m_handoff = handoff; }
     std::string_view name() const override { return "warnock"; }

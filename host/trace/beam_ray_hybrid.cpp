@@ -1,14 +1,13 @@
 #include "host/trace/beam_ray_hybrid.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "host/model/analytic_model.h"
 
 #include "host/raster/scene_measures.h"
 
 namespace fb89::host {
-
-double expr_2_7_cost(double scene_faces, double window_faces, double depth, double area) {
-    return scene_faces * (16 * window_faces - depth) / (area * depth);
-}
 
 // What one frame carries through the recursion; counts are published once at its end.
 struct BeamRayHybrid::Frame {
@@ -37,7 +36,7 @@ void corner_pixels(const PixelRect& w, int xs[4], int ys[4]) {
 }  // namespace
 
 void BeamRayHybrid::setup(const ScreenScene& scene) {
-    m_trace.build(scene, m_options.trace.max_reflections, m_options.trace.grid_density);
+    m_trace.build(scene, m_trace_options.max_reflections, m_trace_options.grid_density);
     m_beams = std::make_unique<BeamTracer>(*m_trace.scene, *m_trace.grid);
     m_depth = std::max(1.0, measure_scene(scene).depth_complexity);
     m_width = scene.width;
@@ -108,11 +107,11 @@ void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* con
         const double scene_faces = m_trace.scene->face_count();
         const double area = static_cast<double>(w.area());
         const double enough =
-            (m_options.threshold * area * m_depth / std::max(scene_faces, 1.0) + m_depth) / 16;
+            model::expr_2_7_faces_at(m_options.threshold, scene_faces, m_depth, area);
         if (enough < scene_faces) {
             const double faces = m_beams->faces_in_beam(
                 corners, frame.beams, static_cast<uint32_t>(std::max(0.0, std::floor(enough))));
-            if (expr_2_7_cost(scene_faces, faces, m_depth, area) > m_options.threshold) {
+            if (model::expr_2_7_area(scene_faces, faces, m_depth, area) > m_options.threshold) {
                 rays_for_window(frame, w, corners);
                 return;
             }

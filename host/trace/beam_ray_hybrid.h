@@ -16,7 +16,6 @@
 // counted. Every pixel shows what the ray tracer alone would show (tests/host/trace).
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -27,17 +26,18 @@
 
 namespace fb89::host {
 
-struct BeamOptions {
-    double threshold = INFINITY;  // Expr. 2.7 threshold
-    TraceOptions trace;
-};
+// The Expr. 2.7 threshold `fb89 calibrate --method beam` chose on G, H, I and the mirrored
+// Cornell box (docs/RESULTS.md §4); the default until this machine is calibrated.
+inline constexpr double kDefaultBeamThreshold = 1000;
 
-// Expr. 2.7 for F scene faces, F_w window faces, depth complexity D and the window's area.
-double expr_2_7_cost(double scene_faces, double window_faces, double depth, double area);
+struct BeamOptions {
+    double threshold = kDefaultBeamThreshold;  // Expr. 2.7 threshold (inf: down to pixels)
+};
 
 class BeamRayHybrid final : public Renderer {
   public:
-    explicit BeamRayHybrid(BeamOptions options = {}) : m_options(options) {}
+    explicit BeamRayHybrid(BeamOptions options = {}, TraceOptions trace = {})
+        : m_options(options), m_trace_options(trace) {}
     std::string_view name() const override { return "beam"; }
     void setup(const ScreenScene& scene) override;
     void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
@@ -52,6 +52,7 @@ class BeamRayHybrid final : public Renderer {
     void rays_for_window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]);
 
     BeamOptions m_options;
+    TraceOptions m_trace_options;
     TraceSetup m_trace;
     std::unique_ptr<BeamTracer> m_beams;
     double m_depth = 1;

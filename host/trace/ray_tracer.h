@@ -83,8 +83,11 @@ struct TraceSetup {
     void build(const ScreenScene& screen, int max_reflections, double grid_density);
 };
 
+// Top-level grid density accepted, in cells per face piece.
+inline constexpr double kMinGridDensity = 0.01, kMaxGridDensity = 1000;
+
 struct TraceOptions {
-    int max_reflections = 8;
+    int max_reflections = 8;    // mirror bounces followed (0: primary visibility)
     double grid_density = 0.5;  // top-level grid cells per face piece (RESULTS.md)
 };
 

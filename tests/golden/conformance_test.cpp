@@ -9,7 +9,7 @@
 
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
-#include "host/raster/renderer.h"
+#include "host/methods.h"
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
@@ -28,7 +28,7 @@ Mismatch compare_with_fixture(const std::string& name) {
     host::Scene scene = host::load_scene(base + ".tri");
     host::HostStats stats;
     host::ScreenScene ids = host::project_scene(scene, host::ColorMode::FaceId, stats.counters);
-    auto renderer = host::make_renderer({"zbuffer"});
+    auto renderer = host::make_renderer(host::Method::ZBuffer);
     protocol::MemoryBuffer commands;
     host::render_frame(*renderer, ids, commands, stats);
     controller::Controller ctl(controller::load_profile("ideal"));

@@ -6,11 +6,10 @@
 #include <filesystem>
 #include <string>
 
-#include "controller_sim/controller.h"
-#include "host/raster/renderer.h"
+#include "experiments/id_pass.h"
+#include "host/methods.h"
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
-#include "protocol/memory_buffer.h"
 
 namespace fb89 {
 namespace {
@@ -28,17 +27,17 @@ struct Frame {
     uint64_t checksum = 0;
 };
 
-Frame render(const host::Scene& scene, host::ColorMode mode, const host::RenderOptions& options) {
-    host::HostStats stats;
-    host::ScreenScene screen = host::project_scene(scene, mode, stats.counters);
+Frame render(const host::Scene& scene, host::ColorMode mode, const host::MethodOptions& options) {
     auto renderer = host::make_renderer(options);
-    renderer->setup(screen);
-    protocol::MemoryBuffer commands;
-    host::render_frame(*renderer, screen, commands, stats);
-    controller::Controller ctl(controller::load_profile("ideal"));
-    commands.replay_into(ctl);
-    const auto px = ctl.framebuffer().pixels();
-    return {{px.begin(), px.end()}, ctl.frames().at(0).checksum};
+    const controller::Framebuffer fb = experiments::framebuffer_of(scene, mode, *renderer);
+    const auto px = fb.pixels();
+    return {{px.begin(), px.end()}, fb.checksum()};
+}
+
+host::MethodOptions method(host::Method m, host::WindowTest test = host::WindowTest::Area) {
+    host::MethodOptions o(m);
+    o.warnock.window_test = test;
+    return o;
 }
 
 // Pixels that differ, and the first of them, for a readable failure.
@@ -57,23 +56,26 @@ class GoldenMethods : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GoldenMethods, EveryMethodAndHybridThresholdGivesTheZBuffersIdsAndImage) {
     host::Scene scene = host::load_scene(std::string(FB89_SCENES_DIR) + "/" + GetParam());
-    const host::RenderOptions reference{"zbuffer", "area"};
+    const host::MethodOptions reference(host::Method::ZBuffer);
     const Frame ids = render(scene, host::ColorMode::FaceId, reference);
     const Frame image = render(scene, host::ColorMode::Shaded, reference);
-    std::vector<host::RenderOptions> methods{
-        {"scanline", "area"}, {"warnock", "area"}, {"warnock", "centres"}};
+    std::vector<host::MethodOptions> methods{
+        method(host::Method::ScanLine), method(host::Method::Warnock),
+        method(host::Method::Warnock, host::WindowTest::Centres)};
     for (double threshold : {0.0, 0.003, 0.04, 0.5}) {
-        host::RenderOptions hybrid{"hybrid", "area"};
-        hybrid.threshold = threshold;
+        host::MethodOptions hybrid = method(host::Method::Hybrid);
+        hybrid.hybrid.threshold = threshold;
         methods.push_back(hybrid);
     }
-    host::RenderOptions hybrid_centres{"hybrid", "centres"};
-    hybrid_centres.threshold = 0.01;
-    hybrid_centres.depth_estimate = "scene";
+    host::MethodOptions hybrid_centres = method(host::Method::Hybrid, host::WindowTest::Centres);
+    hybrid_centres.hybrid.threshold = 0.01;
+    hybrid_centres.hybrid.depth = host::DepthEstimate::Scene;
     methods.push_back(hybrid_centres);
-    for (const host::RenderOptions& o : methods) {
-        const std::string label = o.method + " " + o.window_test +
-                                  (o.method == "hybrid" ? " " + std::to_string(o.threshold) : "");
+    for (const host::MethodOptions& o : methods) {
+        const std::string label =
+            std::string(host::method_info(o.method).name) + " " +
+            host::to_string(o.warnock.window_test) +
+            (o.method == host::Method::Hybrid ? " " + std::to_string(o.hybrid.threshold) : "");
         Frame got_ids = render(scene, host::ColorMode::FaceId, o);
         EXPECT_EQ(got_ids.checksum, ids.checksum)
             << label << " ids: " << difference(ids, got_ids, scene.width);

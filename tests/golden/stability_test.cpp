@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "host/raster/renderer.h"
+#include "host/methods.h"
 #include "host/scene/generators.h"
 #include "host/scene/projection.h"
 #include "protocol/memory_buffer.h"
@@ -40,7 +40,7 @@ struct IdFrame {
     Counters counters;
 };
 
-IdFrame raster_ids(const Scene& scene, const RenderOptions& options) {
+IdFrame raster_ids(const Scene& scene, const MethodOptions& options) {
     IdFrame out;
     HostStats stats;
     ScreenScene s = project_scene(scene, ColorMode::FaceId, stats.counters);
@@ -53,11 +53,11 @@ IdFrame raster_ids(const Scene& scene, const RenderOptions& options) {
     return out;
 }
 
-RenderOptions raster(const char* method, double threshold = 0.04, const char* test = "area") {
-    RenderOptions o;
-    o.method = method;
-    o.threshold = threshold;
-    o.window_test = test;
+MethodOptions raster(const char* method, double threshold = 0.04, const char* test = "area") {
+    MethodOptions o(method_named(method));
+    o.hybrid.threshold = threshold;
+    o.warnock.window_test =
+        std::string_view(test) == "centres" ? WindowTest::Centres : WindowTest::Area;
     return o;
 }
 
@@ -113,7 +113,7 @@ TEST(GoldenStability, WarnockAndHybridEndBoundedOnInterpenetratingAndCyclicFaces
     const IdFrame want = raster_ids(scene, raster("zbuffer"));
     struct Run {
         const char* name;
-        RenderOptions options;
+        MethodOptions options;
     };
     const Run runs[] = {{"warnock area", raster("warnock", 0, "area")},
                         {"warnock centres", raster("warnock", 0, "centres")},
@@ -124,10 +124,10 @@ TEST(GoldenStability, WarnockAndHybridEndBoundedOnInterpenetratingAndCyclicFaces
         SCOPED_TRACE(run.name);
         const IdFrame got = raster_ids(scene, run.options);
         EXPECT_EQ(got.ids, want.ids);
-        if (run.options.method == "scanline") continue;
+        if (run.options.method == Method::ScanLine) continue;
         EXPECT_LE(got.counters.get("max_depth"), depth_bound(scene));
         EXPECT_LE(got.counters.get("window_samples"), window_bound(scene));
-        if (std::isinf(run.options.threshold) || run.options.method == "warnock") {
+        if (std::isinf(run.options.hybrid.threshold) || run.options.method == Method::Warnock) {
             EXPECT_GT(got.counters.get("pixel_windows"), 0u) << "some windows reach one pixel";
         }
     }

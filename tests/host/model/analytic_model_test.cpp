@@ -260,6 +260,26 @@ TEST(AnalyticModel, WindowWithSubPixelFacesIsOutsideTheDomain) {
     EXPECT_FALSE(p.expr_2_7.has_value());
 }
 
+TEST(AnalyticModel, Expr27IsThePapersCostPerPixelOverAWindowsArea) {
+    // F (16 F_w - D) / (E_w^2 D)
+    EXPECT_DOUBLE_EQ(expr_2_7_area(18, 2, 1, 64), 18.0 * 31 / 64);
+    EXPECT_DOUBLE_EQ(expr_2_7_area(946, 10, 2, 1024), 946.0 * 158 / 2048);
+    EXPECT_EQ(expr_2_7_area(946, 10, 2, 1024), expr_2_7(946, 10, 2, 32));
+    EXPECT_LT(expr_2_7_area(100, 0, 1.5, 16), 0) << "an empty window: go on with beams";
+}
+
+TEST(AnalyticModel, Expr27FacesAtInvertsExpr27) {
+    for (double cost : {0.5, 10.0, 1000.0}) {
+        const double f_w = expr_2_7_faces_at(cost, 946, 2.5, 48 * 16);
+        EXPECT_NEAR(expr_2_7_area(946, f_w, 2.5, 48 * 16), cost, 1e-9 * cost);
+    }
+}
+
+TEST(AnalyticModel, Expr31OverAnAreaIsExpr31OverASquaresEdge) {
+    EXPECT_EQ(expr_3_1_area(64, 4, 1024), expr_3_1(64, 4, 32));
+    EXPECT_DOUBLE_EQ(expr_3_1_area(16, 1, 8 * 32), (16 * 2 + 16) / 256.0);
+}
+
 TEST(AnalyticModel, RecurrencesRejectNonPowers) {
     EXPECT_THROW(sort_samples_recurrence(8), std::invalid_argument);
     EXPECT_THROW(sort_samples_recurrence(0), std::invalid_argument);

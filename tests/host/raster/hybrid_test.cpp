@@ -108,9 +108,9 @@ TEST(Hybrid, ApproximateFillsMissAtMostEpsilonOfTheirWindows) {
     ScreenScene s = scene_screen("C.json", ColorMode::FaceId);
     ZBuffer zbuffer;
     const auto want = ids_of(commands_of(zbuffer, s), s);
-    Warnock exact_k(WindowTest::Area, {16, 0.0});
+    Warnock exact_k({WindowTest::Area, {16, 0.0}});
     EXPECT_EQ(ids_of(commands_of(exact_k, s), s), want) << "epsilon 0 must stay exact";
-    Warnock approx(WindowTest::Area, {16, 0.05});
+    Warnock approx({WindowTest::Area, {16, 0.05}});
     Counters c;
     const auto got = ids_of(commands_of(approx, s, &c), s);
     uint64_t wrong = 0;

@@ -109,12 +109,6 @@ HostStats expect_same_as_zbuffer(const ScreenScene& s) {
     return expect_same_as_zbuffer(s, scanline);
 }
 
-TEST(ScanLine, IsRegisteredUnderItsName) {
-    EXPECT_EQ(make_renderer({"scanline"})->name(), "scanline");
-    auto names = renderer_names();
-    EXPECT_NE(std::find(names.begin(), names.end(), "scanline"), names.end());
-}
-
 TEST(ScanLine, MatchesTheZBufferOnSeededRandomInterpenetratingTriangles) {
     ScanLine scanline;  // one renderer for every scene: nothing leaks between frames
     for (uint64_t seed = 1; seed <= 6; ++seed) {

@@ -95,12 +95,5 @@ TEST(BeamRayHybrid, ThresholdZeroHandsTheFirstWindowThatIsNotAHitToRays) {
         << "every ray once: the corners are not traced again";
 }
 
-TEST(BeamRayHybrid, Expr27IsThePapersCostPerPixel) {
-    // F (16 F_w - D) / (E_w^2 D)
-    EXPECT_DOUBLE_EQ(expr_2_7_cost(18, 2, 1, 64), 18.0 * 31 / 64);
-    EXPECT_DOUBLE_EQ(expr_2_7_cost(946, 10, 2, 1024), 946.0 * 158 / 2048);
-    EXPECT_LT(expr_2_7_cost(100, 0, 1.5, 16), 0) << "an empty window: go on with beams";
-}
-
 }  // namespace
 }  // namespace fb89::host

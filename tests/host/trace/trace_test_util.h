@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "controller_sim/controller.h"
-#include "host/raster/renderer.h"
+#include "host/methods.h"
 #include "host/scene/projection.h"
 #include "host/trace/beam_ray_hybrid.h"
 #include "protocol/memory_buffer.h"
@@ -73,17 +73,16 @@ struct Frame {
     std::vector<uint8_t> beam_mask;
 };
 
-inline host::RenderOptions trace_options(const char* method, double threshold = 0.5,
+inline host::MethodOptions trace_options(const char* method, double threshold = 0.5,
                                          int reflections = 8) {
-    host::RenderOptions o;
-    o.method = method;
-    o.beam_threshold = threshold;
-    o.max_reflections = reflections;
+    host::MethodOptions o(host::method_named(method));
+    o.beam.threshold = threshold;
+    o.trace.max_reflections = reflections;
     return o;
 }
 
 // Both passes of one method: the face-id pass, then the shaded pass (with its counts).
-inline Frame render_trace(const host::Scene& scene, const host::RenderOptions& options) {
+inline Frame render_trace(const host::Scene& scene, const host::MethodOptions& options) {
     Frame out;
     auto renderer = host::make_renderer(options);
     {

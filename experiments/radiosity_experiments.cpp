@@ -14,7 +14,8 @@
 
 #include <fmt/format.h>
 
-#include "cli/experiments.h"
+#include "experiments/experiments.h"
+#include "experiments/measure.h"
 #include "host/radiosity/exact.h"
 #include "host/radiosity/form_factors.h"
 #include "host/radiosity/hemicube.h"
@@ -25,7 +26,7 @@
 #include "host/trace/grid.h"
 #include "host/trace/trace_scene.h"
 
-namespace fb89::cli {
+namespace fb89::experiments {
 
 namespace {
 
@@ -87,17 +88,12 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
         const Room room = load_room(file, patches);
         std::vector<host::Timing> flux_t, hybrid_t;
         VisibilityRun flux, hybrid;
-        for (int round = -1; round < s.repeat; ++round) {
-            for (int k = 0; k < 2; ++k) {
-                const bool use_hybrid = (k + round + 1) % 2 == 1;
-                VisibilityRun run = run_visibility(room, use_hybrid);
-                if (round >= 0) (use_hybrid ? hybrid_t : flux_t).push_back(run.time);
-                (use_hybrid ? hybrid : flux) = std::move(run);
-            }
-            if (s.progress)
-                std::cerr << fmt::format("\r{}: round {}/{}   ", file, round + 1, s.repeat);
-        }
-        if (s.progress) std::cerr << "\r" << std::string(60, ' ') << "\r";
+        interleave(2, s.repeat, file, s.progress, [&](size_t m, bool timed) {
+            const bool use_hybrid = m == 1;
+            VisibilityRun run = run_visibility(room, use_hybrid);
+            if (timed) (use_hybrid ? hybrid_t : flux_t).push_back(run.time);
+            (use_hybrid ? hybrid : flux) = std::move(run);
+        });
         const double flux_ms = host::median(flux_t).cpu_ms;
         const double hybrid_ms = host::median(hybrid_t).cpu_ms;
         const bool same = flux.delta == hybrid.delta;
@@ -253,4 +249,4 @@ Table experiment_form_factor_error(const ExperimentSettings& s, int patches, int
     return table;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::experiments

@@ -7,10 +7,10 @@
 
 #include "controller_sim/framebuffer.h"
 
-namespace fb89::cli {
+namespace fb89::experiments {
 
 // `by_beam` holds one entry per pixel, row by row: 1 where a beam decided it.
 controller::Framebuffer masked_by_beams(const controller::Framebuffer& frame,
                                         const std::vector<uint8_t>& by_beam);
 
-}  // namespace fb89::cli
+}  // namespace fb89::experiments

@@ -8,20 +8,20 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iostream>
 #include <limits>
 
 #include <fmt/format.h>
 
-#include "cli/beam_mask.h"
-#include "cli/experiments.h"
+#include "experiments/beam_mask.h"
+#include "experiments/experiments.h"
+#include "experiments/measure.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "host/trace/beam_ray_hybrid.h"
 
-namespace fb89::cli {
+namespace fb89::experiments {
 
 namespace {
 
@@ -34,7 +34,7 @@ struct EndToEnd {
 };
 
 EndToEnd run_end_to_end(const std::string& file, ImageSize size,
-                        const host::RenderOptions& options) {
+                        const host::MethodOptions& options) {
     EndToEnd out;
     host::Stopwatch clock;
     host::Scene scene = host::load_scene(file);
@@ -60,23 +60,17 @@ struct EndToEndMedians {
     EndToEnd last;
 };
 std::vector<EndToEndMedians> measure_end_to_end(const std::string& file, ImageSize size,
-                                                const std::vector<host::RenderOptions>& settings,
+                                                const std::vector<host::MethodOptions>& settings,
                                                 int repeat, bool progress) {
     std::vector<std::vector<host::Timing>> e2e(settings.size()), hs(settings.size());
     std::vector<EndToEndMedians> out(settings.size());
-    for (int round = -1; round < repeat; ++round) {
-        if (progress)
-            std::cerr << fmt::format("\r{} {}x{}: round {}/{}   ", file, size.width, size.height,
-                                     round + 1, repeat);
-        for (size_t k = 0; k < settings.size(); ++k) {
-            const size_t m = (k + static_cast<size_t>(round + 1)) % settings.size();
-            out[m].last = run_end_to_end(file, size, settings[m]);
-            if (round < 0) continue;  // warm-up
-            e2e[m].push_back(out[m].last.end_to_end);
-            hs[m].push_back(out[m].last.hidden_surface);
-        }
-    }
-    if (progress) std::cerr << "\r" << std::string(70, ' ') << "\r";
+    const std::string label = fmt::format("{} {}x{}", file, size.width, size.height);
+    interleave(settings.size(), repeat, label, progress, [&](size_t m, bool timed) {
+        out[m].last = run_end_to_end(file, size, settings[m]);
+        if (!timed) return;
+        e2e[m].push_back(out[m].last.end_to_end);
+        hs[m].push_back(out[m].last.hidden_surface);
+    });
     for (size_t m = 0; m < settings.size(); ++m) {
         out[m].end_to_end = host::median(e2e[m]);
         out[m].hidden_surface = host::median(hs[m]);
@@ -84,10 +78,9 @@ std::vector<EndToEndMedians> measure_end_to_end(const std::string& file, ImageSi
     return out;
 }
 
-host::RenderOptions trace_setting(const char* method, double threshold) {
-    host::RenderOptions o;
-    o.method = method;
-    o.beam_threshold = threshold;
+host::MethodOptions trace_setting(host::Method method, double threshold) {
+    host::MethodOptions o(method);
+    o.beam.threshold = threshold;
     return o;
 }
 
@@ -113,7 +106,7 @@ Table experiment_beam_resolution(const ExperimentSettings& s, const std::vector<
     for (const auto& file : s.scenes)
         for (const ImageSize& size : sizes) {
             auto r = measure_end_to_end(
-                file, size, {trace_setting("raytrace", 0), trace_setting("beam", threshold)},
+                file, size, {trace_setting(host::Method::RayTrace, 0), trace_setting(host::Method::Beam, threshold)},
                 s.repeat, s.progress);
             const double rays_ms = r[0].end_to_end.cpu_ms;
             const bool same =
@@ -141,7 +134,7 @@ Table experiment_beam_masks(const ExperimentSettings& s, double threshold,
                  "windows_to_rays", "image", "mask"});
     std::filesystem::create_directories(out_dir);
     for (const auto& file : s.scenes) {
-        EndToEnd run = run_end_to_end(file, s.size, trace_setting("beam", threshold));
+        EndToEnd run = run_end_to_end(file, s.size, trace_setting(host::Method::Beam, threshold));
         controller::Controller ctl(controller::load_profile("ideal"));
         run.commands.replay_into(ctl);
         const std::string stem = std::filesystem::path(file).stem().string();
@@ -173,16 +166,16 @@ Table experiment_beam_threshold(const ExperimentSettings& s, const std::vector<d
     for (const auto& file : s.scenes) {
         host::Scene scene;
         host::ScreenScene screen = load_screen(file, s, scene);
-        std::vector<host::RenderOptions> settings{trace_setting("raytrace", 0)};
+        std::vector<host::MethodOptions> settings{trace_setting(host::Method::RayTrace, 0)};
         for (double t : ramp)
-            settings.push_back(trace_setting("beam", t));
+            settings.push_back(trace_setting(host::Method::Beam, t));
         auto r = measure_interleaved(screen, settings, s.repeat, file, s.progress);
         const double rays_ms = r[0].median.cpu_ms;
         const uint64_t rays_frame = frame_checksum(r[0].commands);
         for (size_t m = 0; m < settings.size(); ++m) {
             const auto& c = r[m].counters;
             const std::string threshold =
-                m == 0 ? "raytrace" : fmt::format("{:.6g}", settings[m].beam_threshold);
+                m == 0 ? "raytrace" : fmt::format("{:.6g}", settings[m].beam.threshold);
             table.add({file, threshold, fixed(r[m].median.wall_ms, 3), fixed(r[m].median.cpu_ms, 3),
                        fixed(r[m].median.cpu_ms / rays_ms, 3), fixed(beam_share(c), 1),
                        std::to_string(c.get("rays")), std::to_string(c.get("beams")),
@@ -195,4 +188,4 @@ Table experiment_beam_threshold(const ExperimentSettings& s, const std::vector<d
     return table;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::experiments

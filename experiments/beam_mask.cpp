@@ -1,8 +1,8 @@
-#include "cli/beam_mask.h"
+#include "experiments/beam_mask.h"
 
 #include <stdexcept>
 
-namespace fb89::cli {
+namespace fb89::experiments {
 
 controller::Framebuffer masked_by_beams(const controller::Framebuffer& frame,
                                         const std::vector<uint8_t>& by_beam) {
@@ -16,4 +16,4 @@ controller::Framebuffer masked_by_beams(const controller::Framebuffer& frame,
     return out;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::experiments

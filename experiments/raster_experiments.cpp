@@ -1,134 +1,47 @@
-#include "cli/experiments.h"
-
-#include "cli/id_pass.h"
-
+// The paper's §2 and §3 experiments on the raster methods: Figs. 2.1, 2.4 and 3.1, the
+// hybrid against the Z-buffer, the threshold sweep, and speed against accuracy.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
-#include <memory>
 
 #include <fmt/format.h>
 
-#include "controller_sim/controller.h"
+#include "experiments/experiments.h"
+#include "experiments/id_pass.h"
+#include "experiments/measure.h"
 #include "host/model/analytic_model.h"
-#include "host/raster/renderer.h"
 #include "host/raster/scene_measures.h"
 #include "host/raster/warnock.h"
 #include "host/scene/generators.h"
 #include "host/scene/projection.h"
-#include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 
-namespace fb89::cli {
-
-std::string Table::csv() const {
-    std::string out;
-    auto line = [&out](const std::vector<std::string>& cells) {
-        for (size_t i = 0; i < cells.size(); ++i)
-            out += (i ? "," : "") + cells[i];
-        out += "\n";
-    };
-    line(m_columns);
-    for (const auto& r : m_rows)
-        line(r);
-    return out;
-}
-
-std::string Table::text() const {
-    std::vector<size_t> width(m_columns.size());
-    for (size_t i = 0; i < m_columns.size(); ++i)
-        width[i] = m_columns[i].size();
-    for (const auto& r : m_rows)
-        for (size_t i = 0; i < r.size() && i < width.size(); ++i)
-            width[i] = std::max(width[i], r[i].size());
-    std::string out;
-    auto line = [&](const std::vector<std::string>& cells) {
-        for (size_t i = 0; i < cells.size(); ++i)
-            out += fmt::format("{:>{}}  ", cells[i], width[i]);
-        out += "\n";
-    };
-    line(m_columns);
-    for (const auto& r : m_rows)
-        line(r);
-    return out;
-}
+namespace fb89::experiments {
 
 namespace {
 
-struct Method {
+struct Setting {
     std::string label;
-    host::RenderOptions options;
+    host::MethodOptions options;
 };
 
-const std::vector<Method>& fig2_1_methods() {
-    static const std::vector<Method> methods{{"zbuffer", {"zbuffer", "area"}},
-                                             {"scanline", {"scanline", "area"}},
-                                             {"warnock-area", {"warnock", "area"}},
-                                             {"warnock-centres", {"warnock", "centres"}}};
+host::MethodOptions warnock_with(host::WindowTest test) {
+    host::MethodOptions o(host::Method::Warnock);
+    o.warnock.window_test = test;
+    return o;
+}
+
+const std::vector<Setting>& fig2_1_methods() {
+    static const std::vector<Setting> methods{
+        {"zbuffer", host::Method::ZBuffer},
+        {"scanline", host::Method::ScanLine},
+        {"warnock-area", warnock_with(host::WindowTest::Area)},
+        {"warnock-centres", warnock_with(host::WindowTest::Centres)}};
     return methods;
 }
 
 }  // namespace
-
-// Interleaved timing: every round renders each setting once, in a rotating order, so slow
-// drifts of the machine fall on all settings alike; a warm-up round first; medians.
-std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
-                                          const std::vector<host::RenderOptions>& settings,
-                                          int repeat, const std::string& label, bool progress) {
-    std::vector<std::unique_ptr<host::Renderer>> renderers;
-    std::vector<std::vector<host::Timing>> times(settings.size());
-    std::vector<Measured> out(settings.size());
-    for (const auto& o : settings) {
-        renderers.push_back(host::make_renderer(o));
-        renderers.back()->setup(screen);
-    }
-    for (int round = -1; round < repeat; ++round) {
-        if (progress) std::cerr << fmt::format("\r{}: round {}/{}   ", label, round + 1, repeat);
-        for (size_t k = 0; k < settings.size(); ++k) {
-            const size_t m = (k + static_cast<size_t>(round + 1)) % settings.size();
-            out[m].commands.clear();
-            host::HostStats stats;
-            host::Timing t = host::render_frame(*renderers[m], screen, out[m].commands, stats);
-            if (round >= 0) times[m].push_back(t);
-            out[m].counters = stats.counters;
-        }
-    }
-    if (progress) std::cerr << "\r" << std::string(60, ' ') << "\r";
-    for (size_t m = 0; m < settings.size(); ++m)
-        out[m].median = host::median(times[m]);
-    return out;
-}
-
-ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
-                                     const controller::CostProfile& profile) {
-    controller::Controller ctl(profile);
-    commands.replay_into(ctl);
-    const auto& frame = ctl.frames().at(0);
-    ControllerFigures f;
-    f.commands = frame.total().commands;
-    f.fills = frame.ops[protocol::opcode_index(protocol::Opcode::FillRect)].commands;
-    f.spans = frame.ops[protocol::opcode_index(protocol::Opcode::DrawSpan)].commands;
-    f.controller_ms = frame.controller_busy_us / 1e3;
-    f.bus_ms = frame.bus_busy_us / 1e3;
-    f.frame_ms = frame.end_us / 1e3;
-    return f;
-}
-
-host::ScreenScene load_screen(const std::string& file, const ExperimentSettings& s,
-                              host::Scene& scene) {
-    scene = host::load_scene(file);
-    if (s.size.width > 0) {
-        scene.width = s.size.width;
-        scene.height = s.size.height;
-    }
-    host::Counters counters;
-    return host::project_scene(scene, host::ColorMode::Shaded, counters);
-}
-
-std::string fixed(double v, int digits) {
-    return fmt::format("{:.{}f}", v, digits);
-}
 
 Table experiment_fig2_1(const ExperimentSettings& s) {
     Table table({"scene", "method", "faces", "depth_complexity", "hs_wall_ms", "hs_cpu_ms",
@@ -140,7 +53,7 @@ Table experiment_fig2_1(const ExperimentSettings& s) {
         host::ScreenScene screen = load_screen(file, s, scene);
         host::SceneMeasures measures = host::measure_scene(screen);
         const auto& methods = fig2_1_methods();
-        std::vector<host::RenderOptions> settings;
+        std::vector<host::MethodOptions> settings;
         for (const auto& m : methods)
             settings.push_back(m.options);
         std::vector<Measured> results =
@@ -166,7 +79,7 @@ namespace {
 
 uint64_t warnock_samples(const host::ScreenScene& screen, host::WindowTest test,
                          uint64_t* sorts = nullptr) {
-    host::Warnock warnock(test);
+    host::Warnock warnock({test});
     protocol::MemoryBuffer discard;
     host::HostStats stats;
     warnock.render(screen, discard, stats);
@@ -234,10 +147,6 @@ Table experiment_fig2_4(const ExperimentSettings& s) {
     return table;
 }
 
-}  // namespace fb89::cli
-
-namespace fb89::cli {
-
 std::vector<double> threshold_ramp(double from, double to, int steps) {
     std::vector<double> out;
     if (steps <= 1) return {from};
@@ -249,17 +158,17 @@ std::vector<double> threshold_ramp(double from, double to, int steps) {
 // The hybrid at each threshold (plus 0 = pure Z-buffer and inf = pure Warnock), timed
 // interleaved per scene.
 Table sweep_threshold(const ExperimentSettings& s, const std::vector<double>& thresholds,
-                      const host::RenderOptions& base) {
+                      const host::MethodOptions& base) {
     Table table({"scene", "threshold", "hs_wall_ms", "hs_cpu_ms", "ratio_to_zbuffer",
                  "window_samples", "face_computations", "windows_handed_over", "pixels_zbuffer",
                  "pixels_warnock", "depth_tests", "commands", "fills", "spans", "controller_ms",
                  "bus_ms", "frame_ms"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
-    std::vector<host::RenderOptions> settings;
+    std::vector<host::MethodOptions> settings;
     for (double t : thresholds) {
-        host::RenderOptions o = base;
-        o.method = "hybrid";
-        o.threshold = t;
+        host::MethodOptions o = base;
+        o.method = host::Method::Hybrid;
+        o.hybrid.threshold = t;
         settings.push_back(o);
     }
     for (const auto& file : s.scenes) {
@@ -291,14 +200,10 @@ Table sweep_threshold(const ExperimentSettings& s, const std::vector<double>& th
     return table;
 }
 
-}  // namespace fb89::cli
-
-namespace fb89::cli {
-
 namespace {
 
 // The face-id buffer a setting produces, through its commands and the controller.
-std::vector<uint8_t> id_pixels(const host::Scene& scene, const host::RenderOptions& o) {
+std::vector<uint8_t> id_pixels(const host::Scene& scene, const host::MethodOptions& o) {
     auto renderer = host::make_renderer(o);
     const controller::Framebuffer fb = id_framebuffer(scene, *renderer);
     const auto px = fb.pixels();
@@ -322,27 +227,22 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
                  "hs_cpu_ms", "ratio_to_zbuffer", "commands", "controller_ms", "pixels_wrong",
                  "fraction_wrong"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
-    struct Setting {
-        std::string label;
-        host::RenderOptions options;
-    };
-    std::vector<Setting> settings{{"zbuffer", {"zbuffer"}}};
-    for (const char* method : {"warnock", "hybrid"}) {
+    std::vector<Setting> settings{{"zbuffer", host::Method::ZBuffer}};
+    for (host::Method method : {host::Method::Warnock, host::Method::Hybrid}) {
         for (auto [k, eps] : {std::pair{0, 0.0}, {32, 0.01}, {16, 0.02}, {8, 0.05}, {4, 0.1}}) {
-            host::RenderOptions o;
-            o.method = method;
-            o.threshold = threshold;
-            o.approx_min_side = k;
-            o.approx_epsilon = eps;
+            host::MethodOptions o(method);
+            o.hybrid.threshold = threshold;
+            o.warnock.approx = {k, eps};
+            const std::string_view name = host::method_info(method).name;
             settings.push_back(
-                {fmt::format("{}{}", method, k ? fmt::format(" k={} eps={}", k, eps) : " exact"),
+                {fmt::format("{}{}", name, k ? fmt::format(" k={} eps={}", k, eps) : " exact"),
                  o});
         }
     }
     for (const auto& file : s.scenes) {
         host::Scene scene;
         host::ScreenScene screen = load_screen(file, s, scene);
-        std::vector<host::RenderOptions> options;
+        std::vector<host::MethodOptions> options;
         for (const auto& st : settings)
             options.push_back(st.options);
         std::vector<Measured> results =
@@ -354,9 +254,10 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
             const ControllerFigures ctl = controller_figures(results[i].commands, profile);
             const uint64_t wrong = i == 0 ? 0 : pixels_differing(truth, id_pixels(scene, o));
             table.add(
-                {file, settings[i].label, o.method,
-                 o.method == "hybrid" ? fmt::format("{:.6g}", o.threshold) : "",
-                 std::to_string(o.approx_min_side), fmt::format("{}", o.approx_epsilon),
+                {file, settings[i].label, std::string(host::method_info(o.method).name),
+                 o.method == host::Method::Hybrid ? fmt::format("{:.6g}", o.hybrid.threshold) : "",
+                 std::to_string(o.warnock.approx.min_side),
+                 fmt::format("{}", o.warnock.approx.epsilon),
                  fixed(results[i].median.cpu_ms, 3),
                  fixed(results[i].median.cpu_ms / zbuffer_ms, 3), std::to_string(ctl.commands),
                  fixed(ctl.controller_ms, 3), std::to_string(wrong),
@@ -367,23 +268,15 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
     return table;
 }
 
-}  // namespace fb89::cli
-
-namespace fb89::cli {
-
 Table experiment_fig3_1(const ExperimentSettings& s, double chosen) {
-    std::vector<double> thresholds{0.0, 0.04, chosen};
+    std::vector<double> thresholds{0.0, host::kPaperThreshold, chosen};
     for (double t : threshold_ramp(0.0002, 2.0, 13))
         thresholds.push_back(t);
     thresholds.push_back(std::numeric_limits<double>::infinity());
     std::sort(thresholds.begin(), thresholds.end());
     thresholds.erase(std::unique(thresholds.begin(), thresholds.end()), thresholds.end());
-    return sweep_threshold(s, thresholds, host::RenderOptions{});
+    return sweep_threshold(s, thresholds, host::MethodOptions(host::Method::Hybrid));
 }
-
-}  // namespace fb89::cli
-
-namespace fb89::cli {
 
 // The headline of §3: the hybrid at the calibrated and at the paper's threshold against
 // the pure Z-buffer, interleaved, on each scene.
@@ -393,9 +286,10 @@ Table experiment_hybrid(const ExperimentSettings& s, double chosen) {
                  "zbuffer_commands", "hybrid_commands", "zbuffer_controller_ms",
                  "hybrid_controller_ms"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
-    host::RenderOptions zbuffer{"zbuffer"}, hybrid{"hybrid"}, paper{"hybrid"};
-    hybrid.threshold = chosen;
-    paper.threshold = 0.04;
+    host::MethodOptions zbuffer(host::Method::ZBuffer), hybrid(host::Method::Hybrid),
+        paper(host::Method::Hybrid);
+    hybrid.hybrid.threshold = chosen;
+    paper.hybrid.threshold = host::kPaperThreshold;
     for (const auto& file : s.scenes) {
         host::Scene scene;
         host::ScreenScene screen = load_screen(file, s, scene);
@@ -415,4 +309,4 @@ Table experiment_hybrid(const ExperimentSettings& s, double chosen) {
     return table;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::experiments

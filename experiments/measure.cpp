@@ -1,0 +1,70 @@
+#include "experiments/measure.h"
+
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "controller_sim/controller.h"
+#include "host/scene/projection.h"
+#include "host/scene/scene_loader.h"
+
+namespace fb89::experiments {
+
+void show_round(const std::string& label, int round, int rounds) {
+    std::cerr << fmt::format("\r{}: round {}/{}   ", label, round, rounds);
+}
+
+void clear_progress() {
+    std::cerr << "\r" << std::string(70, ' ') << "\r";
+}
+
+std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
+                                          const std::vector<host::MethodOptions>& settings,
+                                          int repeat, const std::string& label, bool progress) {
+    std::vector<std::unique_ptr<host::Renderer>> renderers;
+    std::vector<std::vector<host::Timing>> times(settings.size());
+    std::vector<Measured> out(settings.size());
+    for (const auto& o : settings) {
+        renderers.push_back(host::make_renderer(o));
+        renderers.back()->setup(screen);
+    }
+    interleave(settings.size(), repeat, label, progress, [&](size_t m, bool timed) {
+        out[m].commands.clear();
+        host::HostStats stats;
+        host::Timing t = host::render_frame(*renderers[m], screen, out[m].commands, stats);
+        if (timed) times[m].push_back(t);
+        out[m].counters = stats.counters;
+    });
+    for (size_t m = 0; m < settings.size(); ++m)
+        out[m].median = host::median(times[m]);
+    return out;
+}
+
+ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
+                                     const controller::CostProfile& profile) {
+    controller::Controller ctl(profile);
+    commands.replay_into(ctl);
+    const auto& frame = ctl.frames().at(0);
+    ControllerFigures f;
+    f.commands = frame.total().commands;
+    f.fills = frame.ops[protocol::opcode_index(protocol::Opcode::FillRect)].commands;
+    f.spans = frame.ops[protocol::opcode_index(protocol::Opcode::DrawSpan)].commands;
+    f.controller_ms = frame.controller_busy_us / 1e3;
+    f.bus_ms = frame.bus_busy_us / 1e3;
+    f.frame_ms = frame.end_us / 1e3;
+    return f;
+}
+
+host::ScreenScene load_screen(const std::string& file, const ExperimentSettings& s,
+                              host::Scene& scene) {
+    scene = host::load_scene(file);
+    if (s.size.width > 0) {
+        scene.width = s.size.width;
+        scene.height = s.size.height;
+    }
+    host::Counters counters;
+    return host::project_scene(scene, host::ColorMode::Shaded, counters);
+}
+
+}  // namespace fb89::experiments

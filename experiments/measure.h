@@ -1,0 +1,62 @@
+// How the experiments measure: the one interleaved-timing loop, a method's frame timed
+// through it, and what the controller makes of a frame's commands.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "controller_sim/profile.h"
+#include "experiments/settings.h"
+#include "host/methods.h"
+#include "host/scene/scene.h"
+#include "host/scene/screen_scene.h"
+#include "host/stats.h"
+#include "protocol/memory_buffer.h"
+
+namespace fb89::experiments {
+
+// Progress of interleaved rounds on stderr ("label: round i/n"), and wiping it.
+void show_round(const std::string& label, int round, int rounds);
+void clear_progress();
+
+// The one interleaved-timing loop: a warm-up round, then `repeat` rounds; each round runs
+// every one of `count` settings once, in an order rotated by one from round to round, so
+// that slow drifts of the machine fall on all settings alike. run(m, timed) runs setting m;
+// `timed` is false in the warm-up round, whose figures are not kept.
+template <class Run>
+void interleave(size_t count, int repeat, const std::string& label, bool progress, Run&& run) {
+    for (int round = -1; round < repeat; ++round) {
+        if (progress) show_round(label, round + 1, repeat);
+        for (size_t k = 0; k < count; ++k)
+            run((k + static_cast<size_t>(round + 1)) % count, round >= 0);
+    }
+    if (progress) clear_progress();
+}
+
+// One setting's result of interleaved timing: the median time, the counters and commands
+// of its last frame (every frame is the same).
+struct Measured {
+    host::Timing median;
+    host::Counters counters;
+    protocol::MemoryBuffer commands;
+};
+// Every setting's hidden-surface time on one screen scene, set up once, timed interleaved.
+std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
+                                          const std::vector<host::MethodOptions>& settings,
+                                          int repeat, const std::string& label, bool progress);
+
+// What the controller makes of one frame's commands under a profile.
+struct ControllerFigures {
+    uint64_t commands = 0, fills = 0, spans = 0;
+    double controller_ms = 0, bus_ms = 0, frame_ms = 0;
+};
+ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
+                                     const controller::CostProfile& profile);
+
+// Loads a scene file (into `scene`, which the result points into), at the settings' size
+// when one is given, and projects it shaded.
+host::ScreenScene load_screen(const std::string& file, const ExperimentSettings& s,
+                              host::Scene& scene);
+
+}  // namespace fb89::experiments

@@ -1,0 +1,22 @@
+// What every experiment is given: the scenes, an image size, how many timed rounds, the
+// controller's cost profile, and whether to show progress.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fb89::experiments {
+
+struct ImageSize {
+    int width = 0, height = 0;
+};
+
+struct ExperimentSettings {
+    std::vector<std::string> scenes;
+    ImageSize size;  // 0 x 0: each scene's own
+    int repeat = 7;
+    std::string profile = "tms34010-50mhz";
+    bool progress = false;
+};
+
+}  // namespace fb89::experiments
