@@ -3,9 +3,9 @@
 // ~3.0 ms per frame for 1,000 random triangles of ~700 px on one thread.
 #include <benchmark/benchmark.h>
 
+#include "host/raster/screen_setup.h"
 #include "host/raster/zbuffer.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "protocol/memory_buffer.h"
 
 namespace {

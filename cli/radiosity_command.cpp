@@ -29,7 +29,7 @@
 #include "controller_sim/png_io.h"
 #include "host/methods.h"
 #include "host/radiosity/pipeline.h"
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/stream_writer.h"

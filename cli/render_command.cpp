@@ -18,7 +18,7 @@
 #include "experiments/id_pass.h"
 #include "host/methods.h"
 #include "host/raster/scene_measures.h"
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/socket_stream.h"

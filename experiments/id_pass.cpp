@@ -1,6 +1,7 @@
 #include "experiments/id_pass.h"
 
 #include "controller_sim/controller.h"
+#include "host/raster/screen_setup.h"
 #include "protocol/memory_buffer.h"
 
 namespace fb89::experiments {

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "controller_sim/controller.h"
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 
 namespace fb89::experiments {

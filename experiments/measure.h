@@ -9,8 +9,8 @@
 #include "controller_sim/profile.h"
 #include "experiments/settings.h"
 #include "host/methods.h"
+#include "host/raster/screen_scene.h"
 #include "host/scene/scene.h"
-#include "host/scene/screen_scene.h"
 #include "host/stats.h"
 #include "protocol/memory_buffer.h"
 

@@ -12,9 +12,9 @@
 #include "experiments/measure.h"
 #include "host/model/analytic_model.h"
 #include "host/raster/scene_measures.h"
+#include "host/raster/screen_setup.h"
 #include "host/raster/warnock.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "protocol/memory_buffer.h"
 
 namespace fb89::experiments {
@@ -235,8 +235,7 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
             o.warnock.approx = {k, eps};
             const std::string_view name = host::method_info(method).name;
             settings.push_back(
-                {fmt::format("{}{}", name, k ? fmt::format(" k={} eps={}", k, eps) : " exact"),
-                 o});
+                {fmt::format("{}{}", name, k ? fmt::format(" k={} eps={}", k, eps) : " exact"), o});
         }
     }
     for (const auto& file : s.scenes) {
@@ -257,8 +256,7 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
                 {file, settings[i].label, std::string(host::method_info(o.method).name),
                  o.method == host::Method::Hybrid ? fmt::format("{:.6g}", o.hybrid.threshold) : "",
                  std::to_string(o.warnock.approx.min_side),
-                 fmt::format("{}", o.warnock.approx.epsilon),
-                 fixed(results[i].median.cpu_ms, 3),
+                 fmt::format("{}", o.warnock.approx.epsilon), fixed(results[i].median.cpu_ms, 3),
                  fixed(results[i].median.cpu_ms / zbuffer_ms, 3), std::to_string(ctl.commands),
                  fixed(ctl.controller_ms, 3), std::to_string(wrong),
                  fmt::format("{:.6f}", static_cast<double>(wrong) /

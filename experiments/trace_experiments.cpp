@@ -12,12 +12,12 @@
 
 #include <fmt/format.h>
 
+#include "controller_sim/controller.h"
+#include "controller_sim/png_io.h"
 #include "experiments/beam_mask.h"
 #include "experiments/experiments.h"
 #include "experiments/measure.h"
-#include "controller_sim/controller.h"
-#include "controller_sim/png_io.h"
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 #include "host/trace/beam_ray_hybrid.h"
 
@@ -105,9 +105,10 @@ Table experiment_beam_resolution(const ExperimentSettings& s, const std::vector<
     const controller::CostProfile profile = controller::load_profile(s.profile);
     for (const auto& file : s.scenes)
         for (const ImageSize& size : sizes) {
-            auto r = measure_end_to_end(
-                file, size, {trace_setting(host::Method::RayTrace, 0), trace_setting(host::Method::Beam, threshold)},
-                s.repeat, s.progress);
+            auto r = measure_end_to_end(file, size,
+                                        {trace_setting(host::Method::RayTrace, 0),
+                                         trace_setting(host::Method::Beam, threshold)},
+                                        s.repeat, s.progress);
             const double rays_ms = r[0].end_to_end.cpu_ms;
             const bool same =
                 frame_checksum(r[0].last.commands) == frame_checksum(r[1].last.commands);

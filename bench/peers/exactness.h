@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene/screen_scene.h"
+#include "host/raster/screen_scene.h"
 #include "protocol/memory_buffer.h"
 
 namespace fb89::peers {

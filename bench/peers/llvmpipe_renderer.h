@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene/screen_scene.h"
+#include "host/raster/screen_scene.h"
 
 namespace fb89::peers {
 

@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "host/raster/screen_setup.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 
 namespace fb89::peers {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "host/raster/screen_scene.h"
 #include "host/scene/scene.h"
-#include "host/scene/screen_scene.h"
 
 namespace fb89::peers {
 

@@ -11,7 +11,7 @@
 
 #include <cstdint>
 
-#include "host/scene/screen_scene.h"
+#include "host/raster/screen_scene.h"
 
 namespace fb89::host {
 

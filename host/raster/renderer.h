@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "host/scene/screen_scene.h"
+#include "host/raster/screen_scene.h"
 #include "host/stats.h"
 #include "protocol/command_sink.h"
 

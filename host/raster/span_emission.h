@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "host/scene/screen_scene.h"
+#include "host/raster/screen_scene.h"
 #include "protocol/command_sink.h"
 
 namespace fb89::host {

@@ -10,7 +10,7 @@
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "host/methods.h"
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 

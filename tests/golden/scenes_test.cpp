@@ -20,8 +20,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "host/raster/scene_measures.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/polygon.h"
-#include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 
 namespace fb89 {

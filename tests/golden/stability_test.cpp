@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "host/methods.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "protocol/memory_buffer.h"
 #include "tests/host/raster/raster_test_util.h"
 #include "tests/host/trace/trace_test_util.h"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 
 namespace fb89::host {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 
 namespace fb89::host {

@@ -9,8 +9,8 @@
 #include <limits>
 
 #include "host/model/analytic_model.h"
+#include "host/raster/screen_setup.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 #include "tests/host/raster/raster_test_util.h"

@@ -12,9 +12,9 @@
 
 #include <fmt/format.h>
 
+#include "host/raster/screen_setup.h"
 #include "host/raster/zbuffer.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 #include "tests/host/raster/raster_test_util.h"

@@ -8,9 +8,9 @@
 #include <cmath>
 
 #include "host/model/analytic_model.h"
+#include "host/raster/screen_setup.h"
 #include "host/raster/warnock.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "protocol/memory_buffer.h"
 
 namespace fb89::host {

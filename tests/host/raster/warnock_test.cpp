@@ -9,9 +9,9 @@
 #include <cmath>
 #include <string>
 
+#include "host/raster/screen_setup.h"
 #include "host/raster/zbuffer.h"
 #include "host/scene/generators.h"
-#include "host/scene/projection.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 #include "tests/host/raster/raster_test_util.h"

@@ -1,6 +1,6 @@
 // Projection to screen space: camera conventions, near-plane and guard-band clipping that
-// leaves no cracks, depth planes, snapping.
-#include "host/scene/projection.h"
+// leaves no cracks, depth planes; through the raster set-up, every pixel covered once.
+#include "host/raster/screen_setup.h"
 
 #include <gtest/gtest.h>
 
@@ -90,21 +90,22 @@ TEST(Projection, FacesBehindTheCameraAreDropped) {
     EXPECT_EQ(counters.get("faces_outside_frustum"), 1u);
 }
 
-TEST(Projection, VerticesSnapToTheSubpixelGrid) {
+TEST(Projection, StopsAtUnsnappedPolygonsWithTheirDepthPlanes) {
     Counters counters;
     Scene scene = parse_scene_json(
         R"({"camera": {"projection": "screen"}, "image": {"width": 16, "height": 16},
-        "objects": [{"polygon": [[1.001, 1.0, 0.5], [9.3, 1.0, 0.5], [1.0, 9.7, 0.5]]}]})",
+        "objects": [{"polygon": [[1.001, 1.0, 0.25], [9.3, 1.0, 0.5], [1.0, 9.7, 0.75]]}]})",
         "t.json", ".");
-    ScreenScene s = project_scene(scene, ColorMode::FaceId, counters);
-    ASSERT_EQ(s.faces.size(), 1u);
-    const SnappedPoint* p = s.points_of(s.faces[0]);
-    // 1.001 * 256 = 256.256 -> 256; 9.3 * 256 = 2380.8 -> 2381
-    std::vector<int64_t> xs;
-    for (uint32_t i = 0; i < s.faces[0].point_count; ++i)
-        xs.push_back(p[i].x);
-    EXPECT_NE(std::find(xs.begin(), xs.end(), 256), xs.end());
-    EXPECT_NE(std::find(xs.begin(), xs.end(), 2381), xs.end());
+    ProjectedScene p = project_faces(scene, ColorMode::FaceId, counters);
+    ASSERT_EQ(p.faces.size(), 1u);
+    ASSERT_EQ(p.faces[0].vertex_count, 3u);
+    EXPECT_EQ(p.vertices_of(p.faces[0])[0].x, 1.001);
+    EXPECT_EQ(p.vertices_of(p.faces[0])[1].x, 9.3);
+    const DepthPlane& d = p.faces[0].depth;
+    for (uint32_t i = 0; i < 3; ++i) {
+        const ProjectedVertex& v = p.vertices_of(p.faces[0])[i];
+        EXPECT_NEAR(d.a * v.x + d.b * v.y + d.c, v.z, 1e-12);
+    }
 }
 
 TEST(Projection, FaceIdPassHasABlackBackgroundWhateverTheScenes) {

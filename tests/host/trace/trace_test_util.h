@@ -8,7 +8,7 @@
 
 #include "controller_sim/controller.h"
 #include "host/methods.h"
-#include "host/scene/projection.h"
+#include "host/raster/screen_setup.h"
 #include "host/trace/beam_ray_hybrid.h"
 #include "protocol/memory_buffer.h"
 #include "tests/host/raster/raster_test_util.h"

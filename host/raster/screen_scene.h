@@ -1,15 +1,17 @@
-// Faces in screen space, ready for every raster method (DESIGN.md "Screen space, coverage
-// and depth").
+// Faces in screen space, ready for every raster method (docs/ARCHITECTURE.md "The shared
+// raster rule"); screen_setup.h makes them from projected faces.
 //
 // x right, y down, row 0 at the top; pixel (x, y) is sampled at (x + 0.5, y + 0.5).
 // Vertices are snapped to 1/256 pixel and kept as integers; every face is a convex polygon
 // wound so that its interior is on the left of each edge in these coordinates' own sense
-// (see coverage.h). Depth is a plane z = a*x + b*y + c computed before snapping.
+// (see coverage.h). Depth is the projected face's plane z = a*x + b*y + c, computed before
+// snapping (host/scene/projection.h).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "host/scene/projection.h"
 #include "protocol/command.h"
 
 namespace fb89::host {
@@ -30,10 +32,6 @@ struct EdgeFunction {
     int64_t nx = 0, ny = 0;
     int64_t k0 = 0;
     int64_t bias = 0;
-};
-
-struct DepthPlane {
-    double a = 0, b = 0, c = 0;  // z = a*x + b*y + c, x and y in pixels
 };
 
 // Pixel rectangle [x0, x1) x [y0, y1).
