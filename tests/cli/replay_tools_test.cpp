@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "controller_sim/png_io.h"
+#include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
 #include "tests/cli/cli_runner.h"
 
@@ -21,8 +22,8 @@ using fb89::testing::CliRun;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
 
-CliRun fb89(const std::string& args) {
-    return fb89::testing::run_fb89(args);
+CliRun fb89(const std::string& args, const std::string& prefix = "") {
+    return fb89::testing::run_fb89(args, prefix);
 }
 
 std::string scratch(const std::string& name) {
@@ -337,11 +338,32 @@ TEST(DiffCommand, ADifferentPixelExitsOneWithARedDiffImage) {
     EXPECT_EQ(fb89("diff " + a + " " + write_stream("two.fb89", fewer)).exit_code, 1);
 }
 
+// The byte offset two bytes into the stream's first DRAW_SPAN record past `after`, found
+// from the stream's own structure (its header's length depends on the recorded properties,
+// such as the scene's path, so a fixed byte count would land anywhere).
+uint64_t inside_a_span_after(const std::string& stream, uint64_t after) {
+    pr::StreamReader reader(stream);
+    pr::Command c;
+    while (reader.next(c))
+        if (std::holds_alternative<pr::DrawSpan>(c) && reader.command_offset() > after)
+            return reader.command_offset() + 2;
+    ADD_FAILURE() << "no DRAW_SPAN past byte " << after << " in " << stream;
+    return 0;
+}
+
+TEST(ReplayTools, TheStreamRecordsTheScenePathAsTheUserGaveIt) {
+    const std::string stream = scratch("relative.fb89");
+    CliRun r = fb89("render A.json --size 64x48 -q --stream " + stream, "cd " + kScenes + " && ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    pr::StreamReader reader(stream);
+    EXPECT_EQ(reader.properties().at("scene"), "A.json") << "relative stays relative";
+}
+
 TEST(ReplayTools, EveryToolReportsATruncatedStreamAndExitsTwo) {
     const std::string a = record_a();
     const std::string cut = scratch("cut.fb89");
     fs::copy_file(a, cut, fs::copy_options::overwrite_existing);
-    fs::resize_file(cut, 5000);
+    fs::resize_file(cut, inside_a_span_after(a, 4000));
     for (const std::string& args :
          {"replay " + cut, "dump " + cut, "info " + cut, "info --json " + cut,
           "trim " + cut + " --frames 0 -o " + scratch("t.fb89"), "diff " + a + " " + cut}) {
