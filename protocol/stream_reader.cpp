@@ -17,9 +17,7 @@
 
 namespace fb89::protocol {
 
-namespace {
 constexpr std::size_t kReadChunk = 64 * 1024;
-}  // namespace
 
 StreamReader::StreamReader(const std::string& path) : m_name(path) {
     if (path == "-") {

@@ -1,10 +1,8 @@
-// Bad input, as a user would feed it to fb89 (docs/RELIABILITY.md, "Bad input"): command
-// streams cut short, corrupt, of a newer version or claiming gigabytes; scenes with
-// overflowing numbers, wrong types, huge sizes, enormous or degenerate faces; missing,
-// empty and directory files. Every run has a generous time-out; each must end with exit 2
-// and a message naming the file and what was wrong where (or, for input that is valid
-// however odd, exit 0 with the right answer), never a crash, a hang or a half-written
-// output that looks valid.
+// Bad scenes, as a user would feed them to fb89 (docs/RELIABILITY.md, "Bad input"):
+// overflowing numbers, wrong types, huge sizes, enormous or degenerate faces, broken OBJ
+// files; missing, empty, directory and device files. Each must end with exit 2 and a
+// message naming the file and what was wrong where (or, for input that is valid however
+// odd, exit 0 with the right answer), never a crash, a hang or a half-written output.
 #include <gtest/gtest.h>
 
 #include <climits>
@@ -15,7 +13,7 @@
 
 #include "controller_sim/png_io.h"
 #include "protocol/stream_writer.h"
-#include "tests/cli/cli_runner.h"
+#include "tests/cli/bad_input.h"
 
 namespace {
 
@@ -24,66 +22,15 @@ namespace pr = fb89::protocol;
 
 using fb89::testing::CliRun;
 using fb89::testing::test_dir;
+using fb89::testing::bad_input::expect_refused;
+using fb89::testing::bad_input::put_u16;
+using fb89::testing::bad_input::put_u32;
+using fb89::testing::bad_input::scratch;
+using fb89::testing::bad_input::write_bytes;
+using fb89::testing::bad_input::write_file;
 
-// A crash shows as 128 + signal, a hang as timeout's 124.
 CliRun fb89(const std::string& args) {
-    return fb89::testing::run_fb89(args, "timeout -s KILL 120 ");
-}
-
-std::string scratch(const std::string& name) {
-    return (test_dir() / name).string();
-}
-
-std::string write_file(const std::string& name, const std::string& text) {
-    const std::string path = scratch(name);
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-}
-
-std::string write_bytes(const std::string& name, const std::vector<uint8_t>& bytes) {
-    const std::string path = scratch(name);
-    std::ofstream(path, std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()),
-               static_cast<std::streamsize>(bytes.size()));
-    return path;
-}
-
-void put_u16(std::vector<uint8_t>& b, size_t at, uint16_t v) {
-    b[at] = static_cast<uint8_t>(v), b[at + 1] = static_cast<uint8_t>(v >> 8);
-}
-
-void put_u32(std::vector<uint8_t>& b, size_t at, uint32_t v) {
-    for (int i = 0; i < 4; ++i)
-        b[at + i] = static_cast<uint8_t>(v >> (8 * i));
-}
-
-// Exit 2, the file named in an "fb89: error" or "fb89: usage" line, and every `needle`.
-void expect_refused(const CliRun& r, const std::string& file,
-                    const std::vector<std::string>& needles) {
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_EQ(r.err.rfind("fb89: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(file), std::string::npos) << "the message must name " << file << ":\n"
-                                                   << r.err;
-    for (const auto& n : needles)
-        EXPECT_NE(r.err.find(n), std::string::npos) << "expected '" << n << "' in:\n" << r.err;
-}
-
-// Two 8x6 frames, no properties: FRAME_BEGIN @12, FILL_RECT @28, FRAME_END @48,
-// FRAME_BEGIN @49, FILL_RECT @65, FRAME_END @85, frame index @86 .. 150.
-constexpr size_t kFirstRecord = 12, kFrame0End = 49, kIndexAt = 86, kStreamSize = 151;
-
-std::vector<uint8_t> two_frames() {
-    return pr::encode_stream({pr::FrameBegin{0, 8, 6, pr::Rgb{0, 0, 0}},
-                              pr::FillRect{0, 0, 4, 4, pr::Rgb{255, 0, 0}}, pr::FrameEnd{},
-                              pr::FrameBegin{1, 8, 6, pr::Rgb{0, 0, 64}},
-                              pr::FillRect{2, 2, 3, 3, pr::Rgb{9, 9, 9}}, pr::FrameEnd{}});
-}
-
-// Header of version 1 with no properties.
-std::vector<uint8_t> bare_header() {
-    std::vector<uint8_t> b = two_frames();
-    b.resize(kFirstRecord);
-    return b;
+    return fb89::testing::bad_input::run_with_timeout(args);
 }
 
 const char* const kCamera =
@@ -94,153 +41,6 @@ std::string scene_with(const std::string& rest) {
 }
 
 const char* const kTriangle = R"({"polygon": [[-1, -1, 0], [1, -1, 0], [0, 1, 0]]})";
-
-// ---- command streams ----------------------------------------------------------------------
-
-TEST(BadInputStream, NewerVersionsAreRefusedNamingBothVersions) {
-    ASSERT_EQ(two_frames().size(), kStreamSize);
-    for (const uint16_t version : {uint16_t{2}, uint16_t{7}, uint16_t{65535}}) {
-        std::vector<uint8_t> b = two_frames();
-        put_u16(b, 4, version);
-        const std::string path = write_bytes("v.fb89", b);
-        for (const char* tool : {"replay", "dump", "info", "trim"}) {
-            SCOPED_TRACE(std::string(tool) + " version " + std::to_string(version));
-            const std::string extra =
-                std::string(tool) == "trim" ? " --calls 0- -o " + scratch("t.fb89") : "";
-            expect_refused(fb89(std::string(tool) + " " + path + extra), "v.fb89",
-                           {"version " + std::to_string(version), "up to 1"});
-        }
-    }
-}
-
-TEST(BadInputStream, TruncationKeepsCompleteFramesAndWritesNoPngWithoutOne) {
-    struct Cut {
-        size_t size;
-        const char* says;  // in the message
-        int frames;        // complete frames before the cut
-    };
-    const Cut cuts[] = {{0, "truncated", 0},     {3, "truncated", 0},
-                        {7, "truncated", 0},     {10, "truncated", 0},
-                        {20, "truncated", 0},    {40, "truncated", 0},
-                        {70, "truncated", 1},    {kIndexAt + 3, "truncated", 2},
-                        {kStreamSize - 1, "", 2}};
-    for (const Cut& cut : cuts) {
-        SCOPED_TRACE("cut to " + std::to_string(cut.size) + " bytes");
-        std::vector<uint8_t> b = two_frames();
-        b.resize(cut.size);
-        const std::string path = write_bytes("cut.fb89", b), png = scratch("cut.png");
-        fs::remove(png);
-        CliRun r = fb89("replay " + path + " --png " + png);
-        EXPECT_EQ(r.exit_code, 2) << r.err;
-        EXPECT_NE(r.err.find("fb89: error: " + path + ": " + cut.says), std::string::npos) << r.err;
-        EXPECT_NE(r.err.find("at byte"), std::string::npos) << r.err;
-        if (cut.frames == 0) {
-            EXPECT_FALSE(fs::exists(png)) << "no complete frame: nothing to write";
-        } else {
-            ASSERT_TRUE(fs::exists(png));
-            const auto image = fb89::controller::read_png(png);
-            EXPECT_EQ(image.pixels[2], cut.frames == 1 ? 0 : 64) << "the last complete frame";
-        }
-        for (const char* tool : {"dump", "info"})
-            EXPECT_EQ(fb89(std::string(tool) + " " + path).exit_code, 2) << tool;
-    }
-    // a stream cut right after a complete record is a valid (cut) stream
-    std::vector<uint8_t> b = two_frames();
-    b.resize(kFrame0End);
-    EXPECT_EQ(fb89("replay " + write_bytes("cut.fb89", b)).exit_code, 0);
-}
-
-TEST(BadInputStream, CorruptOpcodesNameTheOffsetAndCommand) {
-    for (const int opcode : {0x00, 0x06, 0x42, 0xFD, 0xFF}) {
-        SCOPED_TRACE("opcode " + std::to_string(opcode));
-        std::vector<uint8_t> b = two_frames();
-        b[kFrame0End] = static_cast<uint8_t>(opcode);  // command 3
-        const std::string path = write_bytes("bad.fb89", b), png = scratch("bad.png");
-        expect_refused(fb89("replay " + path + " --png " + png), "bad.fb89",
-                       {"at byte 49", "command 3"});
-        EXPECT_TRUE(fs::exists(png)) << "frame 0 stays usable";
-    }
-    // garbage from the first byte: not a stream at all
-    const std::string text = write_file("text.fb89", "this is not an fb89 stream\n");
-    expect_refused(fb89("info " + text), "text.fb89", {"magic"});
-}
-
-TEST(BadInputStream, SizesClaimingGigabytesAreRefusedBeforeAllocating) {
-    struct Case {
-        const char* name;
-        std::vector<uint8_t> bytes;
-        const char* says;
-    };
-    std::vector<Case> cases;
-    {  // 4 G properties
-        std::vector<uint8_t> b = bare_header();
-        put_u32(b, 8, 0xFFFFFFFF);
-        cases.push_back({"property count", b, "property count"});
-    }
-    {  // a 64 KiB key, a 4 GiB value
-        std::vector<uint8_t> b = bare_header();
-        put_u32(b, 8, 1);
-        b.insert(b.end(), {0xFF, 0xFF, 'k'});
-        cases.push_back({"key length", b, "key"});
-        b = bare_header();
-        put_u32(b, 8, 1);
-        b.insert(b.end(), {1, 0, 'k', 0xFF, 0xFF, 0xFF, 0xFF, 'v'});
-        cases.push_back({"value length", b, "value"});
-    }
-    {  // a 64 KiB marker
-        std::vector<uint8_t> b = bare_header();
-        b.insert(b.end(), {0x04, 0xFF, 0xFF, 'm', 'm'});
-        cases.push_back({"marker length", b, "MARKER"});
-    }
-    {  // a frame 4 G pixels wide, one 16385 high
-        std::vector<uint8_t> b = two_frames();
-        put_u32(b, kFirstRecord + 5, 0xFFFFFFFF);
-        cases.push_back({"frame width", b, "width"});
-        b = two_frames();
-        put_u32(b, kFirstRecord + 9, 16385);
-        cases.push_back({"frame height", b, "height"});
-    }
-    {  // a frame index of 4 G entries (80 GB)
-        std::vector<uint8_t> b = two_frames();
-        put_u32(b, kIndexAt + 1, 0xFFFFFFFF);
-        cases.push_back({"index entries", b, "index"});
-    }
-    for (const Case& c : cases) {
-        SCOPED_TRACE(c.name);
-        const std::string path = write_bytes("huge.fb89", c.bytes);
-        for (const char* tool : {"replay", "dump", "info"})
-            expect_refused(fb89(std::string(tool) + " " + path), "huge.fb89", {c.says, "byte"});
-    }
-}
-
-TEST(BadInputStream, FillsAndSpansReachingFarOutsideAreClippedNotRefused) {
-    const std::string path = write_bytes(
-        "far.fb89",
-        pr::encode_stream({pr::FrameBegin{0, 16384, 16384, pr::Rgb{0, 0, 0}},
-                           pr::FillRect{INT_MIN, INT_MIN, 0xFFFFFFFF, 0xFFFFFFFF, pr::Rgb{1, 2, 3}},
-                           pr::DrawSpan{INT_MAX, INT_MIN, INT_MAX, pr::Rgb{4, 5, 6}},
-                           pr::DrawSpan{5, INT_MIN, INT_MAX, pr::Rgb{7, 8, 9}},
-                           pr::FillRect{INT_MAX, INT_MAX, 0xFFFFFFFF, 1, pr::Rgb{1, 1, 1}},
-                           pr::FrameEnd{}}));
-    const std::string stats = scratch("far.json");
-    CliRun r = fb89("replay " + path + " -q --stats " + stats);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(fb89::testing::slurp(stats).find("\"frames_closed\": 1"), std::string::npos);
-}
-
-TEST(BadInputStream, MissingEmptyAndDirectoryStreamsNameThePath) {
-    const std::string dir = scratch("dir.fb89");
-    fs::create_directories(dir);
-    const std::string empty = write_file("empty.fb89", "");
-    for (const char* tool : {"replay", "dump", "info"}) {
-        SCOPED_TRACE(tool);
-        expect_refused(fb89(std::string(tool) + " /nonexistent/s.fb89"), "/nonexistent/s.fb89", {});
-        expect_refused(fb89(std::string(tool) + " " + empty), "empty.fb89", {"truncated"});
-        expect_refused(fb89(std::string(tool) + " " + dir), "dir.fb89", {});
-    }
-}
-
-// ---- scenes -------------------------------------------------------------------------------
 
 struct SceneCase {
     const char* name;
