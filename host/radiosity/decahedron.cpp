@@ -62,6 +62,7 @@
 #include <glm/geometric.hpp>
 
 #include "host/radiosity/visibility.h"
+#include "host/trace/mailbox.h"
 
 namespace fb89::host {
 
@@ -307,9 +308,8 @@ class Decahedra {
     Visibility& m_delta;
     FluxTracer m_tracer;
     double m_tol;
-    std::vector<glm::dvec3> m_box_lo, m_box_hi;  // per piece
-    std::vector<uint32_t> m_stamp;               // per piece: the last query that tested it
-    uint32_t m_query = 0;
+    std::vector<glm::dvec3> m_box_lo, m_box_hi;   // per piece
+    Mailbox m_mailbox;                            // per piece: the last query that tested it
     std::vector<std::vector<uint32_t>> m_inside;  // per depth: the pieces in that hull
     std::vector<uint32_t> m_near;                 // the parent's pieces near a child's box
     uint64_t m_rays = 0;                          // cast by this run
@@ -330,7 +330,7 @@ Decahedra::Decahedra(const Mesh& mesh, const RadiosityWorld& world,
       m_delta(delta),
       m_tracer(mesh, world),
       m_tol(world.scene.tolerance()),
-      m_stamp(world.scene.faces().size(), 0) {
+      m_mailbox(world.scene.faces().size()) {
     for (const TraceFace& f : m_scene.faces()) {
         const glm::dvec3* v = m_scene.vertices_of(f);
         glm::dvec3 lo = v[0], hi = v[0];
@@ -449,15 +449,10 @@ Decahedra::Answer Decahedra::query(const std::array<glm::dvec3, 4>& ca,
             for (uint32_t piece : m_near)
                 test(piece);
         } else {
-            if (++m_query == 0) {  // the serial wrapped: forget every stamp
-                std::fill(m_stamp.begin(), m_stamp.end(), 0);
-                m_query = 1;
-            }
-            const uint32_t query = m_query;
+            const Mailbox::Round round = m_mailbox.begin();
             const uint32_t skip_a = m_a.e->piece, skip_b = m_b.e->piece;
             scan(m_grid, h, m_tol, [&](uint32_t piece) {
-                if (m_stamp[piece] == query) return;
-                m_stamp[piece] = query;
+                if (!round.first_visit(piece)) return;
                 if (piece != skip_a && piece != skip_b) test(piece);
             });
         }

@@ -67,12 +67,9 @@ bool unit(glm::dvec3& v, double scale) {
 }  // namespace
 
 BeamTracer::BeamTracer(const TraceScene& scene, const UniformGrid& grid)
-    : m_scene(scene),
-      m_grid(grid),
-      m_stamp(scene.faces().size(), 0),
-      m_id_stamp(scene.face_count() + 1, 0) {
+    : m_scene(scene), m_grid(grid), m_pieces(scene.faces().size()), m_ids(scene.face_count() + 1) {
     for (const auto& f : scene.faces())
-        if (f.id >= m_id_stamp.size()) m_id_stamp.resize(f.id + 1, 0);
+        m_ids.grow(f.id + size_t{1});
 }
 
 BeamTracer::Hull BeamTracer::make_hull(const BeamSegment& s) const {
@@ -154,11 +151,7 @@ bool BeamTracer::touches(const Hull& h, uint32_t piece) const {
 template <class Visit>
 void BeamTracer::for_each_touching(const Hull& h, uint32_t skip_a, uint32_t skip_b, Visit&& visit,
                                    BeamCounts& counts) const {
-    if (++m_query == 0) {  // the serial wrapped: forget every stamp
-        std::fill(m_stamp.begin(), m_stamp.end(), 0);
-        m_query = 1;
-    }
-    const uint32_t query = m_query;
+    const Mailbox::Round round = m_pieces.begin();
     const double tol = m_scene.tolerance();
     glm::ivec3 first, last;
     if (!m_grid.cell_range(h.lo, h.hi, first, last)) return;
@@ -178,9 +171,7 @@ void BeamTracer::for_each_touching(const Hull& h, uint32_t skip_a, uint32_t skip
                 if (outside) continue;
                 ++cells;
                 for (uint32_t piece : m_grid.cell(m_grid.index(x, y, z))) {
-                    if (m_stamp[piece] == query) continue;
-                    m_stamp[piece] = query;
-                    if (piece == skip_a || piece == skip_b) continue;
+                    if (!round.first_visit(piece) || piece == skip_a || piece == skip_b) continue;
                     ++tests;
                     if (touches(h, piece) && visit(piece)) {
                         counts.query_cells += cells;
@@ -227,16 +218,12 @@ uint32_t BeamTracer::faces_in_beam(const RayTrace* const corners[4], BeamCounts&
     const Ray* rays[4];
     for (int i = 0; i < 4; ++i)
         rays[i] = &corners[i]->primary;
-    const uint32_t query = m_query + 1;  // the serial for_each_touching is about to use
+    const Mailbox::Round ids = m_ids.begin();
     uint32_t faces = 0;
     for_each_touching(
         make_hull(to_far_side(rays)), kNoFace, kNoFace,
         [&](uint32_t piece) {
-            const uint32_t id = m_scene.faces()[piece].id;
-            if (m_id_stamp[id] != query) {
-                m_id_stamp[id] = query;
-                ++faces;
-            }
+            if (ids.first_visit(m_scene.faces()[piece].id)) ++faces;
             return faces > enough;
         },
         counts);

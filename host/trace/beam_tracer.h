@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "host/trace/grid.h"
+#include "host/trace/mailbox.h"
 #include "host/trace/ray_tracer.h"
 #include "host/trace/trace_scene.h"
 
@@ -84,9 +85,8 @@ class BeamTracer {
 
     const TraceScene& m_scene;
     const UniformGrid& m_grid;
-    mutable std::vector<uint32_t> m_stamp;     // per piece: last query that saw it
-    mutable std::vector<uint32_t> m_id_stamp;  // per face id: last F_w query that counted it
-    mutable uint32_t m_query = 0;
+    mutable Mailbox m_pieces;  // per piece: the last query that saw it
+    mutable Mailbox m_ids;     // per face id: the last F_w query that counted it
 };
 
 }  // namespace fb89::host
