@@ -128,7 +128,7 @@ std::vector<double> reference_form_factors(const Room& room, int n) {
         const double s = (patch.i + (a + 0.5) / n) / e.nu, t = (patch.j + (b + 0.5) / n) / e.nv;
         return e.point(s, t);
     };
-    const auto& scene = *room.trace;
+    host::FluxTracer segments(mesh, room.world());
     for (uint32_t p = 0; p < count; ++p)
         for (uint32_t q = p + 1; q < count; ++q) {
             if (f[static_cast<size_t>(p) * count + q] == 0) continue;
@@ -141,23 +141,8 @@ std::vector<double> reference_form_factors(const Room& room, int n) {
                 for (int b = 0; b < n; ++b)
                     for (int c = 0; c < n; ++c)
                         for (int d = 0; d < n; ++d) {
-                            const glm::dvec3 from = point(pp, a, b), to = point(qq, c, d);
-                            const host::Ray ray{from, to - from};
-                            const host::RaySpace space(ray.dir);
-                            const double eps = scene.tolerance() * 4 / glm::length(ray.dir);
-                            bool blocked = false;
-                            room.grid->walk(ray, eps, 1 - eps, [&](uint32_t cell, double) {
-                                for (uint32_t piece : room.grid->cell(cell)) {
-                                    if (piece == skip_a || piece == skip_b) continue;
-                                    double t;
-                                    if (scene.intersect(ray, space, piece, eps, t) && t < 1 - eps) {
-                                        blocked = true;
-                                        return true;
-                                    }
-                                }
-                                return false;
-                            });
-                            clear += !blocked;
+                            clear +=
+                                !segments.blocked(point(pp, a, b), point(qq, c, d), skip_a, skip_b);
                             ++all;
                         }
             const double share = static_cast<double>(clear) / all;

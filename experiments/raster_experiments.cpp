@@ -79,7 +79,7 @@ namespace {
 
 uint64_t warnock_samples(const host::ScreenScene& screen, host::WindowTest test,
                          uint64_t* sorts = nullptr) {
-    host::Warnock warnock({test});
+    host::Warnock warnock({test, {}});
     protocol::MemoryBuffer discard;
     host::HostStats stats;
     warnock.render(screen, discard, stats);

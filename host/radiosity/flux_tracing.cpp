@@ -7,11 +7,11 @@
 // that close to an end is the patch's own surface or a face touching it there, REFERENCES.md
 // "Ray casts must ignore the two end faces"). The test is the watertight two-sided one of
 // TraceScene: back faces block, and a ray through a shared edge cannot slip between two
-// faces. It walks the uniform grid and a crowded cell's own grid (as RayTracer::closest_hit
-// does) and stops at the first hit anywhere in range: any hit blocks, the nearest is not
-// needed. Pairs are enumerated element pair by element pair, with each element's patches
-// sorted once into those in front of the other's plane (in_front), so the baseline pays for
-// facing tests no more than the hybrid does.
+// faces. It walks the uniform grid and a crowded cell's own grid (walk_levels, as
+// RayTracer::closest_hit does) and stops at the first hit anywhere in range: any hit blocks,
+// the nearest is not needed. Pairs are enumerated element pair by element pair, with each
+// element's patches sorted once into those in front of the other's plane (in_front), so the
+// baseline pays for facing tests no more than the hybrid does.
 #include <algorithm>
 #include <span>
 #include <vector>
@@ -32,55 +32,44 @@ FluxTracer::FluxTracer(const Mesh& mesh, const RadiosityWorld& world)
     : m_mesh(mesh),
       m_scene(world.scene),
       m_grid(world.grid),
-      m_mailbox(world.scene.faces().size(), 0) {}
+      m_mailbox(world.scene.faces().size()) {}
 
 Delta FluxTracer::trace(uint32_t p, uint32_t q) {
     if (p > q) std::swap(p, q);
-    if (++m_serial == 0) {  // the serial wrapped: forget every mailbox
-        std::fill(m_mailbox.begin(), m_mailbox.end(), 0);
-        m_serial = 1;
-    }
-    const uint32_t serial = m_serial;
     const Patch& a = m_mesh.patches[p];
     const Patch& b = m_mesh.patches[q];
-    const uint32_t skip_a = m_mesh.elements[a.element].piece;
-    const uint32_t skip_b = m_mesh.elements[b.element].piece;
-    const Ray ray{a.centre, b.centre - a.centre};
+    return blocked(a.centre, b.centre, m_mesh.elements[a.element].piece,
+                   m_mesh.elements[b.element].piece)
+               ? Delta::Hidden
+               : Delta::Visible;
+}
+
+bool FluxTracer::blocked(const glm::dvec3& from, const glm::dvec3& to, uint32_t skip_a,
+                         uint32_t skip_b) {
+    const Mailbox::Round mailbox = m_mailbox.begin();
+    const Ray ray{from, to - from};
     const double eps = kEndTolerances * m_scene.tolerance() / glm::length(ray.dir);
     const double tmin = eps, tmax = 1 - eps;
     const RaySpace space(ray.dir);
 
     // any hit in (tmin, tmax) by a piece other than the two ends' blocks the ray
-    bool blocked = false;
+    bool hit = false;
     uint64_t tests = 0;
-    auto test_list = [&](std::span<const uint32_t> pieces) {
+    auto test_list = [&, mailbox](std::span<const uint32_t> pieces) {
         for (uint32_t piece : pieces) {
-            if (m_mailbox[piece] == serial) continue;
-            m_mailbox[piece] = serial;
-            if (piece == skip_a || piece == skip_b) continue;
+            if (!mailbox.first_visit(piece) || piece == skip_a || piece == skip_b) continue;
             ++tests;
             double t;
             if (m_scene.intersect(ray, space, piece, tmin, t) && t < tmax) {
-                blocked = true;
-                return true;
+                hit = true;
+                return;
             }
         }
-        return false;
     };
-    uint64_t cells = m_grid.walk(ray, tmin, tmax, [&](uint32_t cell, double t_exit) {
-        if (const UniformGrid* sub = m_grid.sub(cell)) {
-            // a crowded cell: its own grid; should rounding miss that grid's box, the cell
-            const uint64_t inner = sub->walk(
-                ray, tmin, t_exit, [&](uint32_t c, double) { return test_list(sub->cell(c)); });
-            if (inner == 0) test_list(m_grid.cell(cell));
-            cells += inner;
-            return blocked;
-        }
-        return test_list(m_grid.cell(cell));
-    });
-    m_cells += cells;
+    const auto walked = m_grid.walk_levels(ray, tmin, tmax, test_list, [&](double) { return hit; });
+    m_cells += walked.cells;  // the top level's, as the cost model was fitted (cells())
     m_face_tests += tests;
-    return blocked ? Delta::Hidden : Delta::Visible;
+    return hit;
 }
 
 Visibility flux_tracing(const Mesh& mesh, const RadiosityWorld& world, VisibilityCounts& counts) {

@@ -16,6 +16,7 @@
 #include "host/radiosity/mesh.h"
 #include "host/stats.h"
 #include "host/trace/grid.h"
+#include "host/trace/mailbox.h"
 #include "host/trace/trace_scene.h"
 
 namespace fb89::host {
@@ -75,16 +76,18 @@ Visibility flux_tracing(const Mesh& mesh, const RadiosityWorld& world, Visibilit
 class FluxTracer {
   public:
     FluxTracer(const Mesh& mesh, const RadiosityWorld& world);
-    Delta trace(uint32_t p, uint32_t q);                  // p and q must face each other
-    uint64_t cells() const { return m_cells; }            // grid cells walked, all rays
+    Delta trace(uint32_t p, uint32_t q);  // p and q must face each other
+    // Whether a piece other than skip_a and skip_b meets the segment from `from` to `to`,
+    // its ends trimmed by the tolerance ε: the one segment query of flux tracing.
+    bool blocked(const glm::dvec3& from, const glm::dvec3& to, uint32_t skip_a, uint32_t skip_b);
+    uint64_t cells() const { return m_cells; }            // top-level grid cells walked, all rays
     uint64_t face_tests() const { return m_face_tests; }  // ray-piece tests, all rays
 
   private:
     const Mesh& m_mesh;
     const TraceScene& m_scene;
     const UniformGrid& m_grid;
-    std::vector<uint32_t> m_mailbox;  // per piece: the serial of the last ray that tested it
-    uint32_t m_serial = 0;
+    Mailbox m_mailbox;
     uint64_t m_cells = 0, m_face_tests = 0;
 };
 

@@ -19,18 +19,6 @@ void BeamCounts::publish(Counters& counters) const {
     counters.add("query_face_tests", query_face_tests);
 }
 
-// A segment made ready for separating-axis tests: its eight points, its bounding box, its
-// bounding planes with the segment's extent along each, and its edge directions.
-struct BeamTracer::Hull {
-    glm::dvec3 points[8];
-    glm::dvec3 lo, hi;
-    glm::dvec3 planes[6];
-    double plane_min[6], plane_max[6];
-    int plane_count = 0;
-    glm::dvec3 edges[12];
-    int edge_count = 0;
-};
-
 namespace {
 
 glm::dvec3 newell(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
@@ -46,16 +34,6 @@ glm::dvec3 newell(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
     return n;
 }
 
-// The extent of `count` points along `axis`.
-void project(const glm::dvec3* p, int count, const glm::dvec3& axis, double& lo, double& hi) {
-    lo = hi = glm::dot(p[0], axis);
-    for (int i = 1; i < count; ++i) {
-        const double d = glm::dot(p[i], axis);
-        lo = std::min(lo, d);
-        hi = std::max(hi, d);
-    }
-}
-
 // Unit `v`, or false when it is too short to be a direction (degenerate corners).
 bool unit(glm::dvec3& v, double scale) {
     const double len = glm::length(v);
@@ -67,34 +45,26 @@ bool unit(glm::dvec3& v, double scale) {
 }  // namespace
 
 BeamTracer::BeamTracer(const TraceScene& scene, const UniformGrid& grid)
-    : m_scene(scene),
-      m_grid(grid),
-      m_stamp(scene.faces().size(), 0),
-      m_id_stamp(scene.face_count() + 1, 0) {
+    : m_scene(scene), m_grid(grid), m_pieces(scene.faces().size()), m_ids(scene.face_count() + 1) {
     for (const auto& f : scene.faces())
-        if (f.id >= m_id_stamp.size()) m_id_stamp.resize(f.id + 1, 0);
+        m_ids.grow(f.id + size_t{1});
 }
 
-BeamTracer::Hull BeamTracer::make_hull(const BeamSegment& s) const {
-    Hull h;
+ConvexHull BeamTracer::make_hull(const BeamSegment& s) const {
+    ConvexHull h;
     const double tol = m_scene.tolerance();
     for (int i = 0; i < 4; ++i) {
         h.points[i] = s.start[i];
         h.points[4 + i] = s.end[i];
     }
-    h.lo = h.hi = h.points[0];
-    for (const auto& p : h.points) {
-        h.lo = glm::min(h.lo, p);
-        h.hi = glm::max(h.hi, p);
-    }
+    h.point_count = 8;
+    h.fit_box();
     const double scale = glm::length(h.hi - h.lo) + tol;
-    h.lo -= tol;
-    h.hi += tol;
     // bounding planes: four sides, the end, the start (unless it is the eye's point)
     auto add_plane = [&](glm::dvec3 n) {
         if (!unit(n, scale * scale)) return;
         h.planes[h.plane_count] = n;
-        project(h.points, 8, n, h.plane_min[h.plane_count], h.plane_max[h.plane_count]);
+        project(h.points, 8, n, h.plane_lo[h.plane_count], h.plane_hi[h.plane_count]);
         ++h.plane_count;
     };
     for (int i = 0; i < 4; ++i) {
@@ -116,7 +86,7 @@ BeamTracer::Hull BeamTracer::make_hull(const BeamSegment& s) const {
     return h;
 }
 
-bool BeamTracer::touches(const Hull& h, uint32_t piece) const {
+bool BeamTracer::touches(const ConvexHull& h, uint32_t piece) const {
     const TraceFace& f = m_scene.faces()[piece];
     const glm::dvec3* v = m_scene.vertices_of(f);
     const int n = static_cast<int>(f.vertex_count);
@@ -127,69 +97,22 @@ bool BeamTracer::touches(const Hull& h, uint32_t piece) const {
         lo = glm::min(lo, v[i]);
         hi = glm::max(hi, v[i]);
     }
-    if (glm::any(glm::lessThan(hi, h.lo)) || glm::any(glm::greaterThan(lo, h.hi))) return false;
-    auto separated = [&](const glm::dvec3& axis, double hull_lo, double hull_hi) {
-        double lo_p, hi_p;
-        project(v, n, axis, lo_p, hi_p);
-        return hi_p + tol < hull_lo || hull_hi + tol < lo_p;
-    };
+    if (TouchingBlocks::boxes_apart(lo, hi, h.lo, h.hi, tol)) return false;
     // the hull's planes, the piece's plane, then edge against edge
-    for (int k = 0; k < h.plane_count; ++k)
-        if (separated(h.planes[k], h.plane_min[k], h.plane_max[k])) return false;
-    double lo_h, hi_h;
-    project(h.points, 8, f.normal, lo_h, hi_h);
-    if (separated(f.normal, lo_h, hi_h)) return false;
-    for (int i = 0; i < n; ++i) {
-        const glm::dvec3 edge = v[(i + 1) % n] - v[i];
-        for (int k = 0; k < h.edge_count; ++k) {
-            glm::dvec3 axis = glm::cross(edge, h.edges[k]);
-            if (!unit(axis, glm::length(edge) * 1e-6)) continue;  // parallel edges
-            project(h.points, 8, axis, lo_h, hi_h);
-            if (separated(axis, lo_h, hi_h)) return false;
-        }
-    }
-    return true;
+    return !planes_separate<TouchingBlocks>(h, v, n, f.normal, tol) &&
+           !edges_separate<TouchingBlocks>(h, v, n, tol);
 }
 
 template <class Visit>
-void BeamTracer::for_each_touching(const Hull& h, uint32_t skip_a, uint32_t skip_b, Visit&& visit,
-                                   BeamCounts& counts) const {
-    if (++m_query == 0) {  // the serial wrapped: forget every stamp
-        std::fill(m_stamp.begin(), m_stamp.end(), 0);
-        m_query = 1;
-    }
-    const uint32_t query = m_query;
-    const double tol = m_scene.tolerance();
-    glm::ivec3 first, last;
-    if (!m_grid.cell_range(h.lo, h.hi, first, last)) return;
-    const glm::dvec3 half = m_grid.cell_size() * 0.5;
-    uint64_t cells = 0, tests = 0;
-    for (int z = first.z; z <= last.z; ++z)
-        for (int y = first.y; y <= last.y; ++y)
-            for (int x = first.x; x <= last.x; ++x) {
-                // cull cells outside one of the hull's planes
-                const glm::dvec3 centre = m_grid.cell_lo(x, y, z) + half;
-                bool outside = false;
-                for (int k = 0; k < h.plane_count && !outside; ++k) {
-                    const double c = glm::dot(h.planes[k], centre);
-                    const double r = glm::dot(glm::abs(h.planes[k]), half);
-                    outside = c + r + tol < h.plane_min[k] || h.plane_max[k] + tol < c - r;
-                }
-                if (outside) continue;
-                ++cells;
-                for (uint32_t piece : m_grid.cell(m_grid.index(x, y, z))) {
-                    if (m_stamp[piece] == query) continue;
-                    m_stamp[piece] = query;
-                    if (piece == skip_a || piece == skip_b) continue;
-                    ++tests;
-                    if (touches(h, piece) && visit(piece)) {
-                        counts.query_cells += cells;
-                        counts.query_face_tests += tests;
-                        return;
-                    }
-                }
-            }
-    counts.query_cells += cells;
+void BeamTracer::for_each_touching(const ConvexHull& h, uint32_t skip_a, uint32_t skip_b,
+                                   Visit&& visit, BeamCounts& counts) const {
+    uint64_t tests = 0;
+    counts.query_cells += scan_hull_cells<TouchingBlocks>(
+        m_grid, h, m_scene.tolerance(), m_pieces, [&](uint32_t piece) {
+            if (piece == skip_a || piece == skip_b) return false;
+            ++tests;
+            return touches(h, piece) && visit(piece);
+        });
     counts.query_face_tests += tests;
 }
 
@@ -227,16 +150,12 @@ uint32_t BeamTracer::faces_in_beam(const RayTrace* const corners[4], BeamCounts&
     const Ray* rays[4];
     for (int i = 0; i < 4; ++i)
         rays[i] = &corners[i]->primary;
-    const uint32_t query = m_query + 1;  // the serial for_each_touching is about to use
+    Mailbox::Round ids = m_ids.begin();
     uint32_t faces = 0;
     for_each_touching(
         make_hull(to_far_side(rays)), kNoFace, kNoFace,
         [&](uint32_t piece) {
-            const uint32_t id = m_scene.faces()[piece].id;
-            if (m_id_stamp[id] != query) {
-                m_id_stamp[id] = query;
-                ++faces;
-            }
+            if (ids.first_visit(m_scene.faces()[piece].id)) ++faces;
             return faces > enough;
         },
         counts);

@@ -18,16 +18,18 @@
 //   start and end quadrilaterals (the eye's point for a first segment); the grid's cells in
 //   its bounding box are culled against the hull's planes, and each piece found there is
 //   checked by the separating-axis theorem (the hull's planes, the piece's plane, and the
-//   cross products of their edges) with the scene's tolerance: only a separation wider than
-//   the tolerance counts as empty. A false "occupied" costs a subdivision; "empty" is
-//   always true, so faces that touch the segment (sharing an edge with the hit face,
-//   coplanar overlaps, exact ties) block it.
+//   cross products of their edges) with the scene's tolerance (convex_hull.h,
+//   TouchingBlocks): only a separation wider than the tolerance counts as empty. A false
+//   "occupied" costs a subdivision; "empty" is always true, so faces that touch the segment
+//   (sharing an edge with the hit face, coplanar overlaps, exact ties) block it.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "host/trace/convex_hull.h"
 #include "host/trace/grid.h"
+#include "host/trace/mailbox.h"
 #include "host/trace/ray_tracer.h"
 #include "host/trace/trace_scene.h"
 
@@ -69,14 +71,13 @@ class BeamTracer {
                           BeamCounts& counts) const;
 
   private:
-    struct Hull;
-    Hull make_hull(const BeamSegment& segment) const;
+    ConvexHull make_hull(const BeamSegment& segment) const;
     // Not separated from the hull by more than the tolerance on any axis tried.
-    bool touches(const Hull& hull, uint32_t piece) const;
+    bool touches(const ConvexHull& hull, uint32_t piece) const;
     // Calls visit(piece) for each piece but the two skipped that touches the hull; stops
     // when visit returns true.
     template <class Visit>
-    void for_each_touching(const Hull& hull, uint32_t skip_a, uint32_t skip_b, Visit&& visit,
+    void for_each_touching(const ConvexHull& hull, uint32_t skip_a, uint32_t skip_b, Visit&& visit,
                            BeamCounts& counts) const;
     bool inside_with_margin(uint32_t piece, const glm::dvec3& p) const;
     // The segment of four rays from their origins to beyond the grid's box.
@@ -84,9 +85,8 @@ class BeamTracer {
 
     const TraceScene& m_scene;
     const UniformGrid& m_grid;
-    mutable std::vector<uint32_t> m_stamp;     // per piece: last query that saw it
-    mutable std::vector<uint32_t> m_id_stamp;  // per face id: last F_w query that counted it
-    mutable uint32_t m_query = 0;
+    mutable Mailbox m_pieces;  // per piece: the last query that saw it
+    mutable Mailbox m_ids;     // per face id: the last F_w query that counted it
 };
 
 }  // namespace fb89::host

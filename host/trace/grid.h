@@ -15,6 +15,8 @@
 // Two levels (a "hierarchical uniform grid", as in Jevans and Wyvill 1989): a cell listing
 // more than kCrowded pieces carries a grid of its own, so a small detailed object in a large
 // room (the goblets of H, the shell of I) does not force fine cells on the whole room.
+// Rays walk both levels (walk_levels); volume queries scan the top level only
+// (convex_hull.h).
 #pragma once
 
 #include <algorithm>
@@ -65,6 +67,18 @@ class UniformGrid {
     // t_exit)` returns true to stop. Returns the number of cells visited.
     template <class Visit>
     uint64_t walk(const Ray& ray, double tmin, double tmax, Visit&& visit) const;
+
+    struct LevelCounts {
+        uint64_t cells = 0;      // cells of this grid visited
+        uint64_t sub_cells = 0;  // cells of crowded cells' grids visited
+    };
+    // Walks both levels: the cells the ray crosses and, inside a crowded cell, the cells of
+    // its own grid (the whole cell, should rounding let the ray miss that grid's box).
+    // `test(pieces)` tests one cell's list; `done(t)` says after each cell whether the walk
+    // may stop, t being where the ray leaves that cell.
+    template <class Test, class Done>
+    LevelCounts walk_levels(const Ray& ray, double tmin, double tmax, Test&& test,
+                            Done&& done) const;
 
   private:
     UniformGrid(const TraceScene& scene, const std::vector<uint32_t>& pieces, const glm::dvec3& lo,
@@ -135,6 +149,27 @@ uint64_t UniformGrid::walk(const Ray& ray, double tmin, double tmax, Visit&& vis
         at += step[a] * stride[a];
         next[a] += delta[a];
     }
+}
+
+template <class Test, class Done>
+UniformGrid::LevelCounts UniformGrid::walk_levels(const Ray& ray, double tmin, double tmax,
+                                                  Test&& test, Done&& done) const {
+    uint64_t sub_cells = 0;
+    const uint64_t cells = walk(ray, tmin, tmax, [&](uint32_t at, double t_exit) {
+        if (const UniformGrid* fine = sub(at)) {
+            // a crowded cell: its own grid
+            const uint64_t inner = fine->walk(ray, tmin, t_exit, [&](uint32_t c, double t) {
+                test(fine->cell(c));
+                return done(t);
+            });
+            if (inner == 0) test(cell(at));
+            sub_cells += inner;
+        } else {
+            test(cell(at));
+        }
+        return done(t_exit);
+    });
+    return {cells, sub_cells};
 }
 
 }  // namespace fb89::host

@@ -14,22 +14,17 @@ void TraceCounts::publish(Counters& counters) const {
 }
 
 RayTracer::RayTracer(const TraceScene& scene, const UniformGrid& grid)
-    : m_scene(scene), m_grid(grid), m_mailbox(scene.faces().size(), 0) {}
+    : m_scene(scene), m_grid(grid), m_mailbox(scene.faces().size()) {}
 
 Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
                            double tmax) const {
-    if (++m_serial == 0) {  // the serial wrapped: forget every mailbox
-        std::fill(m_mailbox.begin(), m_mailbox.end(), 0);
-        m_serial = 1;
-    }
-    const uint32_t serial = m_serial;
+    const Mailbox::Round mailbox = m_mailbox.begin();
     const RaySpace space(ray.dir);
     Hit best{INFINITY, kNoFace};
     uint64_t tests = 0, ties = 0;
-    auto test_list = [&](std::span<const uint32_t> pieces) {
+    auto test_list = [&, mailbox](std::span<const uint32_t> pieces) {
         for (uint32_t piece : pieces) {
-            if (m_mailbox[piece] == serial || piece == skip) continue;
-            m_mailbox[piece] = serial;
+            if (!mailbox.first_visit(piece) || piece == skip) continue;
             ++tests;
             double t;
             if (!m_scene.intersect(ray, space, piece, tmin, t) || t > best.t || t > tmax) continue;
@@ -40,22 +35,10 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
             best = {t, piece};
         }
     };
-    uint64_t cells = 0;
-    cells += m_grid.walk(ray, tmin, tmax, [&](uint32_t cell, double t_exit) {
-        if (const UniformGrid* sub = m_grid.sub(cell)) {
-            // a crowded cell: walk its own grid; should rounding let the ray miss that
-            // grid's box, test the whole cell
-            const uint64_t inner = sub->walk(ray, tmin, t_exit, [&](uint32_t c, double t) {
-                test_list(sub->cell(c));
-                return best.t <= t;
-            });
-            if (inner == 0) test_list(m_grid.cell(cell));
-            cells += inner;
-        } else {
-            test_list(m_grid.cell(cell));
-        }
-        return best.t <= t_exit;  // a hit beyond this cell may yet be beaten
-    });
+    // a hit beyond a cell may yet be beaten
+    const auto walked = m_grid.walk_levels(ray, tmin, tmax, test_list,
+                                           [&](double t_exit) { return best.t <= t_exit; });
+    const uint64_t cells = walked.cells + walked.sub_cells;
     counts.cells += cells;
     counts.face_tests += tests;
     counts.ties += ties;

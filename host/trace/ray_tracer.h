@@ -16,6 +16,7 @@
 
 #include "host/raster/renderer.h"
 #include "host/trace/grid.h"
+#include "host/trace/mailbox.h"
 #include "host/trace/trace_scene.h"
 
 namespace fb89::host {
@@ -62,8 +63,7 @@ class RayTracer {
   private:
     const TraceScene& m_scene;
     const UniformGrid& m_grid;
-    mutable std::vector<uint32_t> m_mailbox;
-    mutable uint32_t m_serial = 0;
+    mutable Mailbox m_mailbox;
 };
 
 // A pixel as the renderers keep it before sending: 0 is background (sends nothing), else

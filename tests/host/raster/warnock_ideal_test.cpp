@@ -29,7 +29,7 @@ Counters warnock_on_ideal(int e_s, int layers, uint64_t f_v, WindowTest test) {
     }
     Counters setup;
     ScreenScene screen = project_scene(scene, ColorMode::FaceId, setup);
-    Warnock warnock({test});
+    Warnock warnock({test, {}});
     protocol::MemoryBuffer discard;
     HostStats stats;
     warnock.render(screen, discard, stats);

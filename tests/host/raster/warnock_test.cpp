@@ -55,7 +55,7 @@ Counters expect_same_as_zbuffer(const Scene& scene) {
     ZBuffer zbuffer;
     std::vector<uint32_t> want = id_buffer(zbuffer, s);
     Counters area, centres;
-    Warnock warnock_area({WindowTest::Area}), warnock_centres({WindowTest::Centres});
+    Warnock warnock_area({WindowTest::Area, {}}), warnock_centres({WindowTest::Centres, {}});
     EXPECT_EQ(id_buffer(warnock_area, s, &area), want) << "area window test";
     EXPECT_EQ(id_buffer(warnock_centres, s, &centres), want) << "centres window test";
     // recursion is bounded by the halvings of the longer side, plus the 1-pixel level

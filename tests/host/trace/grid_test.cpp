@@ -1,6 +1,10 @@
 // The uniform grid: cell sizing, where pieces are listed, and the 3D-DDA walk.
 #include "host/trace/grid.h"
 
+#include <algorithm>
+#include <span>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "tests/host/trace/trace_test_util.h"
@@ -62,6 +66,46 @@ TEST(UniformGrid, WalksCellsInOrderAndStopsAtTheBox) {
         0u);
     // a visitor that stops ends the walk at once
     EXPECT_EQ(grid.walk(ray, 0, INFINITY, [](uint32_t, double) { return true; }), 1u);
+}
+
+TEST(UniformGrid, WalksACrowdedCellThroughItsOwnGridAndNotItsList) {
+    Scene s = world_scene(8, 8);
+    add_square(s, 0, 0, 0, 4, {1, 1, 1});  // a floor
+    for (int i = 0; i < 12; ++i)           // a stack of small squares over its middle
+        add_square(s, 0, 0, 1 + 0.01 * i, 0.1, {1, 1, 1});
+    TraceScene trace(s, true, 0);
+    UniformGrid grid(trace);
+    const Ray ray{{0.05, 0.05, 5}, {0, 0, -1}};  // down through the stack
+    uint32_t crowded = 0;
+    ASSERT_EQ(grid.walk(ray, 0, INFINITY,
+                        [&](uint32_t cell, double) {
+                            crowded = cell;
+                            return false;
+                        }),
+              1u);
+    ASSERT_NE(grid.sub(crowded), nullptr);
+
+    std::vector<uint32_t> tested;
+    uint64_t lists = 0;
+    const auto walked = grid.walk_levels(
+        ray, 0, INFINITY,
+        [&](std::span<const uint32_t> pieces) {
+            ++lists;
+            tested.insert(tested.end(), pieces.begin(), pieces.end());
+        },
+        [](double) { return false; });
+    EXPECT_EQ(walked.cells, 1u);
+    EXPECT_GT(walked.sub_cells, 1u);
+    EXPECT_EQ(lists, walked.sub_cells) << "the crowded cell's own list is not tested";
+    std::sort(tested.begin(), tested.end());
+    tested.erase(std::unique(tested.begin(), tested.end()), tested.end());
+    EXPECT_EQ(tested.size(), 13u) << "every piece along the ray, through the finer cells";
+
+    // done() after the first finer cell ends both walks
+    const auto first = grid.walk_levels(
+        ray, 0, INFINITY, [](std::span<const uint32_t>) {}, [](double) { return true; });
+    EXPECT_EQ(first.cells, 1u);
+    EXPECT_EQ(first.sub_cells, 1u);
 }
 
 }  // namespace
