@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "bench/peers/ours.h"
 #include "host/methods.h"
 #include "host/stats.h"
 #include "protocol/memory_buffer.h"
@@ -17,33 +18,13 @@ namespace fb89::peers {
 
 namespace {
 
-double median_of(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+// One of our methods with no reflections (primary visibility, as Embree's side).
+host::MethodOptions primary(const std::string& method, double beam_threshold) {
+    host::MethodOptions options(host::method_named(method));
+    options.trace.max_reflections = 0;
+    options.beam.threshold = beam_threshold;
+    return options;
 }
-
-// One of our methods with no reflections, set up for the scene (untimed), the buffer its
-// frames go to and the last frame's stats.
-struct Ours {
-    std::unique_ptr<host::Renderer> renderer;
-    protocol::MemoryBuffer frame;
-    host::HostStats stats;
-    std::vector<double> samples;
-
-    Ours(const host::ScreenScene& scene, const std::string& method, double beam_threshold) {
-        host::MethodOptions options(host::method_named(method));
-        options.trace.max_reflections = 0;
-        options.beam.threshold = beam_threshold;
-        renderer = host::make_renderer(options);
-        renderer->setup(scene);
-    }
-    double render(const host::ScreenScene& scene) {
-        frame.clear();
-        stats = {};
-        return host::render_frame(*renderer, scene, frame, stats).wall_ms;
-    }
-};
 
 // One Embree frame, timed like render_frame: wall-clock ms.
 template <class Trace>
@@ -78,7 +59,7 @@ std::string agreement_cell(const IdAgreement& a) {
 
 std::vector<uint32_t> our_ray_face_ids(const RayScene& scene, const std::string& method,
                                        double beam_threshold) {
-    Ours ours(scene.screen, method, beam_threshold);
+    Ours ours(scene.screen, primary(method, beam_threshold));
     ours.render(scene.screen);
     return controller_face_ids(ours.frame);
 }
@@ -91,8 +72,8 @@ RayRow measure_ray_side_by_side(const RayScene& scene, const RaySideBySideOption
     EmbreeTracer embree(*scene.world, eo);
     eo.robust = true;
     EmbreeTracer robust(*scene.world, eo);
-    Ours raytrace(s, "raytrace", options.beam_threshold);
-    Ours beam(s, "beam", options.beam_threshold);
+    Ours raytrace(s, primary("raytrace", options.beam_threshold));
+    Ours beam(s, primary("beam", options.beam_threshold));
 
     // warm-up, then interleaved rounds: Embree single, raytrace, packets, beam, robust, ...
     std::vector<uint32_t> single_ids, packet_ids, robust_ids;

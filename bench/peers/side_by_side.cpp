@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "bench/peers/ours.h"
 #include "host/methods.h"
 #include "host/stats.h"
 #include "protocol/memory_buffer.h"
@@ -16,34 +17,12 @@ namespace fb89::peers {
 
 namespace {
 
-double median_of(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// One of our methods, set up for the scene (untimed), with the buffer its frames go to.
-struct Ours {
-    std::unique_ptr<host::Renderer> renderer;
-    protocol::MemoryBuffer frame;
-    host::HostStats stats;
-    std::vector<double> samples;
-
-    double render(const host::ScreenScene& scene) {
-        frame.clear();
-        return host::render_frame(*renderer, scene, frame, stats).wall_ms;
-    }
-};
-
 std::unique_ptr<Ours> make_ours(const std::string& method, const host::ScreenScene& scene) {
-    auto ours = std::make_unique<Ours>();
     try {
-        ours->renderer = host::make_renderer(host::method_named(method));
+        return std::make_unique<Ours>(scene, host::method_named(method));
     } catch (const std::invalid_argument&) {
         return nullptr;  // a method this build does not have
     }
-    ours->renderer->setup(scene);
-    return ours;
 }
 
 uint64_t differing_pixels(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
