@@ -25,6 +25,7 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/period_host.h"
 #include "experiments/experiments.h"
 
 namespace fb89::cli {
@@ -34,6 +35,7 @@ using namespace experiments;
 namespace {
 
 struct ExperimentArgs {
+    HostArgs host;
     std::string name;
     std::vector<std::string> scenes;
     std::string csv;
@@ -73,6 +75,8 @@ int run_experiment(const ExperimentArgs& args) {
     settings.profile = args.profile;
     settings.progress = !args.quiet && isatty(STDERR_FILENO);
     if (!args.size.empty()) settings.size = parse_size(args.size);
+    settings.period = make_period_runs(args.host);
+    if (settings.period) settings.repeat = 1;
 
     Table table;
     if (args.name == "fig2.1")
@@ -108,6 +112,7 @@ int run_experiment(const ExperimentArgs& args) {
             "fig4.8, fig4.11, fig4.12, beam-threshold, radiosity, ff-error, radiosity-error)",
             args.name));
 
+    if (report_emitted(settings, args.host)) return kSuccess;
     if (!args.csv.empty()) write_text(args.csv, table.csv());
     if (!args.quiet && args.csv != "-") std::cout << table.text();
     return kSuccess;
@@ -156,6 +161,7 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "rays per pair)")
         ->check(CLI::Range(2, 16))
         ->capture_default_str();
+    add_host_options(sub, args->host);
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_experiment(*args); });
 }

@@ -12,10 +12,12 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/period_host.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "experiments/beam_mask.h"
 #include "experiments/id_pass.h"
+#include "experiments/period_runs.h"
 #include "host/methods.h"
 #include "host/raster/scene_measures.h"
 #include "host/raster/screen_setup.h"
@@ -43,6 +45,7 @@ struct RenderArgs {
     std::string size;
     std::string png, ids, stream, stats, connect;
     std::string profile = std::string(controller::kDefaultProfile);
+    std::string host = "native";
     int repeat = 1;
     bool quiet = false;
 };
@@ -173,7 +176,7 @@ int send_to_controller(const RenderArgs& args, const HostRun& run, const Console
 }
 
 nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
-                          const controller::Controller& ctl) {
+                          const controller::Controller& ctl, const PeriodHostRun* period) {
     nlohmann::json j;
     j["tool"] = std::string("fb89 ") + FB89_VERSION;
     j["scene"] = {{"file", args.scene},
@@ -204,6 +207,7 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
                               {"screen_depth_complexity", m.screen_depth_complexity},
                               {"mean_visible_face_px", m.mean_visible_face}};
     j["controller"] = ctl.stats().to_json();
+    if (period) j["period_host"] = period_json(*period);
     return j;
 }
 
@@ -243,6 +247,12 @@ int run_render(const RenderArgs& args) {
     controller::Controller ctl(profile);
     run.commands.replay_into(ctl);
 
+    // a 1989 host: the same frame on the emulated MC68020 + MC68881, priced
+    std::optional<PeriodHostRun> period;
+    if (args.host != "native")
+        period = run_on_period_host(args.host, args.scene,
+                                    experiments::guest_options(options, args.size), run.commands);
+
     if (!args.png.empty()) {
         make_parent_dirs(args.png);
         controller::write_png(args.png, ctl.framebuffer());
@@ -250,7 +260,8 @@ int run_render(const RenderArgs& args) {
     if (!args.mask.empty()) write_beam_mask(args.mask, ctl.framebuffer(), *renderer);
     if (!args.ids.empty()) write_id_buffer(args, run.scene, *renderer);
     if (!args.stream.empty()) write_stream(args, run);
-    if (!args.stats.empty()) write_json(args.stats, stats_json(args, run, ctl));
+    if (!args.stats.empty())
+        write_json(args.stats, stats_json(args, run, ctl, period ? &*period : nullptr));
 
     const bool stdout_taken = args.stats == "-" || args.stream == "-";
     if (!args.quiet && !stdout_taken) {
@@ -259,6 +270,19 @@ int run_render(const RenderArgs& args) {
                    run.screen.height, args.method);
         fmt::print("{}", run.stats.summary());
         fmt::print("controller ({}):\n{}", profile.name, ctl.stats().summary());
+        const double controller_ms = ctl.frames().empty() ? 0 : ctl.frames().back().end_us / 1e3;
+        if (period) {
+            fmt::print("{}", period_summary(*period));
+            const auto& p = period->cost.phases;
+            fmt::print("{}", split_line(period->cost.profile,
+                                        p[static_cast<int>(period::Phase::Setup)].ms +
+                                            p[static_cast<int>(period::Phase::HiddenSurface)].ms,
+                                        profile.name, controller_ms));
+        } else {
+            fmt::print("{}", split_line("native",
+                                        run.stats.setup.wall_ms + run.stats.hidden_surface.wall_ms,
+                                        profile.name, controller_ms));
+        }
     }
     if (!args.connect.empty()) {
         std::fflush(stdout);
@@ -322,6 +346,11 @@ void register_render(CLI::App& app, int& exit_code) {
                     "Write host and controller figures as JSON ('-' for stdout)");
     sub->add_option("--profile", args->profile,
                     "Controller cost profile: a built-in name or a .json file")
+        ->capture_default_str();
+    sub->add_option("--host", args->host,
+                    "Host the frame is timed on: native (this machine), sun3-60, sun3-260 or a "
+                    ".json host profile; a 1989 host runs fb89's host code on an emulated "
+                    "MC68020 + MC68881 and models its time (docs/HOST_COST_MODEL.md)")
         ->capture_default_str();
     sub->add_option("--repeat", args->repeat,
                     "Render the frame N times; hidden-surface time is the median")

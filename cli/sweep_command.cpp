@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "cli/common.h"
+#include "cli/period_host.h"
 #include "experiments/experiments.h"
 
 namespace fb89::cli {
@@ -20,6 +21,7 @@ using namespace experiments;
 namespace {
 
 struct SweepArgs {
+    HostArgs host;
     std::string what;
     std::vector<std::string> scenes;
     double from = 0.001, to = 1.0;
@@ -40,6 +42,7 @@ int run_sweep(const SweepArgs& a) {
     s.profile = a.profile;
     s.progress = !a.quiet && isatty(STDERR_FILENO);
     if (!a.size.empty()) s.size = parse_size(a.size);
+    s.period = make_period_runs(a.host);
     std::vector<double> thresholds{0.0};
     for (double t : threshold_ramp(a.from, a.to, a.steps))
         thresholds.push_back(t);
@@ -50,6 +53,7 @@ int run_sweep(const SweepArgs& a) {
     base.hybrid.depth =
         a.depth_estimate == "scene" ? host::DepthEstimate::Scene : host::DepthEstimate::Window;
     Table table = sweep_threshold(s, thresholds, base);
+    if (report_emitted(s, a.host)) return kSuccess;
     if (!a.csv.empty()) write_text(a.csv, table.csv());
     if (!a.quiet && a.csv != "-") std::cout << table.text();
     return kSuccess;
@@ -81,6 +85,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
     sub->add_option("--csv", a->csv, "Write the results as CSV ('-' for stdout)");
     sub->add_option("--size", a->size, "Image size WxH, overriding the scenes'");
     sub->add_option("--profile", a->profile, "Controller cost profile")->capture_default_str();
+    add_host_options(sub, a->host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
     sub->callback([a, &exit_code] { exit_code = run_sweep(*a); });
 }

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "controller_sim/controller.h"
+#include "experiments/period_runs.h"
 #include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 
@@ -38,6 +39,27 @@ std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
     });
     for (size_t m = 0; m < settings.size(); ++m)
         out[m].median = host::median(times[m]);
+    return out;
+}
+
+std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
+                                       const std::vector<host::MethodOptions>& settings,
+                                       const ExperimentSettings& s) {
+    if (!s.period) return measure_interleaved(screen, settings, s.repeat, file, s.progress);
+    // commands and counts from one frame here, untimed
+    std::vector<Measured> out = measure_interleaved(screen, settings, 0, file, false);
+    const std::string size =
+        s.size.width > 0 ? fmt::format("{}x{}", s.size.width, s.size.height) : "";
+    std::vector<GuestJob> jobs;
+    for (const host::MethodOptions& o : settings)
+        jobs.push_back({file, guest_options(o, size)});
+    if (s.progress) std::cerr << fmt::format("\r{}: {} emulated runs   ", file, jobs.size());
+    const std::vector<period::HostCost> costs = s.period->run(jobs);
+    if (s.progress) clear_progress();
+    for (size_t m = 0; m < settings.size(); ++m) {
+        const double ms = costs[m].phases[static_cast<int>(period::Phase::HiddenSurface)].ms;
+        out[m].median = {ms, ms};
+    }
     return out;
 }
 

@@ -45,6 +45,12 @@ struct Measured {
 std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
                                           const std::vector<host::MethodOptions>& settings,
                                           int repeat, const std::string& label, bool progress);
+// The same on the experiment's host: here, measure_interleaved(); on a 1989 host
+// (s.period), each setting rendered once here for its commands and counts and its time the
+// modelled hidden-surface time of its emulated run of `file` (wall = CPU).
+std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
+                                       const std::vector<host::MethodOptions>& settings,
+                                       const ExperimentSettings& s);
 
 // What the controller makes of one frame's commands under a profile.
 struct ControllerFigures {

@@ -56,8 +56,7 @@ Table experiment_fig2_1(const ExperimentSettings& s) {
         std::vector<host::MethodOptions> settings;
         for (const auto& m : methods)
             settings.push_back(m.options);
-        std::vector<Measured> results =
-            measure_interleaved(screen, settings, s.repeat, file, s.progress);
+        std::vector<Measured> results = measure_settings(file, screen, settings, s);
         const double zbuffer_ms = results[0].median.cpu_ms;
         for (size_t m = 0; m < methods.size(); ++m) {
             const ControllerFigures ctl = controller_figures(results[m].commands, profile);
@@ -174,8 +173,7 @@ Table sweep_threshold(const ExperimentSettings& s, const std::vector<double>& th
     for (const auto& file : s.scenes) {
         host::Scene scene;
         host::ScreenScene screen = load_screen(file, s, scene);
-        std::vector<Measured> results =
-            measure_interleaved(screen, settings, s.repeat, file, s.progress);
+        std::vector<Measured> results = measure_settings(file, screen, settings, s);
         double zbuffer_ms = 0;
         for (size_t i = 0; i < thresholds.size(); ++i)
             if (thresholds[i] == 0) zbuffer_ms = results[i].median.cpu_ms;
@@ -244,8 +242,7 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
         std::vector<host::MethodOptions> options;
         for (const auto& st : settings)
             options.push_back(st.options);
-        std::vector<Measured> results =
-            measure_interleaved(screen, options, s.repeat, file, s.progress);
+        std::vector<Measured> results = measure_settings(file, screen, options, s);
         const std::vector<uint8_t> truth = id_pixels(scene, settings[0].options);
         const double zbuffer_ms = results[0].median.cpu_ms;
         for (size_t i = 0; i < settings.size(); ++i) {
@@ -291,7 +288,7 @@ Table experiment_hybrid(const ExperimentSettings& s, double chosen) {
     for (const auto& file : s.scenes) {
         host::Scene scene;
         host::ScreenScene screen = load_screen(file, s, scene);
-        auto r = measure_interleaved(screen, {zbuffer, hybrid, paper}, s.repeat, file, s.progress);
+        auto r = measure_settings(file, screen, {zbuffer, hybrid, paper}, s);
         const double z = r[0].median.cpu_ms, h = r[1].median.cpu_ms, p = r[2].median.cpu_ms;
         const ControllerFigures cz = controller_figures(r[0].commands, profile);
         const ControllerFigures ch = controller_figures(r[1].commands, profile);

@@ -2,10 +2,13 @@
 // controller's cost profile, and whether to show progress.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace fb89::experiments {
+
+class PeriodRuns;
 
 struct ImageSize {
     int width = 0, height = 0;
@@ -17,6 +20,9 @@ struct ExperimentSettings {
     int repeat = 7;
     std::string profile = "tms34010-50mhz";
     bool progress = false;
+    // A 1989 host (period_runs.h): host times are modelled from emulated runs, once each,
+    // instead of timed here in repeated rounds. Null: this machine.
+    std::shared_ptr<PeriodRuns> period;
 };
 
 }  // namespace fb89::experiments

@@ -170,7 +170,7 @@ Table experiment_beam_threshold(const ExperimentSettings& s, const std::vector<d
         std::vector<host::MethodOptions> settings{trace_setting(host::Method::RayTrace, 0)};
         for (double t : ramp)
             settings.push_back(trace_setting(host::Method::Beam, t));
-        auto r = measure_interleaved(screen, settings, s.repeat, file, s.progress);
+        auto r = measure_settings(file, screen, settings, s);
         const double rays_ms = r[0].median.cpu_ms;
         const uint64_t rays_frame = frame_checksum(r[0].commands);
         for (size_t m = 0; m < settings.size(); ++m) {

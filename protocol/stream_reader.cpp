@@ -370,7 +370,7 @@ std::optional<FrameIndex> StreamReader::read_trailing_index() {
                      kIndexEntrySize)) {
             return std::nullopt;
         }
-        index[i] = decode_index_entry(entry);
+        index[static_cast<size_t>(i)] = decode_index_entry(entry);
     }
     if (check_index(index, m_header_size, *footer)) return std::nullopt;
     return index;

@@ -58,7 +58,7 @@ UniformGrid::UniformGrid(const TraceScene& scene, double density) {
     build(scene, all, density);
 
     // crowded cells get a finer grid of their own for rays to walk
-    m_sub_of.assign(cell_count(), -1);
+    m_sub_of.assign(static_cast<size_t>(cell_count()), -1);
     for (uint32_t c = 0; c < cell_count(); ++c) {
         const auto list = cell(c);
         if (list.size() <= kCrowded) continue;

@@ -1,0 +1,242 @@
+// fb89 host-validate: the modelled 1989 host against published figures (docs/HOST_VALIDATION.md).
+// Each validation kernel (period/kernels) runs once on the emulated MC68020 + MC68881 (its
+// counts do not depend on the profile), each host profile prices its timed phase, and the
+// modelled speed is printed beside the published figures of period/validation.json with the
+// error (modelled / published - 1). --check exits 1 when a figure's check fails (|error| over
+// 30% for a figure of the profiled machine itself).
+#include <algorithm>
+#include <iostream>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "cli/common.h"
+#include "period/validation.h"
+
+namespace fb89::cli {
+
+namespace {
+
+struct HostValidateArgs {
+    std::vector<std::string> profiles;
+    std::string csv;
+    int classes = 0;
+    bool check = false, quiet = false;
+};
+
+struct Row {
+    const period::PublishedFigure* figure = nullptr;
+    std::string profile;
+    double seconds = 0, modelled = 0, error = 0;
+    bool pass = false;
+    uint64_t unpriced = 0;
+};
+
+std::string csv_field(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string out = "\"";
+    for (char c : s)
+        out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+std::string number(double v) {
+    return fmt::format("{:.4g}", v);
+}
+
+// The `n` instruction classes of a kernel's timed phase that take most of the modelled time
+// on a profile (at its own clocks), with the rule that prices each: where to look first when
+// a figure is missed.
+std::string class_breakdown(const std::string& kernel, const std::string& asked,
+                            const period::GuestCounts& counts, const period::HostProfile& profile,
+                            int n) {
+    const period::PhaseCounts* timed = counts.phase(static_cast<int>(period::Phase::HiddenSurface));
+    struct Share {
+        std::string key;
+        uint64_t executions;
+        period::KeyPrice price;
+        double us;
+    };
+    std::vector<Share> shares;
+    double total_us = 0;
+    for (const auto& [key, executions] : timed->classes) {
+        const period::KeyPrice k = period::price_key(profile, key);
+        const double us = static_cast<double>(executions) *
+                          (k.cpu / profile.cpu_clock_mhz + k.fpu / profile.fpu_clock_mhz);
+        shares.push_back({key, executions, k, us});
+        total_us += us;
+    }
+    std::sort(shares.begin(), shares.end(),
+              [](const Share& a, const Share& b) { return a.us > b.us; });
+    std::string out = fmt::format(
+        "{} on {} at its own clocks: {:.4g} ms in the timed phase; the classes that take most:\n",
+        kernel, asked, total_us / 1e3);
+    for (int i = 0; i < n && i < static_cast<int>(shares.size()); ++i) {
+        const Share& s = shares[static_cast<size_t>(i)];
+        std::string rule = s.price.rule ? s.price.rule->source : "(no rule: the default)";
+        if (rule.size() > 90) rule = rule.substr(0, 87) + "...";
+        out +=
+            fmt::format("  {:>5.1f}%  {:<26} {:>9} x cpu {:>4g} fpu {:>4g}  {}\n",
+                        100 * s.us / total_us, s.key, s.executions, s.price.cpu, s.price.fpu, rule);
+    }
+    return out;
+}
+
+int run_host_validate(const HostValidateArgs& a) {
+    const Console console{a.quiet};
+    const period::ValidationData data = period::builtin_validation();
+
+    // The profiles: those asked for, else every one a figure names, in order.
+    std::vector<std::string> wanted = a.profiles;
+    if (wanted.empty()) {
+        std::set<std::string> seen;
+        for (const auto& f : data.figures)
+            for (const auto& p : f.profiles)
+                if (seen.insert(p).second) wanted.push_back(p);
+    }
+    std::vector<std::pair<std::string, period::HostProfile>> profiles;
+    for (const std::string& name : wanted) {
+        try {
+            profiles.emplace_back(name, period::load_host_profile(name));
+        } catch (const std::runtime_error& e) {
+            throw UsageError(std::string("--profile: ") + e.what());
+        }
+    }
+
+    // Each kernel that a compared figure needs, run once.
+    std::map<std::string, period::KernelRun> runs;
+    const period::EmulatorParts parts = period::find_emulator_parts();
+    for (const auto& f : data.figures) {
+        if (f.profiles.empty() || runs.contains(f.kernel)) continue;
+        const period::ValidationKernel& k = data.kernel(f.kernel);
+        console.note(fmt::format("running {} on the emulated MC68020 + MC68881", k.program));
+        runs.emplace(f.kernel, period::run_validation_kernel(parts, k));
+        const period::KernelRun& run = runs.at(f.kernel);
+        const auto* timed = run.counts.phase(static_cast<int>(period::Phase::HiddenSurface));
+        console.note(fmt::format("  {} timed instructions; it says: {}", timed->instructions,
+                                 run.output.substr(0, run.output.find('\n'))));
+    }
+
+    std::vector<Row> rows;
+    for (const auto& [asked, profile] : profiles) {
+        // Figures naming the profile, by the name asked for or its own; a profile that no
+        // figure names (a candidate table in a file) is set beside every compared figure.
+        std::vector<const period::PublishedFigure*> figures;
+        for (const auto& f : data.figures)
+            for (const auto& p : f.profiles)
+                if (p == asked || p == profile.name) {
+                    figures.push_back(&f);
+                    break;
+                }
+        if (figures.empty()) {
+            console.note(fmt::format("no figure names profile {}: comparing it with all", asked));
+            for (const auto& f : data.figures)
+                if (!f.profiles.empty()) figures.push_back(&f);
+        }
+        for (const period::PublishedFigure* f : figures) {
+            const period::ValidationKernel& k = data.kernel(f->kernel);
+            const period::KernelRun& run = runs.at(f->kernel);
+            Row r;
+            r.figure = f;
+            r.profile = asked;
+            r.seconds = period::timed_seconds(run.counts, profile, f->clock_mhz);
+            r.modelled = period::modelled_value(k, f->unit, r.seconds);
+            r.error = period::relative_error(r.modelled, f->value);
+            r.pass = period::passes(f->check, r.error);
+            r.unpriced = period::price(run.counts, profile)
+                             .phases[static_cast<int>(period::Phase::HiddenSurface)]
+                             .unpriced;
+            rows.push_back(r);
+        }
+    }
+
+    bool all_pass = true;
+    std::string table =
+        fmt::format("{:<8} {:<9} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<9} {}\n", "kernel", "profile",
+                    "clock", "modelled", "published", "unit", "error", "check", "source");
+    for (const Row& r : rows) {
+        const auto& f = *r.figure;
+        all_pass = all_pass && r.pass;
+        table += fmt::format(
+            "{:<8} {:<9} {:>6} {:>10} {:>10} {:<8} {:>+7.1f}%  {:<9} {} [{}]{}\n", f.kernel,
+            r.profile, f.clock_mhz > 0 ? fmt::format("{:g}MHz", f.clock_mhz) : "own",
+            number(r.modelled), number(f.value), f.unit, 100 * r.error,
+            std::string(period::check_name(f.check)) + (r.pass ? "" : "!"), f.cite, f.id,
+            r.unpriced ? fmt::format(" ({} executions unpriced)", r.unpriced) : "");
+    }
+    // What each profile makes of each kernel at its own clocks, in the kernel's usual unit.
+    table += "modelled at the profiles' own clocks:\n";
+    for (const auto& [asked, profile] : profiles) {
+        std::string line;
+        for (const auto& [kernel, run] : runs) {
+            const period::ValidationKernel& k = data.kernel(kernel);
+            const double value =
+                period::modelled_value(k, k.unit, period::timed_seconds(run.counts, profile));
+            line +=
+                fmt::format("{}{} {} {}", line.empty() ? "" : ", ", kernel, number(value), k.unit);
+        }
+        table += fmt::format("  {}: {}\n", asked, line);
+    }
+    std::string context;
+    for (const auto& f : data.figures)
+        if (f.profiles.empty())
+            context += fmt::format("  {}: {} {} on {} ({})\n", f.id, number(f.value), f.unit,
+                                   f.machine, f.cite);
+    if (!context.empty()) table += "not compared (no profile of the machine):\n" + context;
+    table += fmt::format(
+        "error = modelled / published - 1; within: |error| <= {0:.0f}%, at_most: error <= "
+        "+{0:.0f}%, at_least: error >= -{0:.0f}%; '!' marks a failed check. clock: the "
+        "profile's cycles timed at the figure's machine's clock.\n",
+        100 * period::kValidationTolerance);
+    std::string sources = "sources:\n";
+    std::set<std::string> listed;
+    for (const Row& r : rows)
+        if (listed.insert(r.figure->id).second)
+            sources +=
+                fmt::format("  [{}] {}: {}\n", r.figure->id, r.figure->machine, r.figure->source);
+
+    if (!a.csv.empty()) {
+        std::string csv =
+            "kernel,profile,figure,machine,benchmark,unit,clock_mhz,modelled,published,error,"
+            "check,pass,source\n";
+        for (const Row& r : rows) {
+            const auto& f = *r.figure;
+            csv += fmt::format("{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6f},{},{},{}\n", f.kernel,
+                               r.profile, f.id, csv_field(f.machine), csv_field(f.benchmark),
+                               f.unit, f.clock_mhz > 0 ? number(f.clock_mhz) : "", r.modelled,
+                               f.value, r.error, period::check_name(f.check), r.pass ? "yes" : "no",
+                               csv_field(f.source));
+        }
+        write_text(a.csv, csv);
+    }
+    if (a.classes > 0)
+        for (const auto& [asked, profile] : profiles)
+            for (const auto& [kernel, run] : runs)
+                table += class_breakdown(kernel, asked, run.counts, profile, a.classes);
+    if (!a.quiet && a.csv != "-") std::cout << table << sources;
+    return a.check && !all_pass ? kCheckFailed : kSuccess;
+}
+
+}  // namespace
+
+void register_host_validate(CLI::App& app, int& exit_code) {
+    auto a = std::make_shared<HostValidateArgs>();
+    CLI::App* sub = app.add_subcommand(
+        "host-validate",
+        "Set the modelled 1989 host (kernels on the emulated MC68020 + MC68881, priced by host "
+        "profiles) beside published figures of the period");
+    sub->add_option("--profile", a->profiles,
+                    "Host profile (a built-in name or a .json file); default: every profile a "
+                    "figure names");
+    sub->add_option("--csv", a->csv, "Write the comparison as CSV ('-' for stdout)");
+    sub->add_option("--classes", a->classes,
+                    "Also list the N instruction classes that take most of each kernel's "
+                    "modelled time, with the rule that prices each")
+        ->check(CLI::Range(0, 1000));
+    sub->add_flag("--check", a->check, "Exit 1 when a figure's check fails (an error beyond 30%)");
+    sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
+    sub->callback([a, &exit_code] { exit_code = run_host_validate(*a); });
+}
+
+}  // namespace fb89::cli

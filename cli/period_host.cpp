@@ -1,0 +1,184 @@
+#include "cli/period_host.h"
+
+#include <unistd.h>
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/common.h"
+#include "controller_sim/controller.h"
+#include "experiments/period_runs.h"
+#include "period/emulator.h"
+#include "protocol/stream_reader.h"
+
+namespace fb89::cli {
+
+namespace {
+
+struct Frame {
+    bool complete = false;
+    uint64_t checksum = 0;
+    std::vector<uint8_t> pixels;
+};
+
+Frame replayed(const protocol::MemoryBuffer& commands) {
+    controller::Controller ctl(controller::load_profile("ideal"));
+    commands.replay_into(ctl);
+    Frame f;
+    f.complete = !ctl.frames().empty();
+    if (f.complete) f.checksum = ctl.frames().at(0).checksum;
+    const auto px = ctl.framebuffer().pixels();
+    f.pixels.assign(px.begin(), px.end());
+    return f;
+}
+
+}  // namespace
+
+PeriodHostRun run_on_period_host(const std::string& host, const std::string& scene,
+                                 const std::vector<std::string>& options,
+                                 const protocol::MemoryBuffer& native) {
+    period::HostProfile profile;
+    try {
+        profile = period::load_host_profile(host);
+    } catch (const std::runtime_error& e) {
+        throw UsageError(std::string("--host: ") + e.what());
+    }
+    const period::GuestRun guest = period::run_guest(period::find_emulator_parts(), scene, options);
+    PeriodHostRun run;
+    run.cost = period::price(guest.counts, profile);
+    run.guest_instructions = guest.counts.instructions;
+    run.emulated_seconds = guest.wall_s;
+
+    // the guest's frame against the native one
+    protocol::StreamReader reader(guest.stream, "the guest's stream");
+    protocol::MemoryBuffer commands;
+    protocol::Command c;
+    while (reader.next(c))
+        commands.submit(c);
+    const Frame a = replayed(native), b = replayed(commands);
+    run.same_frame = a.complete && b.complete && a.checksum == b.checksum;
+    const auto& pa = a.pixels;
+    const auto& pb = b.pixels;
+    if (pa.size() != pb.size()) {
+        run.differing_pixels = pa.size() / 3;
+    } else {
+        for (size_t i = 0; i + 2 < pa.size(); i += 3)
+            run.differing_pixels +=
+                pa[i] != pb[i] || pa[i + 1] != pb[i + 1] || pa[i + 2] != pb[i + 2];
+    }
+    return run;
+}
+
+std::string period_summary(const PeriodHostRun& run) {
+    const auto& p = run.cost.phases;
+    auto phase = [&](period::Phase ph) { return p[static_cast<int>(ph)]; };
+    std::string out =
+        fmt::format("host {} (MC68020 + MC68881, modelled from {} emulated instructions):\n",
+                    run.cost.profile, run.guest_instructions);
+    for (auto [name, ph] : {std::pair{"load", period::Phase::Load},
+                            {"set-up", period::Phase::Setup},
+                            {"hidden-surface", period::Phase::HiddenSurface}})
+        out += fmt::format("  {:<16} {:>12.3f} ms  {:>14} instructions\n", name, phase(ph).ms,
+                           phase(ph).instructions);
+    out += fmt::format("  {:<16} {:>12.3f} ms\n", "end to end", run.cost.end_to_end_ms());
+    out += fmt::format(
+        "  its command stream: {}; emulated in {:.2f} s here ({:.0f} M "
+        "instructions/s)\n",
+        run.same_frame
+            ? "the native one's frame"
+            : fmt::format("{} pixels differ from the native frame", run.differing_pixels),
+        run.emulated_seconds,
+        static_cast<double>(run.guest_instructions) / run.emulated_seconds / 1e6);
+    uint64_t unpriced = 0;
+    for (const auto& [key, n] : run.cost.unpriced_keys)
+        unpriced += n;
+    if (unpriced > 0)
+        out += fmt::format(
+            "  note: {} executions of {} instruction classes had no rule in the "
+            "profile and took its default\n",
+            unpriced, run.cost.unpriced_keys.size());
+    return out;
+}
+
+nlohmann::json period_json(const PeriodHostRun& run) {
+    nlohmann::json j;
+    j["profile"] = run.cost.profile;
+    j["guest_instructions"] = run.guest_instructions;
+    j["emulated_seconds"] = run.emulated_seconds;
+    j["same_frame"] = run.same_frame;
+    j["differing_pixels"] = run.differing_pixels;
+    j["end_to_end_ms"] = run.cost.end_to_end_ms();
+    for (int ph = 0; ph < period::kPhases; ++ph) {
+        const period::PhaseCost& c = run.cost.phases[ph];
+        j["phases"][std::string(period::phase_name(ph))] = {{"instructions", c.instructions},
+                                                            {"cpu_cycles", c.cpu_cycles},
+                                                            {"fpu_cycles", c.fpu_cycles},
+                                                            {"unpriced", c.unpriced},
+                                                            {"ms", c.ms}};
+    }
+    return j;
+}
+
+std::string split_line(const std::string& host_name, double host_ms, const std::string& profile,
+                       double controller_ms) {
+    const bool host_bounds = host_ms >= controller_ms;
+    const double frame = std::max(host_ms, controller_ms);
+    const double low = std::min(host_ms, controller_ms);
+    return fmt::format(
+        "split: host {} {:.3f} ms | controller {} {:.3f} ms | frame {:.3f} ms, bounded by the "
+        "{} ({})\n",
+        host_name, host_ms, profile, controller_ms, frame, host_bounds ? "host" : "controller",
+        low > 0 ? fmt::format("{:.2f}x the {}", frame / low, host_bounds ? "controller" : "host")
+                : "the other side takes no time");
+}
+
+void add_host_options(CLI::App* sub, HostArgs& a) {
+    sub->add_option("--host", a.host,
+                    "Host the times are taken on: native (this machine, timed in rounds) or a "
+                    "1989 host (sun3-60, sun3-260, a .json host profile): fb89's host code on "
+                    "the emulated MC68020 + MC68881, each run once, its time modelled")
+        ->capture_default_str();
+    sub->add_option("--jobs,-j", a.jobs, "1989 host: emulated runs at once on this machine")
+        ->check(CLI::Range(1, 256))
+        ->capture_default_str();
+    sub->add_option("--results", a.results,
+                    "1989 host: a folder keeping each run's counts; runs found there are not "
+                    "run again (the merge step for --emit-jobs)");
+    sub->add_option("--emit-jobs", a.emit_jobs,
+                    "1989 host: write one command per run missing from --results to this file "
+                    "(for GNU parallel or a Slurm job array) instead of running them");
+}
+
+std::shared_ptr<experiments::PeriodRuns> make_period_runs(const HostArgs& a) {
+    if (a.host == "native") {
+        if (a.jobs != 1 || !a.results.empty() || !a.emit_jobs.empty())
+            throw UsageError(
+                "--jobs, --results and --emit-jobs: only with a 1989 --host "
+                "(native times are taken in interleaved rounds, one at a time)");
+        return nullptr;
+    }
+    char self[4096];
+    const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+    const std::string fb89 = n > 0 ? std::string(self, static_cast<size_t>(n)) : "fb89";
+    try {
+        return std::make_shared<experiments::PeriodRuns>(a.host, a.jobs, a.results, a.emit_jobs,
+                                                         fb89);
+    } catch (const period::EmulatorError&) {
+        throw;
+    } catch (const std::runtime_error& e) {
+        throw UsageError(std::string("--host: ") + e.what());
+    }
+}
+
+bool report_emitted(const experiments::ExperimentSettings& s, const HostArgs& a) {
+    if (!s.period || a.emit_jobs.empty() || s.period->emitted() == 0) return false;
+    fmt::print(stderr,
+               "fb89: {} emulated runs written to {}; run them, e.g. `parallel < {}`, then this "
+               "command again with --results {} to join them into its table\n",
+               s.period->emitted(), a.emit_jobs, a.emit_jobs, a.results);
+    return true;
+}
+
+}  // namespace fb89::cli

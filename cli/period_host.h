@@ -1,0 +1,56 @@
+// `--host`: the frame's host side timed on a 1989 host. fb89's host code runs on the
+// emulated MC68020 + MC68881 (period/emulator.h) with the same method and options as the
+// native run, its counts are priced by the host profile (period/host_cost.h), and its
+// command stream is checked against the native one.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+#include "experiments/settings.h"
+#include "host/methods.h"
+#include "period/host_cost.h"
+#include "protocol/memory_buffer.h"
+
+namespace fb89::cli {
+
+struct PeriodHostRun {
+    period::HostCost cost;
+    uint64_t guest_instructions = 0;
+    double emulated_seconds = 0;
+    bool same_frame = false;        // the guest's frame checksum equals the native one's
+    uint64_t differing_pixels = 0;  // where they differ (depth ties the 68881 decides otherwise)
+};
+
+// Runs the guest and prices it; `native` is the native run's commands for the same frame.
+// Throws UsageError for an unknown host, period::EmulatorError when the emulation fails.
+PeriodHostRun run_on_period_host(const std::string& host, const std::string& scene,
+                                 const std::vector<std::string>& options,
+                                 const protocol::MemoryBuffer& native);
+
+// "load 1.2 ms, set-up 3.4 ms, ..." lines for people, and the JSON for --stats.
+std::string period_summary(const PeriodHostRun& run);
+nlohmann::json period_json(const PeriodHostRun& run);
+
+// The two-stage pipeline at a glance: host per frame (set-up + hidden-surface) against the
+// controller's frame time; the frame time is the larger, the side that bounds it named.
+std::string split_line(const std::string& host_name, double host_ms, const std::string& profile,
+                       double controller_ms);
+
+// --host, --jobs, --results and --emit-jobs, as experiment, sweep and calibrate take them.
+struct HostArgs {
+    std::string host = "native";
+    int jobs = 1;
+    std::string results, emit_jobs;
+};
+void add_host_options(CLI::App* sub, HostArgs& args);
+// Null for the native host; throws UsageError for a bad combination or an unknown host.
+std::shared_ptr<experiments::PeriodRuns> make_period_runs(const HostArgs& args);
+// After an experiment: with --emit-jobs, says where the jobs went and returns true (the
+// table is incomplete and is not written).
+bool report_emitted(const experiments::ExperimentSettings& s, const HostArgs& args);
+
+}  // namespace fb89::cli

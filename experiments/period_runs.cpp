@@ -1,0 +1,159 @@
+#include "experiments/period_runs.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include <fmt/format.h>
+
+namespace fb89::experiments {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot open");
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+uint64_t fnv1a(std::string_view bytes, uint64_t h = 1469598103934665603ull) {
+    for (unsigned char c : bytes) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+std::string shell_quoted(const std::string& s) {
+    std::string out = "'";
+    for (char c : s)
+        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+// Written beside the target and renamed when whole, so a folder never holds half a result.
+void write_whole(const fs::path& path, const std::string& text) {
+    const fs::path tmp = path.string() + fmt::format(".tmp{}", ::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out.flush()) throw std::runtime_error(tmp.string() + ": cannot write");
+    }
+    fs::rename(tmp, path);
+}
+
+std::string fingerprint(const std::string& guest) {
+    return fmt::format("{:016x}", fnv1a(slurp(guest)));
+}
+
+std::string number(double v) {
+    return std::isinf(v) ? "inf" : fmt::format("{}", v);
+}
+
+}  // namespace
+
+std::vector<std::string> guest_options(const host::MethodOptions& o, const std::string& size) {
+    std::vector<std::string> args{
+        "--method",         std::string(host::method_info(o.method).name),
+        "--window-test",    o.warnock.window_test == host::WindowTest::Centres ? "centres" : "area",
+        "--approx-min",     std::to_string(o.warnock.approx.min_side),
+        "--approx-eps",     number(o.warnock.approx.epsilon),
+        "--threshold",      number(o.hybrid.threshold),
+        "--depth-estimate", o.hybrid.depth == host::DepthEstimate::Scene ? "scene" : "window",
+        "--beam-threshold", number(o.beam.threshold),
+        "--reflections",    std::to_string(o.trace.max_reflections),
+        "--grid-density",   number(o.trace.grid_density)};
+    if (!size.empty()) args.insert(args.end(), {"--size", size});
+    return args;
+}
+
+std::string job_key(const std::string& guest_fingerprint, const GuestJob& job) {
+    uint64_t h = fnv1a(guest_fingerprint);
+    h = fnv1a(slurp(job.scene), h);
+    h = fnv1a(fs::path(job.scene).filename().string(), h);
+    for (const std::string& o : job.options)
+        h = fnv1a(o + '\0', h);
+    return fmt::format("{:016x}", h);
+}
+
+PeriodRuns::PeriodRuns(const std::string& host, int jobs, std::string results_dir,
+                       std::string emit_jobs, std::string fb89_path)
+    : m_profile(period::load_host_profile(host)),
+      m_jobs(std::max(1, jobs)),
+      m_results(std::move(results_dir)),
+      m_emit(std::move(emit_jobs)),
+      m_fb89(std::move(fb89_path)),
+      m_parts(period::find_emulator_parts()),
+      m_guest_fingerprint(fingerprint(m_parts.guest)) {
+    if (!m_emit.empty() && m_results.empty())
+        throw std::runtime_error("--emit-jobs needs --results DIR, where the jobs write");
+    if (!m_results.empty()) fs::create_directories(m_results);
+    if (!m_emit.empty()) std::ofstream(m_emit, std::ios::trunc);  // a fresh list
+}
+
+std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
+    const fs::path cached = m_results.empty() ? fs::path() : fs::path(m_results) / (key + ".json");
+    if (!m_results.empty() && fs::exists(cached)) return slurp(cached.string());
+    if (!m_emit.empty()) {
+        std::string line = shell_quoted(m_fb89) + " host-run " + shell_quoted(job.scene) +
+                           " --results " + shell_quoted(m_results) + " --";
+        for (const std::string& o : job.options)
+            line += " " + shell_quoted(o);
+        std::lock_guard lock(m_mutex);
+        std::ofstream(m_emit, std::ios::app) << line << "\n";
+        ++m_emitted;
+        return "";
+    }
+    const period::GuestRun run = period::run_guest(m_parts, job.scene, job.options);
+    if (!m_results.empty()) write_whole(cached, run.counts_json);
+    std::lock_guard lock(m_mutex);
+    ++m_emulated;
+    return run.counts_json;
+}
+
+std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs) {
+    std::vector<period::HostCost> out(jobs.size());
+    std::vector<std::string> errors(jobs.size());
+    std::atomic<size_t> next{0};
+    auto worker = [&] {
+        for (size_t i = next++; i < jobs.size(); i = next++) {
+            try {
+                const std::string text = counts_of(jobs[i], job_key(m_guest_fingerprint, jobs[i]));
+                if (text.empty()) continue;  // emitted, not run
+                out[i] = period::price(period::parse_guest_counts(text, jobs[i].scene), m_profile);
+            } catch (const std::exception& e) {
+                errors[i] = e.what();
+            }
+        }
+    };
+    std::vector<std::thread> threads;
+    const size_t n = std::min<size_t>(static_cast<size_t>(m_jobs), jobs.size());
+    for (size_t t = 1; t < n; ++t)
+        threads.emplace_back(worker);
+    worker();
+    for (auto& t : threads)
+        t.join();
+    for (const std::string& e : errors)
+        if (!e.empty()) throw period::EmulatorError(e);
+    return out;
+}
+
+void run_one_job(const GuestJob& job, const std::string& results_dir) {
+    const period::EmulatorParts parts = period::find_emulator_parts();
+    const std::string key = job_key(fingerprint(parts.guest), job);
+    const period::GuestRun run = period::run_guest(parts, job.scene, job.options);
+    fs::create_directories(results_dir);
+    write_whole(fs::path(results_dir) / (key + ".json"), run.counts_json);
+}
+
+}  // namespace fb89::experiments

@@ -1,0 +1,66 @@
+// The experiments on a 1989 host: every (scene, setting) runs once on the emulated MC68020
+// + MC68881 (period/emulator.h) -- its counts are exact, so there is nothing to repeat and
+// no noise to take a median of -- and is priced by the host profile. Runs are independent:
+// they fan out over `jobs` emulator processes here, or, with `emit_jobs`, are written out
+// as one command each (`fb89 host-run ...`) for GNU parallel or a Slurm job array on other
+// machines; their outputs land in a results folder, and running the experiment again with
+// that folder joins them into the same table a single run writes.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "host/methods.h"
+#include "period/emulator.h"
+#include "period/host_cost.h"
+#include "period/host_profile.h"
+
+namespace fb89::experiments {
+
+// The guest's options for a method (thresholds as numbers) at a size ("" for the scene's).
+std::vector<std::string> guest_options(const host::MethodOptions& options, const std::string& size);
+
+struct GuestJob {
+    std::string scene;                 // as given (a path)
+    std::vector<std::string> options;  // the guest's own options (cli/period_host.h's form)
+};
+
+class PeriodRuns {
+  public:
+    // `host`: a built-in host profile or a .json file. Throws std::runtime_error.
+    PeriodRuns(const std::string& host, int jobs, std::string results_dir, std::string emit_jobs,
+               std::string fb89_path);
+
+    // The priced counts of every job, in order. A job whose counts are in the results
+    // folder is not run again; with emit_jobs, a missing one is written out and priced as
+    // zero (emitted() says how many).
+    std::vector<period::HostCost> run(const std::vector<GuestJob>& jobs);
+
+    const period::HostProfile& profile() const { return m_profile; }
+    uint64_t emitted() const { return m_emitted; }
+    uint64_t emulated() const { return m_emulated; }
+
+  private:
+    std::string key(const GuestJob& job);
+    std::string counts_of(const GuestJob& job, const std::string& key);
+
+    period::HostProfile m_profile;
+    int m_jobs = 1;
+    std::string m_results, m_emit, m_fb89;
+    period::EmulatorParts m_parts;
+    std::string m_guest_fingerprint;
+    std::mutex m_mutex;
+    uint64_t m_emitted = 0, m_emulated = 0;
+};
+
+// A results folder's file name for a job: a hash of the guest program, the scene file's
+// bytes and the options, so a changed scene or guest is never answered from an old run.
+std::string job_key(const std::string& guest_fingerprint, const GuestJob& job);
+
+// `fb89 host-run`: one job, its counts written (whole or not at all) into `results_dir`.
+void run_one_job(const GuestJob& job, const std::string& results_dir);
+
+}  // namespace fb89::experiments

@@ -1,0 +1,56 @@
+// Running fb89's host code on the emulated MC68020 + MC68881: the guest program
+// (period/guest) under qemu-m68k with the counting plugin (period/plugin). The guest runs
+// in the scene's folder with an empty environment and writes its command stream to a pipe,
+// so that its counts do not depend on where the checkout or the output lives.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "period/host_cost.h"
+
+namespace fb89::period {
+
+// The emulator, the guest or the plugin is missing, or the guest failed: the message
+// names what and, for a missing part, the Debian package that provides it.
+class EmulatorError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+struct EmulatorParts {
+    std::string qemu;    // qemu-m68k: $FB89_QEMU, else found on PATH
+    std::string plugin;  // $FB89_COUNT_PLUGIN, else the one built beside fb89
+    std::string guest;   // $FB89_GUEST, else the one the cross build made
+};
+// Throws EmulatorError when a part cannot be found.
+EmulatorParts find_emulator_parts();
+
+struct GuestRun {
+    GuestCounts counts;
+    std::string counts_json;      // the plugin's output as written
+    std::vector<uint8_t> stream;  // the guest's command stream
+    double wall_s = 0;            // how long the emulation took here
+};
+
+// Runs the guest on `scene` with `options` (the guest's own, e.g. {"--method", "zbuffer"}),
+// for at most `time_limit_s` seconds. Throws EmulatorError.
+GuestRun run_guest(const EmulatorParts& parts, const std::filesystem::path& scene,
+                   const std::vector<std::string>& options, double time_limit_s = 3600);
+
+// The validation kernels (period/kernels, docs/HOST_VALIDATION.md): small MC68020 programs
+// that take no input file. `name` is e.g. "fb89_kernel_linpack"; the folder is
+// $FB89_KERNELS_DIR, else the one the cross build made. Throws EmulatorError when missing.
+std::filesystem::path find_kernel(const std::string& name);
+
+// Runs a kernel program under the emulator with the counting plugin, in the kernel's folder
+// with an empty environment, like run_guest but with no scene and no stream options.
+// `stream` holds what the kernel printed. Throws EmulatorError, also when the kernel exits
+// non-zero (its own check failed).
+GuestRun run_kernel(const EmulatorParts& parts, const std::filesystem::path& kernel,
+                    const std::vector<std::string>& options, double time_limit_s = 3600);
+
+}  // namespace fb89::period

@@ -1,0 +1,111 @@
+// fb89_guest: fb89's own host code as one program for the emulated MC68020 + MC68881. It
+// loads a scene, sets it up, runs one hidden-surface method into the in-memory buffer and
+// writes the command stream, marking each phase for the counting plugin (phase_marker.h).
+// `fb89 render --host sun3-60` runs it under qemu-m68k; the options are render's, with
+// thresholds already resolved to numbers.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include "host/methods.h"
+#include "host/raster/screen_setup.h"
+#include "host/scene/scene_loader.h"
+#include "period/guest/phase_marker.h"
+#include "protocol/memory_buffer.h"
+#include "protocol/stream_writer.h"
+
+namespace {
+
+using fb89::period::mark;
+using fb89::period::Phase;
+namespace host = fb89::host;
+namespace protocol = fb89::protocol;
+
+struct GuestArgs {
+    std::string scene, method = "zbuffer", size, stream = "-";
+    std::string window_test = "area", depth_estimate = "window";
+    double threshold = host::kPaperThreshold;
+    double beam_threshold = host::kDefaultBeamThreshold;
+    int reflections = host::TraceOptions{}.max_reflections;
+    double grid_density = host::TraceOptions{}.grid_density;
+    int approx_min = 0;
+    double approx_eps = 0;
+    bool ids = false;
+};
+
+host::MethodOptions method_options(const GuestArgs& a) {
+    host::MethodOptions o(host::method_named(a.method));
+    o.warnock.window_test =
+        a.window_test == "centres" ? host::WindowTest::Centres : host::WindowTest::Area;
+    o.warnock.approx = {a.approx_min, a.approx_eps};
+    o.hybrid.threshold = a.threshold;
+    o.hybrid.depth =
+        a.depth_estimate == "scene" ? host::DepthEstimate::Scene : host::DepthEstimate::Window;
+    o.beam.threshold = a.beam_threshold;
+    o.trace.max_reflections = a.reflections;
+    o.trace.grid_density = a.grid_density;
+    return o;
+}
+
+int run(const GuestArgs& a) {
+    const host::MethodOptions options = method_options(a);
+    auto renderer = host::make_renderer(options);
+
+    mark(Phase::Load);
+    host::Scene scene = host::load_scene(a.scene);
+    if (!a.size.empty() && std::sscanf(a.size.c_str(), "%dx%d", &scene.width, &scene.height) != 2)
+        throw std::invalid_argument("--size: expected WxH, got '" + a.size + "'");
+
+    mark(Phase::Setup);
+    host::HostStats stats;
+    const host::ScreenScene screen = host::project_scene(
+        scene, a.ids ? host::ColorMode::FaceId : host::ColorMode::Shaded, stats.counters);
+    renderer->setup(screen);
+
+    mark(Phase::HiddenSurface);
+    protocol::MemoryBuffer commands;
+    host::render_frame(*renderer, screen, commands, stats);
+
+    mark(Phase::Output);
+    protocol::StreamWriter writer(
+        a.stream, {{"scene", a.scene},
+                   {"method", a.method},
+                   {"resolution", fmt::format("{}x{}", screen.width, screen.height)},
+                   {"tool", std::string("fb89_guest ") + FB89_VERSION}});
+    commands.replay_into(writer);
+    writer.close();
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    mark(Phase::Startup);
+    CLI::App app{"fb89's host code for the emulated MC68020 + MC68881: one method, one frame"};
+    GuestArgs a;
+    app.add_option("scene", a.scene, "Scene file")->required();
+    app.add_option("--method,-m", a.method, "Hidden-surface method");
+    app.add_option("--size", a.size, "Image size WxH, overriding the scene's");
+    app.add_option("--window-test", a.window_test, "area or centres");
+    app.add_option("--threshold", a.threshold, "Hybrid: Expr. 3.1 threshold");
+    app.add_option("--depth-estimate", a.depth_estimate, "Hybrid: window or scene");
+    app.add_option("--beam-threshold", a.beam_threshold, "Beam: Expr. 2.7 threshold");
+    app.add_option("--reflections", a.reflections, "Raytrace and beam: mirror bounces");
+    app.add_option("--grid-density", a.grid_density, "Raytrace and beam: cells per piece");
+    app.add_option("--approx-min", a.approx_min, "Approximate fills: smallest side");
+    app.add_option("--approx-eps", a.approx_eps, "Approximate fills: centres missed");
+    app.add_flag("--ids", a.ids, "Render the face-id pass instead of the shaded frame");
+    app.add_option("--stream", a.stream, "Where the command stream goes ('-' for stdout)");
+    try {
+        app.parse(argc, argv);
+        return run(a);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fb89_guest: error: %s\n", e.what());
+        return 2;
+    }
+}

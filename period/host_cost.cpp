@@ -1,0 +1,141 @@
+#include "period/host_cost.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace fb89::period {
+
+namespace {
+
+// "fmoved disp,fpreg" -> mnemonic "fmoved", operands {"disp", "fpreg"}
+void split_key(std::string_view key, std::string_view& mnemonic,
+               std::vector<std::string_view>& operands) {
+    operands.clear();
+    const size_t space = key.find(' ');
+    mnemonic = key.substr(0, space);
+    if (space == std::string_view::npos) return;
+    std::string_view rest = key.substr(space + 1);
+    while (!rest.empty()) {
+        const size_t comma = rest.find(',');
+        operands.push_back(rest.substr(0, comma));
+        if (comma == std::string_view::npos) break;
+        rest = rest.substr(comma + 1);
+    }
+}
+
+bool is_memory(std::string_view c) {
+    return c == "ind" || c == "postinc" || c == "predec" || c == "disp" || c == "index" ||
+           c == "abs" || c == "pcrel";
+}
+
+bool matches(const CostRule& rule, std::string_view mnemonic,
+             const std::vector<std::string_view>& operands) {
+    if (!std::regex_match(mnemonic.begin(), mnemonic.end(), rule.mnemonic)) return false;
+    if (rule.any_operands) return true;
+    if (rule.operands.size() != operands.size()) return false;
+    for (size_t i = 0; i < operands.size(); ++i) {
+        const auto& allowed = rule.operands[i];
+        if (std::find(allowed.begin(), allowed.end(), "*") != allowed.end()) continue;
+        if (std::find(allowed.begin(), allowed.end(), operands[i]) == allowed.end()) return false;
+    }
+    return true;
+}
+
+// The EA table's entry for an operand; immediates by the mnemonic's size letter.
+double ea_cycles(const std::map<std::string, double>& table, std::string_view operand,
+                 std::string_view mnemonic) {
+    std::string cls(operand);
+    if (cls == "imm" && !mnemonic.empty()) cls += std::string(".") + mnemonic.back();
+    const auto it = table.find(cls);
+    return it == table.end() ? 0 : it->second;
+}
+
+double rule_cpu(const HostProfile& p, const CostRule& rule, std::string_view mnemonic,
+                const std::vector<std::string_view>& operands) {
+    double cycles = rule.cpu;
+    for (int i : rule.fetch)
+        if (static_cast<size_t>(i) < operands.size())
+            cycles += ea_cycles(p.ea_fetch, operands[static_cast<size_t>(i)], mnemonic);
+    for (int i : rule.calc)
+        if (static_cast<size_t>(i) < operands.size())
+            cycles += ea_cycles(p.ea_calc, operands[static_cast<size_t>(i)], mnemonic);
+    int accesses = rule.accesses;
+    if (accesses < 0)
+        accesses = static_cast<int>(std::count_if(operands.begin(), operands.end(), is_memory));
+    return cycles + p.memory_wait_states * accesses;
+}
+
+}  // namespace
+
+const PhaseCounts* GuestCounts::phase(int p) const {
+    for (const PhaseCounts& c : phases)
+        if (c.phase == p) return &c;
+    return nullptr;
+}
+
+GuestCounts parse_guest_counts(std::string_view text, const std::string& origin) {
+    GuestCounts out;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(text);
+        if (j.value("tool", "") != "fb89_count" || j.value("version", 0) != 1)
+            throw std::runtime_error("not the output of the fb89_count plugin, version 1");
+        out.instructions = j.at("guest_instructions").get<uint64_t>();
+        for (const auto& p : j.at("phases")) {
+            PhaseCounts c;
+            c.phase = p.at("phase").get<int>();
+            c.entered = p.at("entered").get<uint64_t>();
+            c.instructions = p.at("instructions").get<uint64_t>();
+            for (const auto& [key, n] : p.at("classes").items())
+                c.classes[key] = n.get<uint64_t>();
+            out.phases.push_back(std::move(c));
+        }
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(
+            fmt::format("{}: not the counting plugin's JSON: {}", origin, e.what()));
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(fmt::format("{}: {}", origin, e.what()));
+    }
+    return out;
+}
+
+KeyPrice price_key(const HostProfile& p, std::string_view key) {
+    std::string_view mnemonic;
+    std::vector<std::string_view> operands;
+    split_key(key, mnemonic, operands);
+    for (const CostRule& rule : p.rules)
+        if (matches(rule, mnemonic, operands))
+            return {rule_cpu(p, rule, mnemonic, operands), rule.fpu, &rule};
+    return {rule_cpu(p, p.fallback, mnemonic, operands), p.fallback.fpu, nullptr};
+}
+
+double HostCost::end_to_end_ms() const {
+    return phases[static_cast<int>(Phase::Load)].ms + phases[static_cast<int>(Phase::Setup)].ms +
+           phases[static_cast<int>(Phase::HiddenSurface)].ms;
+}
+
+HostCost price(const GuestCounts& counts, const HostProfile& profile) {
+    HostCost cost;
+    cost.profile = profile.name;
+    for (const PhaseCounts& c : counts.phases) {
+        if (c.phase < 0 || c.phase >= kPhases) continue;
+        PhaseCost& out = cost.phases[c.phase];
+        out.instructions += c.instructions;
+        for (const auto& [key, n] : c.classes) {
+            const KeyPrice k = price_key(profile, key);
+            out.cpu_cycles += k.cpu * static_cast<double>(n);
+            out.fpu_cycles += k.fpu * static_cast<double>(n);
+            if (!k.rule) {
+                out.unpriced += n;
+                cost.unpriced_keys[key] += n;
+            }
+        }
+        out.ms = out.cpu_cycles / (profile.cpu_clock_mhz * 1e3) +
+                 out.fpu_cycles / (profile.fpu_clock_mhz * 1e3);
+    }
+    return cost;
+}
+
+}  // namespace fb89::period

@@ -1,0 +1,56 @@
+// Counts to time: the counting plugin's per-phase instruction classes (period/plugin),
+// priced by a host profile (host_profile.h). Counts are exact and deterministic, so the
+// modelled times are too.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "period/host_profile.h"
+#include "period/phases.h"
+
+namespace fb89::period {
+
+struct PhaseCounts {
+    int phase = 0;
+    uint64_t entered = 0, instructions = 0;
+    std::map<std::string, uint64_t> classes;  // class key -> executions
+};
+
+struct GuestCounts {
+    uint64_t instructions = 0;
+    std::vector<PhaseCounts> phases;
+    const PhaseCounts* phase(int p) const;
+};
+
+// The plugin's JSON. Throws std::runtime_error naming `origin` when it is not one.
+GuestCounts parse_guest_counts(std::string_view json, const std::string& origin);
+
+struct KeyPrice {
+    double cpu = 0, fpu = 0;         // clocks of one execution
+    const CostRule* rule = nullptr;  // null: the profile's default
+};
+// One class key, e.g. "movel disp,dreg", priced by the first rule it matches.
+KeyPrice price_key(const HostProfile& profile, std::string_view key);
+
+struct PhaseCost {
+    uint64_t instructions = 0;
+    uint64_t unpriced = 0;  // executions no rule matched (priced by the default)
+    double cpu_cycles = 0, fpu_cycles = 0;
+    double ms = 0;  // cpu_cycles / cpu clock + fpu_cycles / fpu clock
+};
+
+struct HostCost {
+    std::string profile;
+    PhaseCost phases[kPhases];
+    std::map<std::string, uint64_t> unpriced_keys;  // key -> executions
+    // load + set-up + hidden-surface, as native end-to-end times are
+    double end_to_end_ms() const;
+};
+
+HostCost price(const GuestCounts& counts, const HostProfile& profile);
+
+}  // namespace fb89::period

@@ -1,0 +1,51 @@
+// A 1989 host as data: the clocks, memory wait states and cycle tables that price the
+// instructions the counting plugin saw (docs/HOST_COST_MODEL.md). period/profiles/*.json
+// are embedded at build time, beside the controller's profiles.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fb89::period {
+
+// One row of the cycle table: instructions whose mnemonic matches `mnemonic` and whose
+// operand classes match `operands` cost `cpu` MPU clocks (plus the EA terms and wait
+// states) and `fpu` FPU clocks.
+struct CostRule {
+    std::string mnemonic_text;
+    std::regex mnemonic;
+    bool any_operands = true;                        // no "operands" field
+    std::vector<std::vector<std::string>> operands;  // per operand: the classes allowed
+    double cpu = 0, fpu = 0;
+    std::vector<int> fetch, calc;  // operands whose fetch-EA / calculate-EA time is added
+    int accesses = -1;             // data bus accesses; -1: one per memory operand
+    std::string source;
+};
+
+struct HostProfile {
+    std::string name, description;
+    double cpu_clock_mhz = 0, fpu_clock_mhz = 0;
+    double memory_wait_states = 0;
+    std::map<std::string, double> ea_fetch, ea_calc;
+    std::vector<CostRule> rules;
+    CostRule fallback;  // "default": what no rule matches
+};
+
+struct BuiltinProfile {
+    std::string_view name;  // file stem, e.g. "sun3-60"
+    std::string_view json;  // the file's text
+};
+std::span<const BuiltinProfile> builtin_profiles();  // defined in the generated file
+std::vector<std::string> builtin_host_profile_names();
+
+// A built-in name or a .json file. Throws std::runtime_error naming the profile and the
+// field that is missing or wrong.
+HostProfile load_host_profile(std::string_view name_or_path);
+HostProfile parse_host_profile(std::string_view json, const std::string& origin);
+
+}  // namespace fb89::period

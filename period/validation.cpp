@@ -1,0 +1,184 @@
+#include "period/validation.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace fb89::period {
+
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& origin, const std::string& what) {
+    throw std::runtime_error(fmt::format("{}: {}", origin, what));
+}
+
+std::string text(const json& j, const char* key, const std::string& origin, const std::string& at,
+                 bool required = true) {
+    if (!j.contains(key)) {
+        if (required) fail(origin, fmt::format("{}\"{}\" is missing", at, key));
+        return "";
+    }
+    if (!j[key].is_string()) fail(origin, fmt::format("{}\"{}\" must be a string", at, key));
+    return j[key].get<std::string>();
+}
+
+double positive(const json& j, const char* key, const std::string& origin, const std::string& at) {
+    if (!j.contains(key) || !j[key].is_number())
+        fail(origin, fmt::format("{}\"{}\" must be a number", at, key));
+    const double v = j[key].get<double>();
+    if (!(v > 0)) fail(origin, fmt::format("{}\"{}\" must be > 0, got {}", at, key, v));
+    return v;
+}
+
+bool known_unit(const std::string& unit) {
+    return unit == "Mflop/s" || unit == "kflop/s" || unit.starts_with("us/");
+}
+
+}  // namespace
+
+const ValidationKernel& ValidationData::kernel(const std::string& name) const {
+    for (const ValidationKernel& k : kernels)
+        if (k.name == name) return k;
+    throw std::runtime_error(fmt::format("unknown validation kernel '{}'", name));
+}
+
+ValidationData parse_validation(std::string_view source, const std::string& origin) {
+    json j;
+    try {
+        j = json::parse(source);
+    } catch (const json::parse_error& e) {
+        fail(origin, std::string("not valid JSON: ") + e.what());
+    }
+    if (!j.is_object() || !j.contains("schema") || j["schema"] != 1)
+        fail(origin, "must be an object with \"schema\": 1");
+    ValidationData out;
+    if (!j.contains("kernels") || !j["kernels"].is_array() || j["kernels"].empty())
+        fail(origin, "\"kernels\" must be a non-empty list");
+    for (size_t i = 0; i < j["kernels"].size(); ++i) {
+        const json& k = j["kernels"][i];
+        const std::string at = fmt::format("kernel {}: ", i);
+        if (!k.is_object()) fail(origin, at + "must be an object");
+        ValidationKernel kernel;
+        kernel.name = text(k, "name", origin, at);
+        kernel.program = text(k, "program", origin, at);
+        kernel.operations = positive(k, "operations", origin, at);
+        kernel.operation = text(k, "operation", origin, at);
+        kernel.unit = text(k, "unit", origin, at);
+        if (!known_unit(kernel.unit))
+            fail(origin,
+                 fmt::format("{}unit '{}' is not Mflop/s, kflop/s or us/...", at, kernel.unit));
+        kernel.description = text(k, "description", origin, at, false);
+        out.kernels.push_back(std::move(kernel));
+    }
+    if (!j.contains("figures") || !j["figures"].is_array() || j["figures"].empty())
+        fail(origin, "\"figures\" must be a non-empty list");
+    for (size_t i = 0; i < j["figures"].size(); ++i) {
+        const json& f = j["figures"][i];
+        std::string at = fmt::format("figure {}: ", i);
+        if (!f.is_object()) fail(origin, at + "must be an object");
+        PublishedFigure figure;
+        figure.id = text(f, "id", origin, at);
+        at = fmt::format("figure {} ({}): ", i, figure.id);
+        figure.machine = text(f, "machine", origin, at);
+        figure.benchmark = text(f, "benchmark", origin, at);
+        figure.kernel = text(f, "kernel", origin, at);
+        try {
+            (void)out.kernel(figure.kernel);
+        } catch (const std::runtime_error& e) {
+            fail(origin, at + e.what());
+        }
+        figure.value = positive(f, "value", origin, at);
+        figure.unit = text(f, "unit", origin, at);
+        if (!known_unit(figure.unit))
+            fail(origin,
+                 fmt::format("{}unit '{}' is not Mflop/s, kflop/s or us/...", at, figure.unit));
+        const std::string check = text(f, "check", origin, at, false);
+        if (check.empty() || check == "within")
+            figure.check = FigureCheck::Within;
+        else if (check == "at_most")
+            figure.check = FigureCheck::AtMost;
+        else if (check == "at_least")
+            figure.check = FigureCheck::AtLeast;
+        else
+            fail(origin,
+                 fmt::format("{}\"check\" '{}' is not within, at_most or at_least", at, check));
+        if (f.contains("clock_mhz")) figure.clock_mhz = positive(f, "clock_mhz", origin, at);
+        figure.source = text(f, "source", origin, at);
+        figure.cite = text(f, "cite", origin, at, false);
+        if (figure.cite.empty()) figure.cite = figure.id;
+        if (figure.source.empty()) fail(origin, at + "\"source\" must name the source");
+        figure.note = text(f, "note", origin, at, false);
+        if (f.contains("profiles")) {
+            if (!f["profiles"].is_array()) fail(origin, at + "\"profiles\" must be a list");
+            for (const json& p : f["profiles"]) {
+                if (!p.is_string()) fail(origin, at + "\"profiles\" holds profile names");
+                figure.profiles.push_back(p.get<std::string>());
+            }
+        }
+        out.figures.push_back(std::move(figure));
+    }
+    return out;
+}
+
+ValidationData builtin_validation() {
+    return parse_validation(validation_json(), "period/validation.json");
+}
+
+double modelled_value(const ValidationKernel& kernel, const std::string& unit, double seconds) {
+    if (!(seconds > 0))
+        throw std::runtime_error(
+            fmt::format("kernel {}: its timed phase took no modelled time", kernel.name));
+    if (unit == "Mflop/s") return kernel.operations / seconds / 1e6;
+    if (unit == "kflop/s") return kernel.operations / seconds / 1e3;
+    if (unit.starts_with("us/")) return seconds * 1e6 / kernel.operations;
+    throw std::runtime_error(fmt::format("unknown unit '{}'", unit));
+}
+
+KernelRun run_validation_kernel(const EmulatorParts& parts, const ValidationKernel& kernel) {
+    GuestRun run = run_kernel(parts, find_kernel(kernel.program), {});
+    KernelRun out;
+    out.counts = std::move(run.counts);
+    out.output.assign(run.stream.begin(), run.stream.end());
+    out.wall_s = run.wall_s;
+    const PhaseCounts* timed = out.counts.phase(static_cast<int>(Phase::HiddenSurface));
+    if (!timed || timed->entered != 1 || timed->instructions == 0)
+        throw EmulatorError(
+            fmt::format("kernel {} did not mark its timed phase (3) once", kernel.program));
+    return out;
+}
+
+bool passes(FigureCheck check, double error) {
+    switch (check) {
+        case FigureCheck::Within:
+            return std::fabs(error) <= kValidationTolerance;
+        case FigureCheck::AtMost:
+            return error <= kValidationTolerance;
+        case FigureCheck::AtLeast:
+            return error >= -kValidationTolerance;
+    }
+    return false;
+}
+
+std::string_view check_name(FigureCheck check) {
+    switch (check) {
+        case FigureCheck::Within:
+            return "within";
+        case FigureCheck::AtMost:
+            return "at_most";
+        case FigureCheck::AtLeast:
+            return "at_least";
+    }
+    return "?";
+}
+
+double timed_seconds(const GuestCounts& counts, const HostProfile& profile, double clock_mhz) {
+    const PhaseCost timed = price(counts, profile).phases[static_cast<int>(Phase::HiddenSurface)];
+    if (clock_mhz <= 0) return timed.ms / 1e3;
+    return (timed.cpu_cycles + timed.fpu_cycles) / (clock_mhz * 1e6);
+}
+
+}  // namespace fb89::period

@@ -1,0 +1,94 @@
+// Validating the modelled 1989 host against published figures (docs/HOST_VALIDATION.md).
+// Small kernels of our own (period/kernels: a LINPACK 100x100 solve, the register-add loop of
+// Appel & Li's vmpup.c) run on the emulated MC68020 + MC68881 like fb89's host code; a host
+// profile prices their timed phase (3), and the modelled speed is set beside what the period
+// measured on real machines. period/validation.json holds the figures, each with its source,
+// and is embedded at build time.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "period/emulator.h"
+#include "period/host_cost.h"
+#include "period/host_profile.h"
+
+namespace fb89::period {
+
+// period/validation.json as written (defined in the file cmake/embed_text.cmake generates).
+std::string_view validation_json();
+
+struct ValidationKernel {
+    std::string name;       // "linpack"
+    std::string program;    // "fb89_kernel_linpack" (find_kernel)
+    double operations = 0;  // what the published unit counts in the timed phase
+    std::string operation;  // "flop", "add"
+    std::string unit;       // the unit its own speed is quoted in ("Mflop/s", "us/add")
+    std::string description;
+};
+
+// How a modelled value must stand to a published one (error = modelled / published - 1).
+enum class FigureCheck {
+    Within,   // |error| <= tolerance: the figure is of the profiled machine
+    AtMost,   // error <= +tolerance: the figure's machine is at least as fast per clock
+    AtLeast,  // error >= -tolerance: the figure's machine is at most as fast per clock
+};
+
+struct PublishedFigure {
+    std::string id, machine, benchmark, kernel;
+    double value = 0;
+    std::string unit;  // "Mflop/s", "kflop/s" or "us/add" (any "us/<operation>")
+    FigureCheck check = FigureCheck::Within;
+    std::vector<std::string> profiles;  // host profiles it is compared with; none: context only
+    // > 0: the figure's machine runs at this clock, and the profiles' cycle counts are timed
+    // at it instead of at the profile's own clocks (the cycle tables are compared).
+    double clock_mhz = 0;
+    std::string cite;  // short, for tables ("Appel & Li, vmpup.c (1990)")
+    std::string source, note;
+};
+
+struct ValidationData {
+    std::vector<ValidationKernel> kernels;
+    std::vector<PublishedFigure> figures;
+    // Throws std::runtime_error for an unknown kernel.
+    const ValidationKernel& kernel(const std::string& name) const;
+};
+
+// Throws std::runtime_error naming `origin` and the field that is missing or wrong.
+ValidationData parse_validation(std::string_view json, const std::string& origin);
+ValidationData builtin_validation();  // the embedded period/validation.json
+
+// The modelled value, in a figure's unit, of a kernel whose timed phase took `seconds`:
+// operations per second (Mflop/s, kflop/s) or microseconds per operation (us/...).
+// Throws std::runtime_error for a unit it does not know.
+double modelled_value(const ValidationKernel& kernel, const std::string& unit, double seconds);
+
+// modelled / published - 1: +0.25 means the model is 25% faster in a rate, or 25% slower in a
+// time per operation.
+inline double relative_error(double modelled, double published) {
+    return modelled / published - 1.0;
+}
+
+// The error band of the validation (docs/HOST_VALIDATION.md): beyond it, the table is wrong.
+inline constexpr double kValidationTolerance = 0.30;
+
+// Whether an error passes a figure's check within kValidationTolerance.
+bool passes(FigureCheck check, double error);
+std::string_view check_name(FigureCheck check);  // "within", "at_most", "at_least"
+
+// One kernel run on the emulator: its counts (the same for every host profile) and what it
+// printed (its own check).
+struct KernelRun {
+    GuestCounts counts;
+    std::string output;
+    double wall_s = 0;
+};
+// Throws EmulatorError (also when the kernel's own check fails).
+KernelRun run_validation_kernel(const EmulatorParts& parts, const ValidationKernel& kernel);
+
+// The timed phase (3) of a kernel's counts, priced by a profile, in seconds: at the profile's
+// clocks, or with `clock_mhz` > 0 at that clock for both the MPU and the FPU.
+double timed_seconds(const GuestCounts& counts, const HostProfile& profile, double clock_mhz = 0);
+
+}  // namespace fb89::period

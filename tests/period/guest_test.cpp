@@ -1,0 +1,113 @@
+// The cross build against the native one: fb89's host code on the emulated MC68020 +
+// MC68881 sends exactly the native commands, for every raster method and both ray methods;
+// its counts are the same run after run; a missing emulator or a failing guest is a clear
+// error. (ctest label `period`: these run the emulator.)
+#include "period/emulator.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "host/methods.h"
+#include "host/raster/screen_setup.h"
+#include "host/scene/scene_loader.h"
+#include "protocol/memory_buffer.h"
+#include "protocol/stream_reader.h"
+
+namespace fb89::period {
+namespace {
+
+const std::string kScenes = FB89_SCENES_DIR;
+
+protocol::MemoryBuffer native_commands(const std::string& file, host::Method method, int w, int h) {
+    host::Scene scene = host::load_scene(kScenes + "/" + file);
+    scene.width = w, scene.height = h;
+    host::MethodOptions options(method);
+    auto renderer = host::make_renderer(options);
+    host::HostStats stats;
+    const host::ScreenScene screen =
+        host::project_scene(scene, host::ColorMode::Shaded, stats.counters);
+    renderer->setup(screen);
+    protocol::MemoryBuffer commands;
+    host::render_frame(*renderer, screen, commands, stats);
+    return commands;
+}
+
+std::vector<protocol::Command> decoded(const std::vector<uint8_t>& stream) {
+    protocol::StreamReader reader(stream, "guest");
+    protocol::MemoryBuffer commands;
+    protocol::Command c;
+    while (reader.next(c))
+        commands.submit(c);
+    return commands.commands();
+}
+
+GuestRun guest(const std::string& file, host::Method method, int w, int h) {
+    const host::MethodOptions defaults(method);
+    return run_guest(find_emulator_parts(), kScenes + "/" + file,
+                     {"--method", std::string(host::method_info(method).name), "--size",
+                      std::to_string(w) + "x" + std::to_string(h), "--threshold",
+                      std::to_string(defaults.hybrid.threshold), "--beam-threshold",
+                      std::to_string(defaults.beam.threshold)});
+}
+
+TEST(PeriodGuest, SendsTheNativeCommandsForEveryMethod) {
+    struct Case {
+        const char* scene;
+        int w, h;
+    };
+    for (const Case& c :
+         {Case{"A.json", 256, 195}, Case{"G.json", 96, 73}, Case{"cornell_mirror.json", 96, 73}}) {
+        for (const host::MethodInfo& m : host::methods()) {
+            SCOPED_TRACE(std::string(c.scene) + " " + std::string(m.name));
+            const GuestRun run = guest(c.scene, m.method, c.w, c.h);
+            EXPECT_EQ(decoded(run.stream), native_commands(c.scene, m.method, c.w, c.h).commands());
+            const PhaseCounts* hs = run.counts.phase(static_cast<int>(Phase::HiddenSurface));
+            ASSERT_NE(hs, nullptr);
+            EXPECT_EQ(hs->entered, 1u);
+            EXPECT_GT(hs->instructions, 1000u);
+        }
+    }
+}
+
+TEST(PeriodGuest, TheSameRunTwiceGivesByteIdenticalCounts) {
+    const GuestRun a = guest("B.json", host::Method::Hybrid, 128, 98);
+    const GuestRun b = guest("B.json", host::Method::Hybrid, 128, 98);
+    EXPECT_EQ(a.counts_json, b.counts_json);
+    EXPECT_EQ(a.stream, b.stream);
+}
+
+TEST(PeriodGuest, AMissingEmulatorNamesItsPackage) {
+    ::setenv("FB89_QEMU", "/nonexistent/qemu-m68k", 1);
+    try {
+        find_emulator_parts();
+        ADD_FAILURE() << "found a missing emulator";
+    } catch (const EmulatorError& e) {
+        EXPECT_NE(std::string(e.what()).find("qemu-user"), std::string::npos) << e.what();
+    }
+    ::unsetenv("FB89_QEMU");
+}
+
+TEST(PeriodGuest, AGuestThatFailsIsAClearErrorNotACrash) {
+    EmulatorParts parts = find_emulator_parts();
+    parts.guest = "/bin/true";  // not an m68k program: the emulator refuses it
+    try {
+        run_guest(parts, kScenes + "/A.json", {"--method", "zbuffer"});
+        ADD_FAILURE() << "ran";
+    } catch (const EmulatorError& e) {
+        EXPECT_NE(std::string(e.what()).find("A.json"), std::string::npos) << e.what();
+    }
+    parts = find_emulator_parts();
+    try {
+        run_guest(parts, kScenes + "/no_such_scene.json", {"--method", "zbuffer"});
+        ADD_FAILURE() << "ran";
+    } catch (const EmulatorError& e) {
+        EXPECT_NE(std::string(e.what()).find("failed (exit 2)"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("no_such_scene.json"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace fb89::period
