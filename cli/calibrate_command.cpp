@@ -16,6 +16,7 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/period_host.h"
 #include "experiments/calibration.h"
 #include "experiments/experiments.h"
 #include "host/raster/hybrid.h"
@@ -32,6 +33,7 @@ struct CalibrateArgs {
     double tolerance = 0.03;
     std::string csv;
     std::string method = "hybrid";
+    HostArgs host;
     bool dry_run = false, quiet = false;
 };
 
@@ -43,7 +45,9 @@ int run_calibrate_beam(const CalibrateArgs& a) {
                     "scenes/cornell_mirror.json"};
     s.repeat = a.repeat;
     s.progress = !a.quiet && isatty(STDERR_FILENO);
+    s.period = make_period_runs(a.host);
     const experiments::Calibration c = experiments::calibrate_beam(s);
+    if (report_emitted(s, a.host)) return kSuccess;
     if (!a.csv.empty()) write_text(a.csv, c.sweep.csv());
     nlohmann::json details;
     details["scenes"] = s.scenes;
@@ -53,7 +57,7 @@ int run_calibrate_beam(const CalibrateArgs& a) {
     for (const auto& [t, ms] : c.total)
         details["total_ms_by_threshold"].push_back({std::isinf(t) ? 1e300 : t, ms});
     details["chosen_total_ms"] = c.total.at(c.chosen);
-    if (!a.dry_run) save_beam_calibration(c.chosen, details.dump());
+    if (!a.dry_run) save_beam_calibration(c.chosen, details.dump(), a.host.host);
     if (!a.quiet) {
         std::cerr << fmt::format("{:>12}  {:>12}  {:>12}\n", "threshold", "total ms", "vs rays");
         for (const auto& [t, ms] : c.total)
@@ -78,8 +82,10 @@ int run_calibrate(const CalibrateArgs& a) {
             s.scenes.push_back(fmt::format("scenes/{}.json", c));
     s.repeat = a.repeat;
     s.progress = !a.quiet && isatty(STDERR_FILENO);
+    s.period = make_period_runs(a.host);
     const experiments::Calibration c = experiments::calibrate_hybrid(
         s, experiments::threshold_ramp(a.from, a.to, a.steps), a.tolerance);
+    if (report_emitted(s, a.host)) return kSuccess;
     if (!a.csv.empty()) write_text(a.csv, c.sweep.csv());
     const double zbuffer = c.reference_ms, paper = c.total.at(host::kPaperThreshold);
     const double chosen_ms = c.total.at(c.chosen);
@@ -99,7 +105,8 @@ int run_calibrate(const CalibrateArgs& a) {
     details["calibrated_at_unix"] = std::chrono::duration_cast<std::chrono::seconds>(
                                         std::chrono::system_clock::now().time_since_epoch())
                                         .count();
-    if (!a.dry_run) save_calibration(c.chosen, details.dump());
+    details["host"] = a.host.host;
+    if (!a.dry_run) save_calibration(c.chosen, details.dump(), a.host.host);
 
     if (!a.quiet) {
         std::cerr << fmt::format("{:>12}  {:>12}  {:>10}  {:>12}\n", "threshold", "total ms",
@@ -149,6 +156,7 @@ void register_calibrate(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(0.0, 100.0))
         ->capture_default_str();
     sub->add_option("--csv", a->csv, "Also write the sweep as CSV");
+    add_host_options(sub, a->host);
     sub->add_flag("--dry-run", a->dry_run, "Print the choice without saving it");
     sub->add_flag("--quiet,-q", a->quiet, "Print only the chosen threshold");
     sub->callback([a, &exit_code] { exit_code = run_calibrate(*a); });

@@ -42,7 +42,11 @@ nlohmann::json read_calibration() {
                     calibration_path()));
 }
 
-std::optional<double> read_threshold(const char* key) {
+std::string keyed(const char* key, const std::string& host) {
+    return host == "native" ? std::string(key) : std::string(key) + "@" + host;
+}
+
+std::optional<double> read_threshold(const std::string& key) {
     const nlohmann::json j = read_calibration();
     if (j.is_null() || !j.contains(key)) return std::nullopt;
     const auto& v = j.at(key);
@@ -54,7 +58,7 @@ std::optional<double> read_threshold(const char* key) {
 }
 
 // Writes `key` and its details, keeping what the file says of the other threshold.
-void save_threshold(const char* key, const char* details_key, double threshold,
+void save_threshold(const std::string& key, const std::string& details_key, double threshold,
                     const std::string& details_json) {
     nlohmann::json j;
     try {
@@ -73,19 +77,20 @@ void save_threshold(const char* key, const char* details_key, double threshold,
 
 }  // namespace
 
-std::optional<double> calibrated_threshold() {
-    return read_threshold("threshold");
+std::optional<double> calibrated_threshold(const std::string& host) {
+    return read_threshold(keyed("threshold", host));
 }
-std::optional<double> calibrated_beam_threshold() {
-    return read_threshold("beam_threshold");
-}
-
-void save_calibration(double threshold, const std::string& details_json) {
-    save_threshold("threshold", "hybrid", threshold, details_json);
+std::optional<double> calibrated_beam_threshold(const std::string& host) {
+    return read_threshold(keyed("beam_threshold", host));
 }
 
-void save_beam_calibration(double threshold, const std::string& details_json) {
-    save_threshold("beam_threshold", "beam", threshold, details_json);
+void save_calibration(double threshold, const std::string& details_json, const std::string& host) {
+    save_threshold(keyed("threshold", host), keyed("hybrid", host), threshold, details_json);
+}
+
+void save_beam_calibration(double threshold, const std::string& details_json,
+                           const std::string& host) {
+    save_threshold(keyed("beam_threshold", host), keyed("beam", host), threshold, details_json);
 }
 
 namespace {
@@ -123,20 +128,21 @@ double resolve(const std::string& option, const std::string& text, std::optional
 
 }  // namespace
 
-double resolve_threshold(const std::string& text, std::string* source) {
+double resolve_threshold(const std::string& text, std::string* source, const std::string& host) {
     if (text == "paper") {
         if (source) *source = "paper";
         return host::kPaperThreshold;
     }
     const std::optional<double> saved =
-        text == "calibrated" ? calibrated_threshold() : std::optional<double>{};
+        text == "calibrated" ? calibrated_threshold(host) : std::optional<double>{};
     return resolve("--threshold", text, saved, host::kPaperThreshold, "paper",
                    "a number >= 0, inf, paper or calibrated", source);
 }
 
-double resolve_beam_threshold(const std::string& text, std::string* source) {
+double resolve_beam_threshold(const std::string& text, std::string* source,
+                              const std::string& host) {
     const std::optional<double> saved =
-        text == "calibrated" ? calibrated_beam_threshold() : std::optional<double>{};
+        text == "calibrated" ? calibrated_beam_threshold(host) : std::optional<double>{};
     return resolve("--beam-threshold", text, saved, host::kDefaultBeamThreshold, "default",
                    "a number >= 0, inf or calibrated", source);
 }

@@ -10,17 +10,22 @@ namespace fb89::cli {
 
 // Both thresholds live in one file: "threshold" (the Warnock/Z-buffer hybrid's) and
 // "beam_threshold" (the beam-ray hybrid's), each with the details of its calibration.
+// A 1989 host's thresholds are kept apart, under "threshold@HOST" and "beam_threshold@HOST".
 std::string calibration_path();
-std::optional<double> calibrated_threshold();       // none when never calibrated
-std::optional<double> calibrated_beam_threshold();  // none when never calibrated
-void save_calibration(double threshold, const std::string& details_json);
-void save_beam_calibration(double threshold, const std::string& details_json);
+std::optional<double> calibrated_threshold(const std::string& host = "native");  // none: never
+std::optional<double> calibrated_beam_threshold(const std::string& host = "native");
+void save_calibration(double threshold, const std::string& details_json,
+                      const std::string& host = "native");
+void save_beam_calibration(double threshold, const std::string& details_json,
+                           const std::string& host = "native");
 
 // "--threshold" values: a number, "inf", "paper" (0.04) or "calibrated" (this machine's,
 // else the paper's). Throws UsageError.
-double resolve_threshold(const std::string& text, std::string* source = nullptr);
+double resolve_threshold(const std::string& text, std::string* source = nullptr,
+                         const std::string& host = "native");
 // "--beam-threshold" values: a number, "inf" or "calibrated" (this machine's, else
 // host::kDefaultBeamThreshold).
-double resolve_beam_threshold(const std::string& text, std::string* source = nullptr);
+double resolve_beam_threshold(const std::string& text, std::string* source = nullptr,
+                              const std::string& host = "native");
 
 }  // namespace fb89::cli

@@ -53,6 +53,7 @@ void register_diff(CLI::App& app, int& exit_code);
 void register_controller(CLI::App& app, int& exit_code);
 void register_view(CLI::App& app, int& exit_code);
 void register_radiosity(CLI::App& app, int& exit_code);
+void register_host_run(CLI::App& app, int& exit_code);
 void register_host_validate(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

@@ -61,6 +61,13 @@ std::vector<std::string> default_scenes(const std::string& name) {
         return {"scenes/garish_room.json", "scenes/programmers_cell.json"};
     if (name == "beam-threshold")
         return {"scenes/G.json", "scenes/H.json", "scenes/I.json", "scenes/cornell_mirror.json"};
+    if (name == "split") {
+        std::vector<std::string> all;
+        for (const char* n : {"A", "B", "C", "D", "E", "F", "G", "H", "I", "demo", "cornell_box",
+                              "cornell_mirror", "garish_room", "programmers_cell"})
+            all.push_back(fmt::format("scenes/{}.json", n));
+        return all;
+    }
     std::vector<std::string> out;
     if (name == "hybrid") out = {"scenes/demo.json", "scenes/cornell_box.json"};
     for (char c = 'A'; c <= 'F'; ++c)
@@ -84,23 +91,29 @@ int run_experiment(const ExperimentArgs& args) {
     else if (args.name == "fig2.4")
         table = experiment_fig2_4(settings);
     else if (args.name == "fig3.1")
-        table = experiment_fig3_1(settings, resolve_threshold(args.threshold));
+        table =
+            experiment_fig3_1(settings, resolve_threshold(args.threshold, nullptr, args.host.host));
     else if (args.name == "hybrid")
-        table = experiment_hybrid(settings, resolve_threshold(args.threshold));
+        table =
+            experiment_hybrid(settings, resolve_threshold(args.threshold, nullptr, args.host.host));
     else if (args.name == "accuracy")
-        table = experiment_accuracy(settings, resolve_threshold(args.threshold));
+        table = experiment_accuracy(settings,
+                                    resolve_threshold(args.threshold, nullptr, args.host.host));
     else if (args.name == "fig4.8" || args.name == "fig4.11" || args.name == "fig4.12") {
         std::vector<ImageSize> sizes;
         for (const auto& text : args.sizes)
             sizes.push_back(parse_size(text));
         if (sizes.empty()) sizes = {{256, 195}, {512, 390}, {1024, 780}, {2048, 1560}};
-        table = experiment_beam_resolution(settings, sizes,
-                                           resolve_beam_threshold(args.beam_threshold));
+        table = experiment_beam_resolution(
+            settings, sizes, resolve_beam_threshold(args.beam_threshold, nullptr, args.host.host));
     } else if (args.name == "fig4.7")
-        table = experiment_beam_masks(settings, resolve_beam_threshold(args.beam_threshold),
-                                      args.out_dir);
+        table = experiment_beam_masks(
+            settings, resolve_beam_threshold(args.beam_threshold, nullptr, args.host.host),
+            args.out_dir);
     else if (args.name == "beam-threshold")
         table = experiment_beam_threshold(settings, beam_threshold_ramp());
+    else if (args.name == "split")
+        table = experiment_split(settings);
     else if (args.name == "radiosity")
         table = experiment_radiosity(settings, args.patches);
     else if (args.name == "ff-error" || args.name == "radiosity-error")
@@ -109,7 +122,8 @@ int run_experiment(const ExperimentArgs& args) {
     else
         throw UsageError(fmt::format(
             "unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, hybrid, accuracy, fig4.7, "
-            "fig4.8, fig4.11, fig4.12, beam-threshold, radiosity, ff-error, radiosity-error)",
+            "fig4.8, fig4.11, fig4.12, beam-threshold, split, radiosity, ff-error, "
+            "radiosity-error)",
             args.name));
 
     if (report_emitted(settings, args.host)) return kSuccess;
@@ -129,7 +143,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "scene), accuracy (approximate fills: time vs pixels wrong), fig4.8 / "
                     "fig4.11 / fig4.12 (beam-ray hybrid vs ray tracer against resolution on G, "
                     "H, I), fig4.7 (masks of ray-traced pixels), beam-threshold (time and "
-                    "pixels by beams vs Expr. 2.7 threshold), radiosity (flux vs decahedral "
+                    "pixels by beams vs Expr. 2.7 threshold), split (host vs controller, every "
+                    "method and scene), radiosity (flux vs decahedral "
                     "hybrid), ff-error and radiosity-error (error vs time per method)")
         ->required();
     sub->add_option("scenes", args->scenes, "Scenes (default scenes/A.json ... scenes/F.json)");

@@ -1,7 +1,7 @@
-// fb89 host-validate: the modelled 1989 host against published figures (docs/HOST_VALIDATION.md).
-// Each validation kernel (period/kernels) runs once on the emulated MC68020 + MC68881 (its
-// counts do not depend on the profile), each host profile prices its timed phase, and the
-// modelled speed is printed beside the published figures of period/validation.json with the
+// fb89 host-validate: the modelled 1989 host against published figures (docs/HOST_COST_MODEL.md,
+// "Validation"). Each validation kernel (period/kernels) runs once on the emulated MC68020 +
+// MC68881 (its counts do not depend on the profile), each host profile prices its timed phase, and
+// the modelled speed is printed beside the published figures of period/validation.json with the
 // error (modelled / published - 1). --check exits 1 when a figure's check fails (|error| over
 // 30% for a figure of the profiled machine itself).
 #include <algorithm>

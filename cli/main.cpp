@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     register_controller(app, exit_code);
     register_view(app, exit_code);
     register_radiosity(app, exit_code);
+    register_host_run(app, exit_code);
     register_host_validate(app, exit_code);
 
     try {

@@ -188,11 +188,11 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
     j["method"] = args.method;
     if (args.method == "warnock" || args.method == "hybrid") j["window_test"] = args.window_test;
     if (args.method == "hybrid") {
-        j["threshold"] = resolve_threshold(args.threshold);
+        j["threshold"] = resolve_threshold(args.threshold, nullptr, args.host);
         j["depth_estimate"] = args.depth_estimate;
     }
     if (args.method == "beam") {
-        const double t = resolve_beam_threshold(args.beam_threshold);
+        const double t = resolve_beam_threshold(args.beam_threshold, nullptr, args.host);
         j["beam_threshold"] = std::isinf(t) ? nlohmann::json("inf") : nlohmann::json(t);
     }
     if (args.method == "beam" || args.method == "raytrace") j["reflections"] = args.reflections;
@@ -220,10 +220,11 @@ int run_render(const RenderArgs& args) {
         options.method = host::method_named(args.method);
         options.warnock.window_test = window_test_named(args.window_test);
         options.warnock.approx = {args.approx_min_side, args.approx_epsilon};
-        options.hybrid.threshold = resolve_threshold(args.threshold, &threshold_source);
+        options.hybrid.threshold = resolve_threshold(args.threshold, &threshold_source, args.host);
         options.hybrid.depth = args.depth_estimate == "scene" ? host::DepthEstimate::Scene
                                                               : host::DepthEstimate::Window;
-        options.beam.threshold = resolve_beam_threshold(args.beam_threshold, &beam_source);
+        options.beam.threshold =
+            resolve_beam_threshold(args.beam_threshold, &beam_source, args.host);
         options.trace.max_reflections = args.reflections;
         options.trace.grid_density = args.grid_density;
         renderer = host::make_renderer(options);

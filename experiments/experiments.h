@@ -33,6 +33,10 @@ Table experiment_fig3_1(const ExperimentSettings& settings, double chosen);
 // The hybrid at `chosen` and at the paper's 0.04 against the Z-buffer, per scene.
 Table experiment_hybrid(const ExperimentSettings& settings, double chosen);
 
+// The split (split_experiment.cpp): every method on every scene, host time per frame beside
+// the controller's, the pipeline's frame time and the side that bounds it.
+Table experiment_split(const ExperimentSettings& settings);
+
 // §4 (trace_experiments.cpp). Figs. 4.8, 4.11: the ray tracer alone and the beam-ray
 // hybrid at `threshold`, whole process timed interleaved, at each size, per scene.
 Table experiment_beam_resolution(const ExperimentSettings& settings,

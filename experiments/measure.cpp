@@ -26,9 +26,11 @@ std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
     std::vector<std::unique_ptr<host::Renderer>> renderers;
     std::vector<std::vector<host::Timing>> times(settings.size());
     std::vector<Measured> out(settings.size());
-    for (const auto& o : settings) {
-        renderers.push_back(host::make_renderer(o));
+    for (size_t m = 0; m < settings.size(); ++m) {
+        renderers.push_back(host::make_renderer(settings[m]));
+        host::Stopwatch clock;
         renderers.back()->setup(screen);
+        out[m].setup = clock.elapsed();
     }
     interleave(settings.size(), repeat, label, progress, [&](size_t m, bool timed) {
         out[m].commands.clear();
@@ -59,6 +61,9 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
     for (size_t m = 0; m < settings.size(); ++m) {
         const double ms = costs[m].phases[static_cast<int>(period::Phase::HiddenSurface)].ms;
         out[m].median = {ms, ms};
+        // the whole set-up stage: projection and the method's own
+        const double setup = costs[m].phases[static_cast<int>(period::Phase::Setup)].ms;
+        out[m].setup = {setup, setup};
     }
     return out;
 }

@@ -38,6 +38,7 @@ void interleave(size_t count, int repeat, const std::string& label, bool progres
 // of its last frame (every frame is the same).
 struct Measured {
     host::Timing median;
+    host::Timing setup;  // the method's own set-up (buffers, grids), once
     host::Counters counters;
     protocol::MemoryBuffer commands;
 };

@@ -35,10 +35,15 @@ uint64_t fnv1a(std::string_view bytes, uint64_t h = 1469598103934665603ull) {
 }
 
 std::string shell_quoted(const std::string& s) {
-    std::string out = "'";
-    for (char c : s)
-        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
+    std::string out(1, '\'');
+    for (char c : s) {
+        if (c == '\'')
+            out.append("'\\''");
+        else
+            out.push_back(c);
+    }
+    out.push_back('\'');
+    return out;
 }
 
 // Written beside the target and renamed when whole, so a folder never holds half a result.
@@ -107,8 +112,10 @@ std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
     if (!m_emit.empty()) {
         std::string line = shell_quoted(m_fb89) + " host-run " + shell_quoted(job.scene) +
                            " --results " + shell_quoted(m_results) + " --";
-        for (const std::string& o : job.options)
-            line += " " + shell_quoted(o);
+        for (const std::string& o : job.options) {
+            line.push_back(' ');
+            line.append(shell_quoted(o));
+        }
         std::lock_guard lock(m_mutex);
         std::ofstream(m_emit, std::ios::app) << line << "\n";
         ++m_emitted;

@@ -41,8 +41,8 @@ struct GuestRun {
 GuestRun run_guest(const EmulatorParts& parts, const std::filesystem::path& scene,
                    const std::vector<std::string>& options, double time_limit_s = 3600);
 
-// The validation kernels (period/kernels, docs/HOST_VALIDATION.md): small MC68020 programs
-// that take no input file. `name` is e.g. "fb89_kernel_linpack"; the folder is
+// The validation kernels (period/kernels, docs/HOST_COST_MODEL.md, "Validation"): small MC68020
+// programs that take no input file. `name` is e.g. "fb89_kernel_linpack"; the folder is
 // $FB89_KERNELS_DIR, else the one the cross build made. Throws EmulatorError when missing.
 std::filesystem::path find_kernel(const std::string& name);
 

@@ -1,8 +1,8 @@
-// Validating the modelled 1989 host against published figures (docs/HOST_VALIDATION.md).
-// Small kernels of our own (period/kernels: a LINPACK 100x100 solve, the register-add loop of
-// Appel & Li's vmpup.c) run on the emulated MC68020 + MC68881 like fb89's host code; a host
-// profile prices their timed phase (3), and the modelled speed is set beside what the period
-// measured on real machines. period/validation.json holds the figures, each with its source,
+// Validating the modelled 1989 host against published figures (docs/HOST_COST_MODEL.md,
+// "Validation"). Small kernels of our own (period/kernels: a LINPACK 100x100 solve, the
+// register-add loop of Appel & Li's vmpup.c) run on the emulated MC68020 + MC68881 like fb89's host
+// code; a host profile prices their timed phase (3), and the modelled speed is set beside what the
+// period measured on real machines. period/validation.json holds the figures, each with its source,
 // and is embedded at build time.
 #pragma once
 
@@ -70,7 +70,8 @@ inline double relative_error(double modelled, double published) {
     return modelled / published - 1.0;
 }
 
-// The error band of the validation (docs/HOST_VALIDATION.md): beyond it, the table is wrong.
+// The error band of the validation (docs/HOST_COST_MODEL.md, "Validation"): beyond it, the table is
+// wrong.
 inline constexpr double kValidationTolerance = 0.30;
 
 // Whether an error passes a figure's check within kValidationTolerance.

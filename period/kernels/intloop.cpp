@@ -1,5 +1,5 @@
 // fb89_kernel_intloop: the register-add loop of Appel & Li's VM-PUP benchmark (vmpup.c,
-// 1990), for the emulated MC68020 (docs/HOST_VALIDATION.md). vmpup.c times
+// 1990), for the emulated MC68020 (docs/HOST_COST_MODEL.md, "Validation"). vmpup.c times
 //
 //     register int i, j, k;
 //     i = ADDS/20; j = 0;

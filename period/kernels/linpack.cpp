@@ -1,5 +1,5 @@
 // fb89_kernel_linpack: the LINPACK benchmark's 100x100 case in double precision, for the
-// emulated MC68020 + MC68881 (docs/HOST_VALIDATION.md). It is written here after the
+// emulated MC68020 + MC68881 (docs/HOST_COST_MODEL.md, "Validation"). It is written here after the
 // benchmark as Dongarra distributes it (linpackd in Fortran, linpackc in C): the matrix from
 // the benchmark's generator (matgen: seed 1325, seed = 3125 * seed mod 65536), LU
 // factorisation with partial pivoting by columns (dgefa), then the solve (dgesl), with the

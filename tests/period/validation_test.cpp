@@ -1,9 +1,9 @@
-// The modelled host against published figures (docs/HOST_VALIDATION.md): the validation
-// kernels run on the emulated MC68020 + MC68881 and pass their own checks, their counts are
-// the same run after run, the embedded figures are well formed, and every host profile that
-// a figure names prices the kernels within the figure's check. The target is the published
-// figure: when a profile misses it, the profile's table is what is wrong. (ctest label
-// `period`: these run the emulator.)
+// The modelled host against published figures (docs/HOST_COST_MODEL.md, "Validation"): the
+// validation kernels run on the emulated MC68020 + MC68881 and pass their own checks, their counts
+// are the same run after run, the embedded figures are well formed, and every host profile that a
+// figure names prices the kernels within the figure's check. The target is the published figure:
+// when a profile misses it, the profile's table is what is wrong. (ctest label `period`: these run
+// the emulator.)
 #include "period/validation.h"
 
 #include <gtest/gtest.h>
@@ -101,8 +101,8 @@ TEST(PeriodValidation, AMissingKernelIsAClearError) {
 }
 
 // The validation itself: every figure against every profile it names, within its check.
-// A failure here means a profile's table is wrong (docs/HOST_VALIDATION.md says how to find
-// which entries), not that the target should move.
+// A failure here means a profile's table is wrong (docs/HOST_COST_MODEL.md, "Validation" says how
+// to find which entries), not that the target should move.
 TEST(PeriodValidation, TheProfilesMeetThePublishedFigures) {
     for (const PublishedFigure& f : data().figures) {
         for (const std::string& name : f.profiles) {

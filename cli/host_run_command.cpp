@@ -1,0 +1,32 @@
+// fb89 host-run SCENE --results DIR -- GUEST-OPTIONS...: one emulated run of fb89's host
+// code on the MC68020 + MC68881, its counts written whole into DIR. The commands that
+// `experiment|sweep|calibrate --host H --emit-jobs FILE` write are of this form, for GNU
+// parallel or a Slurm job array; the experiment run again with --results DIR joins them.
+#include "cli/common.h"
+#include "experiments/period_runs.h"
+
+namespace fb89::cli {
+
+namespace {
+
+struct HostRunArgs {
+    std::string scene, results;
+    std::vector<std::string> options;
+};
+
+}  // namespace
+
+void register_host_run(CLI::App& app, int& exit_code) {
+    auto a = std::make_shared<HostRunArgs>();
+    CLI::App* sub = app.add_subcommand(
+        "host-run", "Run one emulated 1989-host job (as written by --emit-jobs) into --results");
+    sub->add_option("scene", a->scene, "Scene file")->required()->check(CLI::ExistingFile);
+    sub->add_option("options", a->options, "The guest's options, after --");
+    sub->add_option("--results", a->results, "Folder the counts go to")->required();
+    sub->callback([a, &exit_code] {
+        experiments::run_one_job({a->scene, a->options}, a->results);
+        exit_code = kSuccess;
+    });
+}
+
+}  // namespace fb89::cli

@@ -1,0 +1,64 @@
+// Experiments on a 1989 host: counted runs are deterministic, so fanning them out over
+// processes here, or writing them out as jobs that GNU parallel runs and joining their
+// results, gives the table a single run gives, byte for byte.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "tests/cli/cli_runner.h"
+
+namespace {
+
+using fb89::testing::CliRun;
+using fb89::testing::run_fb89;
+using fb89::testing::slurp;
+using fb89::testing::test_dir;
+
+const std::string kScenes = FB89_SCENES_DIR;
+const std::string kSweep = "sweep threshold " + kScenes + "/A.json " + kScenes +
+                           "/B.json --size 128x98 --steps 3 " + "--host sun3-60 -q --csv ";
+
+TEST(PeriodExperiments, RunsFannedOutGiveTheTableOfOneProcess) {
+    const std::string one = (test_dir() / "one.csv").string(),
+                      two = (test_dir() / "two.csv").string();
+    ASSERT_EQ(run_fb89(kSweep + one).exit_code, 0);
+    CliRun r = run_fb89(kSweep + two + " --jobs 2");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(slurp(one), slurp(two));
+    EXPECT_NE(slurp(one).find("scenes/A.json"), std::string::npos);
+}
+
+TEST(PeriodExperiments, EmittedJobsRunByGnuParallelJoinIntoTheSameTable) {
+    const auto dir = test_dir();
+    std::filesystem::remove_all(dir / "results");
+    const std::string single = (dir / "single.csv").string(),
+                      merged = (dir / "merged.csv").string(), jobs = (dir / "jobs.txt").string(),
+                      results = (dir / "results").string();
+    std::filesystem::remove(merged);
+    ASSERT_EQ(run_fb89(kSweep + single).exit_code, 0);
+    // write the jobs, no table yet
+    CliRun emit = run_fb89(kSweep + merged + " --results " + results + " --emit-jobs " + jobs);
+    ASSERT_EQ(emit.exit_code, 0) << emit.err;
+    EXPECT_NE(emit.err.find("emulated runs written to"), std::string::npos) << emit.err;
+    EXPECT_FALSE(std::filesystem::exists(merged)) << "an incomplete table is not written";
+    // 2 scenes x (0, 3 ramp steps, inf) = 10 runs, one line each
+    std::ifstream lines(jobs);
+    int n = 0;
+    for (std::string line; std::getline(lines, line);)
+        n += !line.empty();
+    EXPECT_EQ(n, 10);
+    ASSERT_EQ(std::system(("parallel --will-cite -j 2 < " + jobs + " >/dev/null").c_str()), 0);
+    // join
+    CliRun join = run_fb89(kSweep + merged + " --results " + results);
+    ASSERT_EQ(join.exit_code, 0) << join.err;
+    EXPECT_EQ(slurp(merged), slurp(single));
+}
+
+TEST(PeriodExperiments, JobOptionsNeedA1989Host) {
+    CliRun r = run_fb89(kSweep.substr(0, kSweep.find("--host")) + "--jobs 2");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("only with a 1989 --host"), std::string::npos) << r.err;
+}
+
+}  // namespace
