@@ -16,6 +16,7 @@
 
 #include "experiments/experiments.h"
 #include "experiments/measure.h"
+#include "experiments/period_runs.h"
 #include "host/radiosity/exact.h"
 #include "host/radiosity/form_factors.h"
 #include "host/radiosity/hemicube.h"
@@ -88,14 +89,24 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
         const Room room = load_room(file, patches);
         std::vector<host::Timing> flux_t, hybrid_t;
         VisibilityRun flux, hybrid;
-        interleave(2, s.repeat, file, s.progress, [&](size_t m, bool timed) {
-            const bool use_hybrid = m == 1;
-            VisibilityRun run = run_visibility(room, use_hybrid);
-            if (timed) (use_hybrid ? hybrid_t : flux_t).push_back(run.time);
-            (use_hybrid ? hybrid : flux) = std::move(run);
-        });
-        const double flux_ms = host::median(flux_t).cpu_ms;
-        const double hybrid_ms = host::median(hybrid_t).cpu_ms;
+        interleave(2, s.period ? 0 : s.repeat, file, s.progress && !s.period,
+                   [&](size_t m, bool timed) {
+                       const bool use_hybrid = m == 1;
+                       VisibilityRun run = run_visibility(room, use_hybrid);
+                       if (timed) (use_hybrid ? hybrid_t : flux_t).push_back(run.time);
+                       (use_hybrid ? hybrid : flux) = std::move(run);
+                   });
+        double flux_ms = host::median(flux_t).cpu_ms;
+        double hybrid_ms = host::median(hybrid_t).cpu_ms;
+        if (s.period) {
+            // on a 1989 host: the same δ and form factors, counted once each and priced
+            const std::string n = std::to_string(patches > 0 ? patches : default_patches(file));
+            const auto costs = s.period->run({{file, {"--radiosity", "flux", "--patches", n}},
+                                              {file, {"--radiosity", "hybrid", "--patches", n}}});
+            const int hs = static_cast<int>(period::Phase::HiddenSurface);
+            flux_ms = costs[0].phases[hs].ms;
+            hybrid_ms = costs[1].phases[hs].ms;
+        }
         const bool same = flux.delta == hybrid.delta;
         for (int m = 0; m < 2; ++m) {
             const VisibilityRun& r = m == 0 ? flux : hybrid;

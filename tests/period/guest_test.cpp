@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "host/methods.h"
+#include "host/radiosity/mesh.h"
+#include "host/radiosity/visibility.h"
 #include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
@@ -69,6 +71,29 @@ TEST(PeriodGuest, SendsTheNativeCommandsForEveryMethod) {
             EXPECT_EQ(hs->entered, 1u);
             EXPECT_GT(hs->instructions, 1000u);
         }
+    }
+}
+
+TEST(PeriodGuest, CountsTheNativeRaysAndQueriesOfTheRadiosityTable) {
+    const std::string room = kScenes + "/garish_room.json";
+    const host::Scene scene = host::load_scene(room);
+    const host::Mesh mesh = host::mesh_scene(scene, {host::patch_size_for(scene, 120), 64});
+    const host::TraceScene trace(scene, true, 0);
+    const host::UniformGrid grid(trace);
+    for (const char* method : {"flux", "hybrid"}) {
+        host::VisibilityCounts native;
+        if (std::string(method) == "hybrid")
+            host::decahedral_hybrid(mesh, {trace, grid}, {}, native);
+        else
+            host::flux_tracing(mesh, {trace, grid}, native);
+        const GuestRun run =
+            run_guest(find_emulator_parts(), room, {"--radiosity", method, "--patches", "120"});
+        const std::string said(run.stream.begin(), run.stream.end());
+        EXPECT_EQ(said, "patches " + std::to_string(mesh.patches.size()) + " rays " +
+                            std::to_string(native.rays) + " queries " +
+                            std::to_string(native.queries) + " form_factors " +
+                            std::to_string(mesh.patches.size() * mesh.patches.size()) + "\n")
+            << method;
     }
 }
 
