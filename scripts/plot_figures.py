@@ -239,8 +239,35 @@ def ff_error(folder):
     fig.savefig(os.path.join(folder, "radiosity_error.png"), dpi=110)
 
 
+def split_both_sides(folder):
+    """experiment split on a 1989 host: host time per frame against the controller's."""
+    rows = read(os.path.join(folder, "split.csv"))
+    host = rows[0]["host"]
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    fig, ax = plt.subplots(figsize=(7.5, 6))
+    for method in methods:
+        sub = [r for r in rows if r["method"] == method]
+        ax.scatter([float(r["controller_ms"]) for r in sub], [float(r["host_frame_ms"]) for r in sub],
+                   label=method, s=22)
+    lo = min(min(float(r["controller_ms"]), float(r["host_frame_ms"])) for r in rows) / 2
+    hi = max(max(float(r["controller_ms"]), float(r["host_frame_ms"])) for r in rows) * 2
+    ax.plot([lo, hi], [lo, hi], color="gray", linestyle="--", label="host = controller")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("controller frame time, tms34010-50mhz (modelled ms)")
+    ax.set_ylabel(f"host set-up + hidden-surface, {host} (modelled ms)")
+    ax.set_title(f"The split in one era: {host} host vs TMS34010 controller\n"
+                 "every method on every bundled scene; above the line the host bounds the frame")
+    ax.grid(which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "split_both_sides.png"), dpi=110)
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "docs/figures"
+    if os.path.exists(os.path.join(folder, "split.csv")):
+        split_both_sides(folder)
     if os.path.exists(os.path.join(folder, "fig4_8.csv")):
         fig4_8(folder)
     if os.path.exists(os.path.join(folder, "beam_threshold.csv")):
@@ -249,8 +276,10 @@ def main():
         ff_error(folder)
     if len(sys.argv) > 2 and sys.argv[2].startswith("--only-section"):
         return
-    fig2_1(folder)
-    fig2_4(folder)
+    if os.path.exists(os.path.join(folder, "fig2_1.csv")):
+        fig2_1(folder)
+    if os.path.exists(os.path.join(folder, "fig2_4.csv")):
+        fig2_4(folder)
     if os.path.exists(os.path.join(folder, "fig3_1.csv")):
         fig3_1(folder)
     if os.path.exists(os.path.join(folder, "accuracy.csv")):
