@@ -32,9 +32,13 @@
 
 namespace fb89::host {
 
+// Top-level cells per face piece by default: coarse, since crowded cells get a grid of their
+// own (RESULTS.md §4).
+inline constexpr double kDefaultGridDensity = 0.5;
+
 class UniformGrid {
   public:
-    explicit UniformGrid(const TraceScene& scene, double density = 0.5);
+    explicit UniformGrid(const TraceScene& scene, double density = kDefaultGridDensity);
 
     const glm::dvec3& lo() const { return m_lo; }
     const glm::dvec3& hi() const { return m_hi; }

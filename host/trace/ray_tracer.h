@@ -88,7 +88,7 @@ inline constexpr double kMinGridDensity = 0.01, kMaxGridDensity = 1000;
 
 struct TraceOptions {
     int max_reflections = 8;    // mirror bounces followed (0: primary visibility)
-    double grid_density = 0.5;  // top-level grid cells per face piece (RESULTS.md)
+    double grid_density = kDefaultGridDensity;  // top-level grid cells per face piece
 };
 
 // `raytrace`: the ray tracer alone.
