@@ -16,6 +16,11 @@
  * Plain C11 + libc; no glib.  The few plugin API declarations used are
  * written out below (they match include/qemu/qemu-plugin.h of QEMU v7.2.0,
  * QEMU_PLUGIN_VERSION 1).
+ *
+ * Why one file of ~780 lines: QEMU loads a plugin as one shared object, and
+ * this one is built with a single compiler call outside fb89's libraries
+ * (README.md); its parts -- API declarations, the operand classifier, the
+ * block records, the JSON writer -- are marked by section comments below.
  */
 #define _POSIX_C_SOURCE 200809L /* getpid, pid_t under -std=c11 */
 #include <inttypes.h>

@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Writes period/profiles/sun3-60.json and sun3-260.json: one rule list, two machines.
 
+Why one file of ~470 lines: it is the cycle table itself, one rule (and its source) a line,
+in the manuals' order; splitting it would scatter one table.
+
 Edit the rules here and run `python3 period/profiles/generate.py period/profiles`; the JSON
 files are what fb89 embeds and reads (docs/HOST_COST_MODEL.md).
 
