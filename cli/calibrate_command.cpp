@@ -16,6 +16,7 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "cli/period_host.h"
 #include "experiments/calibration.h"
 #include "experiments/experiments.h"
@@ -41,8 +42,8 @@ int run_calibrate_beam(const CalibrateArgs& a) {
     experiments::ExperimentSettings s;
     s.scenes = a.scenes;
     if (s.scenes.empty())
-        s.scenes = {"scenes/G.json", "scenes/H.json", "scenes/I.json",
-                    "scenes/cornell_mirror.json"};
+        s.scenes = {bundled_scene("G.json"), bundled_scene("H.json"), bundled_scene("I.json"),
+                    bundled_scene("cornell_mirror.json")};
     s.repeat = a.repeat;
     s.progress = !a.quiet && isatty(STDERR_FILENO);
     s.period = make_period_runs(a.host);
@@ -79,7 +80,7 @@ int run_calibrate(const CalibrateArgs& a) {
     s.scenes = a.scenes;
     if (s.scenes.empty())
         for (char c = 'A'; c <= 'F'; ++c)
-            s.scenes.push_back(fmt::format("scenes/{}.json", c));
+            s.scenes.push_back(bundled_scene(fmt::format("{}.json", c)));
     s.repeat = a.repeat;
     s.progress = !a.quiet && isatty(STDERR_FILENO);
     s.period = make_period_runs(a.host);

@@ -1,5 +1,6 @@
 #include "cli/common.h"
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <regex>
@@ -46,6 +47,33 @@ void write_text(const std::string& path, const std::string& text) {
 
 void Console::note(const std::string& text) const {
     if (!quiet) std::cerr << text << '\n';
+}
+
+std::string nearest_hint(const std::string& word, const std::vector<std::string>& known) {
+    // Levenshtein distance, one row at a time
+    auto distance = [](const std::string& a, const std::string& b) {
+        std::vector<size_t> row(b.size() + 1);
+        for (size_t j = 0; j <= b.size(); ++j)
+            row[j] = j;
+        for (size_t i = 1; i <= a.size(); ++i) {
+            size_t diagonal = row[0];
+            row[0] = i;
+            for (size_t j = 1; j <= b.size(); ++j) {
+                const size_t up = row[j];
+                row[j] = std::min(
+                    {row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+                diagonal = up;
+            }
+        }
+        return row[b.size()];
+    };
+    std::string best;
+    size_t best_distance = 3;  // at most 2 edits away
+    for (const std::string& k : known) {
+        const size_t d = distance(word, k);
+        if (d < best_distance) best = k, best_distance = d;
+    }
+    return best.empty() ? "" : "; did you mean '" + best + "'?";
 }
 
 }  // namespace fb89::cli

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
@@ -34,6 +35,9 @@ void write_text(const std::string& path, const std::string& text);
 // Creates the parent folder of an output path if needed.
 void make_parent_dirs(const std::string& path);
 
+// "; did you mean 'render'?" when a known name is near `word` (edit distance), else "".
+std::string nearest_hint(const std::string& word, const std::vector<std::string>& known);
+
 // Messages for humans go to stderr; --quiet silences them.
 struct Console {
     bool quiet = false;
@@ -54,6 +58,7 @@ void register_controller(CLI::App& app, int& exit_code);
 void register_view(CLI::App& app, int& exit_code);
 void register_radiosity(CLI::App& app, int& exit_code);
 void register_host_run(CLI::App& app, int& exit_code);
+void register_list(CLI::App& app, int& exit_code);
 void register_host_validate(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

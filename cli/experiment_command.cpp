@@ -25,7 +25,9 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "cli/period_host.h"
+#include "experiments/catalog.h"
 #include "experiments/experiments.h"
 
 namespace fb89::cli {
@@ -51,27 +53,18 @@ struct ExperimentArgs {
     bool quiet = false;
 };
 
+std::string known_experiments() {
+    std::string known;
+    for (const ExperimentInfo& e : experiment_catalog())
+        known += (known.empty() ? "" : ", ") + std::string(e.name);
+    return known;
+}
+
 std::vector<std::string> default_scenes(const std::string& name) {
-    if (name == "fig3.1") return {"scenes/A.json", "scenes/F.json"};
-    if (name == "fig4.8") return {"scenes/G.json"};
-    if (name == "fig4.11") return {"scenes/H.json"};
-    if (name == "fig4.12") return {"scenes/I.json"};
-    if (name == "fig4.7") return {"scenes/G.json", "scenes/H.json", "scenes/I.json"};
-    if (name == "radiosity" || name == "ff-error" || name == "radiosity-error")
-        return {"scenes/garish_room.json", "scenes/programmers_cell.json"};
-    if (name == "beam-threshold")
-        return {"scenes/G.json", "scenes/H.json", "scenes/I.json", "scenes/cornell_mirror.json"};
-    if (name == "split") {
-        std::vector<std::string> all;
-        for (const char* n : {"A", "B", "C", "D", "E", "F", "G", "H", "I", "demo", "cornell_box",
-                              "cornell_mirror", "garish_room", "programmers_cell"})
-            all.push_back(fmt::format("scenes/{}.json", n));
-        return all;
-    }
     std::vector<std::string> out;
-    if (name == "hybrid") out = {"scenes/demo.json", "scenes/cornell_box.json"};
-    for (char c = 'A'; c <= 'F'; ++c)
-        out.push_back(fmt::format("scenes/{}.json", c));
+    if (const ExperimentInfo* e = find_experiment(name))
+        for (std::string_view scene : e->scenes)
+            out.push_back(bundled_scene(std::string(scene)));
     return out;
 }
 
@@ -120,11 +113,8 @@ int run_experiment(const ExperimentArgs& args) {
         table = experiment_form_factor_error(settings, args.patches > 0 ? args.patches : 250,
                                              args.reference_rays, args.name == "radiosity-error");
     else
-        throw UsageError(fmt::format(
-            "unknown experiment '{}' (known: fig2.1, fig2.4, fig3.1, hybrid, accuracy, fig4.7, "
-            "fig4.8, fig4.11, fig4.12, beam-threshold, split, radiosity, ff-error, "
-            "radiosity-error)",
-            args.name));
+        throw UsageError(fmt::format("unknown experiment '{}' (known: {}; fb89 list experiments)",
+                                     args.name, known_experiments()));
 
     if (report_emitted(settings, args.host)) return kSuccess;
     if (!args.csv.empty()) write_text(args.csv, table.csv());
@@ -147,7 +137,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "method and scene), radiosity (flux vs decahedral "
                     "hybrid), ff-error and radiosity-error (error vs time per method)")
         ->required();
-    sub->add_option("scenes", args->scenes, "Scenes (default scenes/A.json ... scenes/F.json)");
+    sub->add_option("scenes", args->scenes,
+                    "Scenes (default: the experiment's bundled scenes; fb89 list experiments)");
     sub->add_option("--csv", args->csv, "Write the results as CSV ('-' for stdout)");
     sub->add_option("--size", args->size, "Image size WxH, overriding the scenes'");
     sub->add_option("--repeat", args->repeat, "Interleaved timing rounds per method (median)")

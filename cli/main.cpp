@@ -1,9 +1,12 @@
 // fb89: one executable, one subcommand per file in cli/.
+#include <algorithm>
 #include <iostream>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "controller_sim/profile.h"
 #include "host/scene/scene_error.h"
 #include "protocol/stream_reader.h"
@@ -13,7 +16,7 @@ int main(int argc, char** argv) {
     CLI::App app{
         "fb89: image and intervisibility coherence in rendering, on an emulated 1989 "
         "graphics pipeline (Marks, Walsh, Christensen & Friedell, GI '90)"};
-    app.set_version_flag("--version", std::string("fb89 ") + FB89_VERSION);
+    app.set_version_flag("-V,--version", std::string("fb89 ") + FB89_VERSION);
     app.require_subcommand(1);
     app.fallthrough();
 
@@ -33,6 +36,20 @@ int main(int argc, char** argv) {
     register_radiosity(app, exit_code);
     register_host_run(app, exit_code);
     register_host_validate(app, exit_code);
+    register_list(app, exit_code);
+    use_installed_period_parts();
+
+    // an unknown command: say so, and the nearest known one
+    if (argc > 1 && argv[1][0] != '-') {
+        std::vector<std::string> names;
+        for (const CLI::App* sub : app.get_subcommands({}))
+            names.push_back(sub->get_name());
+        if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+            std::cerr << "fb89: usage: unknown command '" << argv[1] << "'"
+                      << nearest_hint(argv[1], names) << " (fb89 --help lists them)\n";
+            return kBadInput;
+        }
+    }
 
     try {
         app.parse(argc, argv);

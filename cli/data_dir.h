@@ -1,0 +1,22 @@
+// Where fb89 finds what it ships: the bundled scenes and docs, and the 1989 host's guest
+// program and counting plugin. Installed (cmake --install), they sit beside the binary:
+// PREFIX/bin/fb89, PREFIX/share/fb89/{scenes,docs}, PREFIX/libexec/fb89/; in the build tree
+// they are the source tree's and the build's. $FB89_DATA_DIR overrides the data folder.
+// So every default works from any directory.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace fb89::cli {
+
+std::filesystem::path executable_dir();
+std::filesystem::path data_dir();
+// data_dir()/scenes/NAME (e.g. "A.json").
+std::string bundled_scene(const std::string& name);
+
+// Points the emulator at an installed guest and plugin when fb89 runs from its install
+// prefix (and the caller set neither $FB89_GUEST nor $FB89_COUNT_PLUGIN).
+void use_installed_period_parts();
+
+}  // namespace fb89::cli

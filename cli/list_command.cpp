@@ -1,0 +1,90 @@
+// fb89 list [methods|profiles|hosts|scenes|experiments]: what fb89 can do, one line each,
+// so that a user discovers names without reading the error messages.
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/common.h"
+#include "cli/data_dir.h"
+#include "controller_sim/profile.h"
+#include "experiments/catalog.h"
+#include "host/methods.h"
+#include "period/host_profile.h"
+
+namespace fb89::cli {
+
+namespace {
+
+// A profile's "description", or "" when it has none or cannot be read.
+std::string description_of(std::string_view json_text) {
+    try {
+        const auto j = nlohmann::json::parse(json_text, nullptr, true, true);
+        if (j.is_object() && j.contains("description") && j["description"].is_string())
+            return j["description"].get<std::string>();
+    } catch (const std::exception&) {
+    }
+    return "";
+}
+
+void list_scenes() {
+    const std::filesystem::path dir = data_dir() / "scenes";
+    std::vector<std::filesystem::path> files;
+    if (std::filesystem::is_directory(dir))
+        for (const auto& entry : std::filesystem::directory_iterator(dir))
+            if (entry.path().extension() == ".json") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    fmt::print("scenes (in {}; name one by its path):\n", dir.string());
+    for (const auto& f : files) {
+        // a scene file opens with comments saying what it is; the first line says enough
+        std::ifstream in(f);
+        std::string first;
+        std::getline(in, first);
+        if (first.rfind("//", 0) == 0)
+            first = first.substr(first.find_first_not_of("/ "));
+        else
+            first.clear();
+        fmt::print("  {:<22} {}\n", f.filename().string(), first);
+    }
+}
+
+int run_list(const std::string& what) {
+    const bool all = what.empty();
+    if (all || what == "methods") {
+        fmt::print("methods (render --method NAME):\n");
+        for (const host::MethodInfo& m : host::methods())
+            fmt::print("  {:<22} {}\n", m.name, m.description);
+    }
+    if (all || what == "profiles") {
+        fmt::print("controller profiles (--profile NAME, or a .json file):\n");
+        for (const auto& p : controller::builtin_profiles())
+            fmt::print("  {:<22} {}\n", p.name, description_of(p.json));
+    }
+    if (all || what == "hosts") {
+        fmt::print("hosts (--host NAME, or a .json host profile):\n");
+        fmt::print("  {:<22} {}\n", "native", "this machine, timed in interleaved rounds");
+        for (const auto& p : period::builtin_profiles())
+            fmt::print("  {:<22} {}\n", p.name, description_of(p.json));
+    }
+    if (all || what == "experiments") {
+        fmt::print("experiments (fb89 experiment NAME):\n");
+        for (const experiments::ExperimentInfo& e : experiments::experiment_catalog())
+            fmt::print("  {:<22} {}\n", e.name, e.description);
+    }
+    if (all || what == "scenes") list_scenes();
+    return kSuccess;
+}
+
+}  // namespace
+
+void register_list(CLI::App& app, int& exit_code) {
+    auto what = std::make_shared<std::string>();
+    CLI::App* sub = app.add_subcommand(
+        "list", "List what fb89 knows: methods, profiles, hosts, scenes, experiments");
+    sub->add_option("what", *what, "One kind only")
+        ->check(CLI::IsMember({"methods", "profiles", "hosts", "scenes", "experiments"}));
+    sub->callback([what, &exit_code] { exit_code = run_list(*what); });
+}
+
+}  // namespace fb89::cli
