@@ -50,6 +50,36 @@ struct RenderArgs {
     bool quiet = false;
 };
 
+// An option given for a method that does not read it is refused, not ignored.
+void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& method) {
+    struct Group {
+        const char* option;
+        host::OptionGroup group;
+        const char* used_by;
+    };
+    static constexpr Group kGroups[] = {
+        {"--window-test", host::kWindowOptions, "warnock and hybrid"},
+        {"--approx-min", host::kWindowOptions, "warnock and hybrid"},
+        {"--approx-eps", host::kWindowOptions, "warnock and hybrid"},
+        {"--threshold", host::kHybridOptions, "hybrid"},
+        {"--depth-estimate", host::kHybridOptions, "hybrid"},
+        {"--reflections", host::kTraceOptions, "raytrace and beam"},
+        {"--grid-density", host::kTraceOptions, "raytrace and beam"},
+        {"--beam-threshold", host::kBeamOptions, "beam"},
+    };
+    host::Method m;
+    try {
+        m = host::method_named(method);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    const host::MethodInfo& info = host::method_info(m);
+    for (const Group& g : kGroups)
+        if (sub.get_option(g.option)->count() > 0 && !info.uses(g.group))
+            throw UsageError(fmt::format("{}: the {} method does not use it (only {} do)", g.option,
+                                         info.name, g.used_by));
+}
+
 host::WindowTest window_test_named(const std::string& name) {
     if (name == "area") return host::WindowTest::Area;
     if (name == "centres") return host::WindowTest::Centres;
@@ -358,7 +388,10 @@ void register_render(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 10000))
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-    sub->callback([args, &exit_code] { exit_code = run_render(*args); });
+    sub->callback([args, sub, &exit_code] {
+        refuse_options_the_method_ignores(*sub, args->method);
+        exit_code = run_render(*args);
+    });
 }
 
 }  // namespace fb89::cli
