@@ -56,9 +56,11 @@ int run_dump(const DumpArgs& args) {
     std::string out;  // lines are batched: a dump of millions of commands stays fast
     protocol::Command c;
     std::optional<protocol::StreamError> error;
+    uint64_t commands = 0;  // command numbers seen, up to the set's last
     try {
         while (reader.next(c)) {
             const uint64_t n = reader.command_number();
+            commands = n + 1;
             if (n > last) break;
             if (!calls.contains(n, c)) continue;
             const std::string text = printable(protocol::to_string(c));
@@ -78,6 +80,11 @@ int run_dump(const DumpArgs& args) {
         report_stream_error(*error);
         return kBadInput;
     }
+    if (!args.calls.empty() && calls.first() >= commands)
+        throw UsageError(
+            fmt::format("--calls: the set starts at command {}, past the stream's "
+                        "last (it has {} commands)",
+                        calls.first(), commands));
     return kSuccess;
 }
 

@@ -53,6 +53,13 @@ struct ExperimentArgs {
     bool quiet = false;
 };
 
+std::vector<std::string> experiment_names() {
+    std::vector<std::string> names;
+    for (const ExperimentInfo& e : experiment_catalog())
+        names.emplace_back(e.name);
+    return names;
+}
+
 std::string known_experiments() {
     std::string known;
     for (const ExperimentInfo& e : experiment_catalog())
@@ -113,8 +120,9 @@ int run_experiment(const ExperimentArgs& args) {
         table = experiment_form_factor_error(settings, args.patches > 0 ? args.patches : 250,
                                              args.reference_rays, args.name == "radiosity-error");
     else
-        throw UsageError(fmt::format("unknown experiment '{}' (known: {}; fb89 list experiments)",
-                                     args.name, known_experiments()));
+        throw UsageError(fmt::format("unknown experiment '{}'{} (known: {}; fb89 list experiments)",
+                                     args.name, nearest_hint(args.name, experiment_names()),
+                                     known_experiments()));
 
     if (report_emitted(settings, args.host)) return kSuccess;
     if (!args.csv.empty()) write_text(args.csv, table.csv());
@@ -127,16 +135,11 @@ int run_experiment(const ExperimentArgs& args) {
 void register_experiment(CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ExperimentArgs>();
     CLI::App* sub = app.add_subcommand("experiment", "Re-run one of the paper's experiments");
-    sub->add_option("name", args->name,
-                    "fig2.1 (method times on A-F), fig2.4 (Eq. 2.4 vs counts), fig3.1 (hybrid "
-                    "time vs threshold on A and F), hybrid (calibrated hybrid vs Z-buffer per "
-                    "scene), accuracy (approximate fills: time vs pixels wrong), fig4.8 / "
-                    "fig4.11 / fig4.12 (beam-ray hybrid vs ray tracer against resolution on G, "
-                    "H, I), fig4.7 (masks of ray-traced pixels), beam-threshold (time and "
-                    "pixels by beams vs Expr. 2.7 threshold), split (host vs controller, every "
-                    "method and scene), radiosity (flux vs decahedral "
-                    "hybrid), ff-error and radiosity-error (error vs time per method)")
-        ->required();
+    std::string described;
+    for (const ExperimentInfo& e : experiment_catalog()) {
+        described += fmt::format("\n  {:<16} {}", e.name, e.description);
+    }
+    sub->add_option("name", args->name, "The experiment:" + described)->required();
     sub->add_option("scenes", args->scenes,
                     "Scenes (default: the experiment's bundled scenes; fb89 list experiments)");
     sub->add_option("--csv", args->csv, "Write the results as CSV ('-' for stdout)");

@@ -28,7 +28,8 @@ constexpr size_t kMaxRows = 100000;
 
 struct ModelArgs {
     std::vector<std::string> es, fv, d{"1"}, fw, ew, faces;
-    bool json = false, csv = false;
+    bool json = false;
+    std::string csv;  // a file, or '-' for stdout, as --csv is everywhere
 };
 
 // --- value lists: "16,32,64", "1..16384*4", "1..10+0.5", repeated options ------------------
@@ -154,7 +155,8 @@ std::string csv_field(const std::string& s) {
     return quoted + "\"";
 }
 
-void print_csv(const Table& t) {
+std::string csv_text(const Table& t) {
+    std::string out;
     std::vector<size_t> keyed;
     for (size_t i = 0; i < t.columns.size(); ++i)
         if (!t.columns[i].key.empty()) keyed.push_back(i);
@@ -164,11 +166,12 @@ void print_csv(const Table& t) {
             if (k) line += ',';
             line += csv_field(text_of(keyed[k]));
         }
-        fmt::print("{}\n", line);
+        out += line + "\n";
     };
     print_line([&](size_t i) { return t.columns[i].key; });
     for (const auto& row : t.rows)
         print_line([&](size_t i) { return cell_text(row[i], false); });
+    return out;
 }
 
 // Keys in column order (ordered_json), so the JSON reads like the table.
@@ -278,7 +281,7 @@ int run_model(const ModelArgs& args) {
     if (windows && (args.fw.empty() || args.ew.empty()))
         throw UsageError(fmt::format("{}: Exprs. 2.5-2.7 and 3.1 need both --fw and --ew",
                                      args.fw.empty() ? "--fw" : "--ew"));
-    if (args.csv && samples && windows)
+    if (!args.csv.empty() && samples && windows)
         throw UsageError("--csv: prints one table; ask for --es/--fv or --fw/--ew, not both");
 
     std::vector<double> ds = parse_values("--d", args.d);
@@ -296,8 +299,8 @@ int run_model(const ModelArgs& args) {
         for (const Table& t : tables)
             j[t.json_name] = table_json(t);
         fmt::print("{}\n", j.dump(2));
-    } else if (args.csv) {
-        print_csv(tables.front());
+    } else if (!args.csv.empty()) {
+        write_text(args.csv, csv_text(tables.front()));
     } else {
         for (size_t i = 0; i < tables.size(); ++i) {
             if (i) fmt::print("\n");
@@ -342,7 +345,8 @@ void register_model(CLI::App& app, int& exit_code) {
     sub->add_option("--ew", args->ew, "Window edge E_w in pixels (Exprs. 2.5-2.7, 3.1)");
     sub->add_option("--faces", args->faces, "Faces in the whole scene F (Expr. 2.7)");
     CLI::Option* json = sub->add_flag("--json", args->json, "Print JSON instead of a table");
-    sub->add_flag("--csv", args->csv, "Print CSV with a header row instead of a table")
+    sub->add_option("--csv", args->csv,
+                    "Write CSV with a header row instead of printing a table ('-' for stdout)")
         ->excludes(json);
     sub->footer(kEquations);
     sub->callback([args, &exit_code] { exit_code = run_model(*args); });

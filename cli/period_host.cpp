@@ -135,10 +135,15 @@ std::string split_line(const std::string& host_name, double host_ms, const std::
 }
 
 void add_host_options(CLI::App* sub, HostArgs& a) {
+    std::string hosts;
+    for (const std::string& h : period::builtin_host_profile_names())
+        hosts += h + ", ";
     sub->add_option("--host", a.host,
                     "Host the times are taken on: native (this machine, timed in rounds) or a "
-                    "1989 host (sun3-60, sun3-260, a .json host profile): fb89's host code on "
-                    "the emulated MC68020 + MC68881, each run once, its time modelled")
+                    "1989 host (" +
+                        hosts +
+                        "or a .json host profile): fb89's host code on "
+                        "the emulated MC68020 + MC68881, each run once, its time modelled")
         ->capture_default_str();
     sub->add_option("--jobs,-j", a.jobs, "1989 host: emulated runs at once on this machine")
         ->check(CLI::Range(1, 256))

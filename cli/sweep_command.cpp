@@ -65,6 +65,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<SweepArgs>();
     CLI::App* sub = app.add_subcommand("sweep", "Sweep a parameter of a method over scenes (CSV)");
     sub->add_option("what", a->what, "What to sweep: threshold (the hybrid's Expr. 3.1)")
+        ->check(CLI::IsMember({"threshold"}))
         ->required();
     sub->add_option("scenes", a->scenes, "Scene files")->required();
     sub->add_option("--from", a->from, "Smallest threshold of the ramp (> 0)")

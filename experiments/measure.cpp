@@ -12,8 +12,13 @@
 
 namespace fb89::experiments {
 
-void show_round(const std::string& label, int round, int rounds) {
-    std::cerr << fmt::format("\r{}: round {}/{}   ", label, round, rounds);
+void show_round(const std::string& label, int round, int rounds,
+                std::chrono::steady_clock::time_point start) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::string left;
+    if (round > 0) left = fmt::format(", about {:.0f} s left", elapsed / round * (rounds - round));
+    std::cerr << fmt::format("\r{}: round {}/{}{}   ", label, round + 1, rounds, left);
 }
 
 void clear_progress() {

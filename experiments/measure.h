@@ -2,6 +2,7 @@
 // through it, and what the controller makes of a frame's commands.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,8 +17,10 @@
 
 namespace fb89::experiments {
 
-// Progress of interleaved rounds on stderr ("label: round i/n"), and wiping it.
-void show_round(const std::string& label, int round, int rounds);
+// Progress of interleaved rounds on stderr ("label: round i/n, about 12 s left", the time
+// left estimated from the rounds done since `start`), and wiping it.
+void show_round(const std::string& label, int round, int rounds,
+                std::chrono::steady_clock::time_point start);
 void clear_progress();
 
 // The one interleaved-timing loop: a warm-up round, then `repeat` rounds; each round runs
@@ -26,8 +29,9 @@ void clear_progress();
 // `timed` is false in the warm-up round, whose figures are not kept.
 template <class Run>
 void interleave(size_t count, int repeat, const std::string& label, bool progress, Run&& run) {
+    const auto start = std::chrono::steady_clock::now();
     for (int round = -1; round < repeat; ++round) {
-        if (progress) show_round(label, round + 1, repeat);
+        if (progress) show_round(label, round + 1, repeat + 1, start);
         for (size_t k = 0; k < count; ++k)
             run((k + static_cast<size_t>(round + 1)) % count, round >= 0);
     }

@@ -207,7 +207,7 @@ std::vector<Method> form_factor_methods(const std::vector<int>& hemicube_resolut
 Table experiment_form_factor_error(const ExperimentSettings& s, int patches, int reference_n,
                                    bool solve) {
     Table table({"scene", "patches", "method", "cpu_ms", "ff_error", "reference_error",
-                 "radiosity_rms_error", "solve_iterations"});
+                 "radiosity_rms_error", "solve_iterations", "converged"});
     for (const auto& file : s.scenes) {
         const Room room = load_room(file, patches);
         // the reference, and its own error: the spread against a coarser estimate
@@ -224,7 +224,7 @@ Table experiment_form_factor_error(const ExperimentSettings& s, int patches, int
                 f = m.form_factors(room);
                 times.push_back(clock.elapsed());
             }
-            std::string b_err, iterations;
+            std::string b_err, iterations, converged;
             if (solve) {
                 const auto b = host::solve_gauss_seidel(room.mesh, f, 1e-7, 500);
                 double sum = 0, norm = 0;
@@ -235,11 +235,13 @@ Table experiment_form_factor_error(const ExperimentSettings& s, int patches, int
                 }
                 b_err = fmt::format("{:.6g}", std::sqrt(sum / std::max(norm, 1e-300)));
                 iterations = std::to_string(b.iterations);
+                // a solve that stopped at its limit is marked, its error not to be trusted
+                converged = b.converged ? "yes" : "NO (diverged or cut short)";
             }
             table.add({file, std::to_string(room.mesh.patches.size()), m.name,
                        fixed(host::median(times).cpu_ms, 2),
                        fmt::format("{:.6g}", form_factor_error(room.mesh, f, ref)),
-                       fmt::format("{:.6g}", ref_err), b_err, iterations});
+                       fmt::format("{:.6g}", ref_err), b_err, iterations, converged});
         }
     }
     return table;

@@ -60,7 +60,7 @@ TEST(ModelCommand, JsonGivesTheThreeSanityValues) {
 }
 
 TEST(ModelCommand, CsvTabulatesAGeometricGridWithOneHeaderRow) {
-    CliRun r = fb89("model --es 16..1024*2 --fv 1..1048576*4 --d 2 --csv");
+    CliRun r = fb89("model --es 16..1024*2 --fv 1..1048576*4 --d 2 --csv -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto rows = lines(r.out);
     ASSERT_EQ(rows.size(), 1u + 7 * 11);
@@ -71,7 +71,7 @@ TEST(ModelCommand, CsvTabulatesAGeometricGridWithOneHeaderRow) {
 }
 
 TEST(ModelCommand, LinearRangesAndNonIntegerValuesAreAccepted) {
-    CliRun r = fb89("model --es 780 --fv 1..2+0.5 --csv");
+    CliRun r = fb89("model --es 780 --fv 1..2+0.5 --csv -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto rows = lines(r.out);
     ASSERT_EQ(rows.size(), 4u);
@@ -140,8 +140,8 @@ TEST(ModelCommand, BadValuesExitTwoNamingTheOption) {
 
 TEST(ModelCommand, MissingOrConflictingRequestsExitTwo) {
     EXPECT_EQ(fb89("model").exit_code, 2);
-    EXPECT_EQ(fb89("model --es 64 --fv 16 --json --csv").exit_code, 2);
-    CliRun both = fb89("model --es 64 --fv 16 --fw 64 --ew 32 --csv");
+    EXPECT_EQ(fb89("model --es 64 --fv 16 --json --csv -").exit_code, 2);
+    CliRun both = fb89("model --es 64 --fv 16 --fw 64 --ew 32 --csv -");
     EXPECT_EQ(both.exit_code, 2);
     EXPECT_NE(both.err.find("--csv"), std::string::npos) << both.err;
 }

@@ -215,6 +215,10 @@ TEST(DumpCommand, BadCallSetExitsTwoNamingIt) {
     CliRun re = fb89("dump " + stream + " --grep '('");
     EXPECT_EQ(re.exit_code, 2);
     EXPECT_NE(re.err.find("--grep"), std::string::npos) << re.err;
+    CliRun past = fb89("dump " + stream + " --calls 99999999");
+    EXPECT_EQ(past.exit_code, 2);
+    EXPECT_NE(past.err.find("past the stream's last (it has 12 commands)"), std::string::npos)
+        << past.err;
 }
 
 TEST(InfoCommand, JsonHasPerFrameOpcodesPixelsAndBytes) {
