@@ -48,6 +48,7 @@ void register_render(CLI::App& app, int& exit_code);
 void register_model(CLI::App& app, int& exit_code);
 void register_experiment(CLI::App& app, int& exit_code);
 void register_sweep(CLI::App& app, int& exit_code);
+void register_compare(CLI::App& app, int& exit_code);
 void register_calibrate(CLI::App& app, int& exit_code);
 void register_replay(CLI::App& app, int& exit_code);
 void register_dump(CLI::App& app, int& exit_code);

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     register_model(app, exit_code);
     register_experiment(app, exit_code);
     register_sweep(app, exit_code);
+    register_compare(app, exit_code);
     register_calibrate(app, exit_code);
     register_replay(app, exit_code);
     register_dump(app, exit_code);

@@ -2,8 +2,9 @@
 // patches, decide intervisibility δ (flux tracing, or the decahedral hybrid), estimate form
 // factors, solve for radiosity, then draw one flat face per patch through the Z-buffer into
 // the in-memory buffer and hand the commands to the simulated controller, as `fb89 render`
-// does. Every stage is timed (wall and CPU) apart; the counters (facing pairs, rays, volume
-// queries) are the paper's.
+// does (--ids / --ids-view: the patch scene's face-id buffer, one id per patch). Every
+// stage is timed (wall and CPU) apart; the counters (facing pairs, rays, volume queries)
+// are the paper's.
 //
 // --ff chooses δ and the form-factor estimate together:
 //   flux      δ by flux tracing, centre-to-centre point form (Eq. 5.2, corrected)
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -27,6 +29,8 @@
 #include "cli/common.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
+#include "experiments/id_pass.h"
+#include "experiments/id_view.h"
 #include "host/methods.h"
 #include "host/radiosity/pipeline.h"
 #include "host/raster/screen_setup.h"
@@ -44,7 +48,7 @@ struct RadiosityArgs {
     host::RadiosityOptions options;
     std::string solver = std::string(host::to_string(host::RadiosityOptions{}.solver));
     std::string size;
-    std::string png, stream, stats;
+    std::string png, ids, ids_view, stream, stats;
     std::string profile = std::string(controller::kDefaultProfile);
     bool quiet = false;
 };
@@ -217,6 +221,14 @@ std::string summary(const RadiosityArgs& args, const RadiosityRun& run) {
     return out;
 }
 
+// The face-id buffer of the patch scene, as `render --ids` writes it (id + 1 as 24-bit RGB,
+// 0 = background; one id per patch), through the same Z-buffer, and its false-colour view.
+void write_id_buffers(const RadiosityArgs& args, const RadiosityRun& run) {
+    std::unique_ptr<host::Renderer> renderer = host::make_renderer(host::Method::ZBuffer);
+    experiments::write_id_pngs(experiments::id_framebuffer(run.result.patches, *renderer), args.ids,
+                               args.ids_view);
+}
+
 void write_stream(const RadiosityArgs& args, const RadiosityRun& run) {
     make_parent_dirs(args.stream);
     protocol::StreamWriter writer(
@@ -252,6 +264,7 @@ int run_radiosity_command(const RadiosityArgs& args) {
         make_parent_dirs(args.png);
         controller::write_png(args.png, ctl.framebuffer());
     }
+    if (!args.ids.empty() || !args.ids_view.empty()) write_id_buffers(args, run);
     if (!args.stream.empty()) write_stream(args, run);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, run, ctl));
 
@@ -315,6 +328,12 @@ void register_radiosity(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1e-12, 1e12));
     sub->add_option("--size", args->size, "Image size WxH, overriding the scene's");
     sub->add_option("--png", args->png, "Write the controller's framebuffer as PNG");
+    sub->add_option("--ids", args->ids,
+                    "Write the patch scene's face-id buffer as PNG (one id per patch; id + 1 as "
+                    "24-bit RGB, 0 = background)");
+    sub->add_option("--ids-view", args->ids_view,
+                    "Write the patch scene's face-id buffer in false colour as PNG, for people: "
+                    "each patch a distinct colour, background black");
     sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
     sub->add_option("--stats", args->stats,
                     "Write host and controller figures as JSON ('-' for stdout)");

@@ -17,6 +17,7 @@
 #include "controller_sim/png_io.h"
 #include "experiments/beam_mask.h"
 #include "experiments/id_pass.h"
+#include "experiments/id_view.h"
 #include "experiments/period_runs.h"
 #include "host/methods.h"
 #include "host/raster/scene_measures.h"
@@ -43,7 +44,7 @@ struct RenderArgs {
     int approx_min_side = 0;
     double approx_epsilon = 0;
     std::string size;
-    std::string png, ids, stream, stats, connect;
+    std::string png, ids, ids_view, stream, stats, connect;
     std::string profile = std::string(controller::kDefaultProfile);
     std::string host = "native";
     int repeat = 1;
@@ -129,11 +130,11 @@ HostRun run_host(const RenderArgs& args, host::Renderer& renderer) {
 }
 
 // The face-id pass: the same method through the same sink and controller, every face
-// coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer.
+// coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer. Run once
+// for --ids (exact) and --ids-view (false colour) alike.
 void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Renderer& renderer) {
-    controller::Framebuffer ids = experiments::id_framebuffer(scene, renderer);
-    make_parent_dirs(args.ids);
-    controller::write_png(args.ids, ids);
+    experiments::write_id_pngs(experiments::id_framebuffer(scene, renderer), args.ids,
+                               args.ids_view);
 }
 
 // The paper's Figs. 4.7 and 4.10: the frame with the ray-traced pixels blacked out.
@@ -289,7 +290,7 @@ int run_render(const RenderArgs& args) {
         controller::write_png(args.png, ctl.framebuffer());
     }
     if (!args.mask.empty()) write_beam_mask(args.mask, ctl.framebuffer(), *renderer);
-    if (!args.ids.empty()) write_id_buffer(args, run.scene, *renderer);
+    if (!args.ids.empty() || !args.ids_view.empty()) write_id_buffer(args, run.scene, *renderer);
     if (!args.stream.empty()) write_stream(args, run);
     if (!args.stats.empty())
         write_json(args.stats, stats_json(args, run, ctl, period ? &*period : nullptr));
@@ -329,7 +330,12 @@ void register_render(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand("render", "Render a scene with one hidden-surface method");
     sub->add_option("scene", args->scene, "Scene file (.json, or .tri screen-space triangles)")
         ->required();
-    sub->add_option("--method,-m", args->method, "Hidden-surface method")->capture_default_str();
+    std::string methods;
+    for (const host::MethodInfo& m : host::methods())
+        methods += (methods.empty() ? "" : ", ") + std::string(m.name);
+    sub->add_option("--method,-m", args->method,
+                    "Hidden-surface method: " + methods + " (fb89 list methods)")
+        ->capture_default_str();
     sub->add_option("--window-test", args->window_test,
                     "Warnock's window test: area (the paper's) or centres (sampling-aware)")
         ->capture_default_str();
@@ -370,6 +376,9 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--png", args->png, "Write the controller's framebuffer as PNG");
     sub->add_option("--ids", args->ids,
                     "Write the face-id buffer as PNG (id + 1 as 24-bit RGB, 0 = background)");
+    sub->add_option("--ids-view", args->ids_view,
+                    "Write the face-id buffer in false colour as PNG, for people: each id a "
+                    "distinct colour, background black");
     sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
     sub->add_option("--connect", args->connect,
                     "Also stream the commands to `fb89 controller --listen PATH` on this socket");

@@ -159,10 +159,13 @@ bool on_key(int key, ViewPlayer& p, Ui& ui) {
     return true;
 }
 
-// Saves what the window shows of the framebuffer.
-void save_screenshot(controller::Display& display, const ViewPlayer& p, const std::string& path) {
+// Saves what the window shows of the framebuffer: the frame, tinted when the overlay is
+// on; never the text.
+void save_screenshot(controller::Display& display, const ViewPlayer& p, const Ui& ui,
+                     const std::string& path) {
     uint32_t w = 0, h = 0;
-    const std::vector<uint8_t> rgb = display.capture(p.controller().framebuffer(), w, h);
+    const std::vector<uint8_t> rgb =
+        display.capture(p.controller().framebuffer(), ui.overlay ? &p.recorder() : nullptr, w, h);
     make_parent_dirs(path);
     controller::write_png(path, w, h, rgb);
 }
@@ -176,7 +179,8 @@ int run_view(const ViewArgs& args) {
     try {
         display.emplace("fb89 view " + args.stream, args.scale);
     } catch (const controller::DisplayUnavailable& e) {
-        std::cerr << "fb89 view: no display: " << e.what() << "\n";
+        std::cerr << "fb89: error: " << e.what()
+                  << "; use --screenshot with xvfb-run, or fb89 replay --png\n";
         return kBadInput;
     }
 
@@ -215,7 +219,7 @@ int run_view(const ViewArgs& args) {
         }
 
         if (player.at_end() && !shot_taken && !args.screenshot.empty()) {
-            save_screenshot(*display, player, args.screenshot);
+            save_screenshot(*display, player, ui, args.screenshot);
             shot_taken = true;
         }
         if (player.at_end() && args.exit_at_end) {
@@ -253,7 +257,8 @@ void register_view(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 8))
         ->capture_default_str();
     sub->add_option("--screenshot", args->screenshot,
-                    "At the end of the stream, save what the window shows as PNG");
+                    "At the end of the stream, save what the window shows of the image as PNG "
+                    "(with the overlay when it is on)");
     sub->add_flag("--exit-at-end", args->exit_at_end,
                   "Exit at the end of the stream (as fast as possible unless --speed)");
     sub->callback([args, speed, &exit_code] {

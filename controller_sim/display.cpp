@@ -19,6 +19,8 @@
 #include <SDL.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 
 #include "controller_sim/bitmap_font.h"
 #include "controller_sim/framebuffer.h"
@@ -30,6 +32,21 @@ namespace {
 
 constexpr int kMinWindowWidth = 640;
 constexpr int kPad = 4;  // pixels around the status text
+
+constexpr const char* kNoDisplay = "no display to open a window on";
+
+bool set_in_environment(const char* name) {
+    const char* value = std::getenv(name);
+    return value != nullptr && *value != '\0';
+}
+
+// SDL's message on one line, for DisplayUnavailable.
+std::string one_line(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ')
+        text.pop_back();
+    return text;
+}
 
 int translate_key(const SDL_Keysym& k) {
     switch (k.sym) {
@@ -187,10 +204,25 @@ void Display::Impl::draw_hud(const Hud& hud) {
 
 Display::Display(const std::string& title, int scale) : m(std::make_unique<Impl>()) {
     m->scale = std::max(scale, 1);
+    const bool driver_asked = set_in_environment("SDL_VIDEODRIVER");
+#if defined(__unix__) && !defined(__APPLE__)
+    // X11 or Wayland: without either there is no screen. Say so before SDL probes its
+    // drivers (the Wayland probe prints its own complaint, and SDL would then settle on its
+    // offscreen driver: a window nobody sees).
+    if (!driver_asked && !set_in_environment("DISPLAY") && !set_in_environment("WAYLAND_DISPLAY"))
+        throw DisplayUnavailable(std::string(kNoDisplay) + " (DISPLAY is not set)");
+#endif
     SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");  // nearest: pixels stay pixels
     if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
-        throw DisplayUnavailable(std::string("cannot open a window (SDL: ") + SDL_GetError() +
-                                 "); set DISPLAY, or run under xvfb-run");
+        throw DisplayUnavailable(std::string(kNoDisplay) + " (SDL: " + one_line(SDL_GetError()) +
+                                 ")");
+    const char* driver = SDL_GetCurrentVideoDriver();
+    const std::string driver_name = driver ? driver : "";
+    if (!driver_asked && (driver_name == "offscreen" || driver_name == "dummy")) {
+        SDL_QuitSubSystem(SDL_INIT_VIDEO);
+        throw DisplayUnavailable(std::string(kNoDisplay) + " (SDL found only its '" + driver_name +
+                                 "' driver)");
+    }
     m->window = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED,
                                  kMinWindowWidth, 480, SDL_WINDOW_HIDDEN);
     if (m->window) m->renderer = SDL_CreateRenderer(m->window, -1, SDL_RENDERER_SOFTWARE);
@@ -198,7 +230,7 @@ Display::Display(const std::string& title, int scale) : m(std::make_unique<Impl>
         const std::string why = SDL_GetError();
         if (m->window) SDL_DestroyWindow(m->window);
         SDL_QuitSubSystem(SDL_INIT_VIDEO);
-        throw DisplayUnavailable("cannot open a window (SDL: " + why + ")");
+        throw DisplayUnavailable(std::string(kNoDisplay) + " (SDL: " + one_line(why) + ")");
     }
     m->make_font();
 }
@@ -237,9 +269,10 @@ void Display::show(const Framebuffer& fb, const Recorder* overlay, const Hud& hu
     SDL_RenderPresent(m->renderer);
 }
 
-std::vector<uint8_t> Display::capture(const Framebuffer& fb, uint32_t& width, uint32_t& height) {
+std::vector<uint8_t> Display::capture(const Framebuffer& fb, const Recorder* overlay,
+                                      uint32_t& width, uint32_t& height) {
     m->fit(fb.width(), fb.height(), m->status_lines);
-    m->draw_image(fb, nullptr);
+    m->draw_image(fb, overlay);
     width = fb.width() * static_cast<uint32_t>(m->scale);
     height = fb.height() * static_cast<uint32_t>(m->scale);
     std::vector<uint8_t> rgb(std::size_t{width} * height * 3);

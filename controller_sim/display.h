@@ -25,7 +25,9 @@ namespace fb89::controller {
 class Framebuffer;
 class Recorder;
 
-// No window can be opened (no DISPLAY, SDL video initialisation failed): fb89 exits 2.
+// No window can be opened (no DISPLAY, SDL video initialisation failed, or SDL found only
+// a driver with no screen): fb89 exits 2. The message is one line; the constructor's starts
+// "no display to open a window on".
 class DisplayUnavailable : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;
@@ -58,7 +60,10 @@ struct Hud {
 class Display {
   public:
     // Opens a window; the framebuffer is drawn `scale` x `scale` pixels per pixel.
-    // Throws DisplayUnavailable when SDL cannot open one.
+    // Throws DisplayUnavailable when SDL cannot open one: on X11/Wayland systems, when
+    // neither DISPLAY nor WAYLAND_DISPLAY is set (before SDL probes anything, so SDL prints
+    // nothing of its own), and when SDL would fall back to its offscreen or dummy driver
+    // without SDL_VIDEODRIVER asking for it. An SDL_VIDEODRIVER that is set is obeyed.
     Display(const std::string& title, int scale);
     ~Display();
     Display(const Display&) = delete;
@@ -71,10 +76,12 @@ class Display {
     // and presents. Resizes the window when the framebuffer's size changed.
     void show(const Framebuffer& fb, const Recorder* overlay, const Hud& hud);
 
-    // Draws the framebuffer alone (no overlay, no text), reads back the image area as the
-    // renderer drew it, and presents. RGB888 rows, width * 3 bytes each; the size is the
-    // framebuffer's times the scale.
-    std::vector<uint8_t> capture(const Framebuffer& fb, uint32_t& width, uint32_t& height);
+    // Draws the framebuffer as show() does (tinted by its writers when `overlay` is given)
+    // but without the text, reads back the image area as the renderer drew it, and
+    // presents. RGB888 rows, width * 3 bytes each; the size is the framebuffer's times the
+    // scale.
+    std::vector<uint8_t> capture(const Framebuffer& fb, const Recorder* overlay, uint32_t& width,
+                                 uint32_t& height);
 
     // The framebuffer pixel under window point (x, y) of the last frame shown, if any.
     std::optional<std::pair<uint32_t, uint32_t>> pixel_at(int x, int y) const;

@@ -57,6 +57,10 @@ TEST(ListCommand, AnInstalledPrefixRunsOnItsOwn) {
     const std::string fb89 = (prefix / "bin" / "fb89").string();
     ASSERT_TRUE(std::filesystem::exists(fb89));
     EXPECT_TRUE(std::filesystem::exists(prefix / "share/fb89/scenes/A.json"));
+    // the man page, made from the help at build time
+    const std::string man = slurp(prefix / "share/man/man1/fb89.1");
+    EXPECT_NE(man.find(".TH FB89"), std::string::npos) << man.substr(0, 200);
+    EXPECT_NE(man.find("render"), std::string::npos);
     const std::string out = (test_dir() / "installed.txt").string();
     // from another directory, the installed binary lists its own scenes and runs a default
     const std::string cmd = "cd / && " + fb89 + " list scenes > " + out + " && " + fb89 +

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -134,6 +136,48 @@ TEST(RadiosityCommand, AdaptiveRefinementAddsPatches) {
     ASSERT_GE(passes.size(), 2u);
     EXPECT_GT(passes[1].get<int>(), passes[0].get<int>());
     EXPECT_EQ(passes.back(), j["radiosity"]["patches"]);
+}
+
+TEST(RadiosityCommand, IdsWritesThePatchSceneFaceIdBufferAndIdsViewItsColours) {
+    fs::path ids = scratch("room.ids.png"), view = scratch("room.view.png"),
+             stats = scratch("room.json");
+    fs::remove(ids);
+    fs::remove(view);
+    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --ids " + ids.string() + " --ids-view " +
+                    view.string() + " --stats " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_TRUE(fs::exists(ids));
+    ASSERT_TRUE(fs::exists(view));
+    auto image = fb89::controller::read_png(ids);
+    EXPECT_EQ(image.width, 256u);
+    EXPECT_EQ(image.height, 195u);
+    ASSERT_EQ(image.channels, 3u);
+
+    // ids are the patch scene's faces: one per patch, so more of them than the scene's faces
+    const uint64_t patches =
+        nlohmann::json::parse(slurp(stats))["radiosity"]["patches"].get<uint64_t>();
+    std::set<uint32_t> seen;
+    for (size_t k = 0; k < image.pixels.size(); k += 3) {
+        const uint32_t v = uint32_t{image.pixels[k]} << 16 | uint32_t{image.pixels[k + 1]} << 8 |
+                           image.pixels[k + 2];
+        if (v == 0) continue;
+        EXPECT_LE(v, patches) << "id " << v - 1 << " is not a patch";
+        seen.insert(v - 1);
+    }
+    EXPECT_GT(seen.size(), 29u) << "fewer ids than the scene has faces";
+
+    // the view: the same size, the same id the same colour wherever it is
+    auto colours = fb89::controller::read_png(view);
+    ASSERT_EQ(colours.width, image.width);
+    ASSERT_EQ(colours.height, image.height);
+    std::map<uint32_t, uint32_t> colour_of;
+    for (size_t k = 0; k < image.pixels.size(); k += 3) {
+        const uint32_t v = uint32_t{image.pixels[k]} << 16 | uint32_t{image.pixels[k + 1]} << 8 |
+                           image.pixels[k + 2];
+        const uint32_t c = uint32_t{colours.pixels[k]} << 16 |
+                           uint32_t{colours.pixels[k + 1]} << 8 | colours.pixels[k + 2];
+        EXPECT_EQ(colour_of.emplace(v, c).first->second, c) << "id " << v << " in two colours";
+    }
 }
 
 TEST(RadiosityCommand, OtherFormFactorsRunAndQuietPrintsNothing) {

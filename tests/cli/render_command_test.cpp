@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -162,6 +163,53 @@ TEST(RenderCommand, OptionsTheMethodDoesNotUseAreRefusedNotIgnored) {
                    "--window-test centres")
                   .exit_code,
               0);
+}
+
+}  // namespace
+
+namespace {
+
+uint32_t rgb_at(const fb89::controller::PngImage& image, size_t pixel) {
+    const uint8_t* p = image.pixels.data() + pixel * 3;
+    return uint32_t{p[0]} << 16 | uint32_t{p[1]} << 8 | p[2];
+}
+
+TEST(RenderCommand, IdsViewGivesEachIdItsOwnColourBesideTheExactIds) {
+    fs::path ids = scratch("A.ids.png"), view = scratch("A.view.png"),
+             alone = scratch("A.view_alone.png");
+    CliRun r = fb89("render " + kScenes + "/A.json --size 64x48 -q --ids " + ids.string() +
+                    " --ids-view " + view.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto exact = fb89::controller::read_png(ids);
+    auto colours = fb89::controller::read_png(view);
+    EXPECT_EQ(colours.width, 64u);
+    EXPECT_EQ(colours.height, 48u);
+    ASSERT_EQ(colours.channels, 3u);
+    ASSERT_EQ(colours.pixels.size(), exact.pixels.size());
+
+    // pixel by pixel: the same id the same colour, different ids different colours, and
+    // the background (0) black
+    std::map<uint32_t, uint32_t> colour_of, id_of;
+    for (size_t k = 0; k < size_t{64} * 48; ++k) {
+        const uint32_t id = rgb_at(exact, k), colour = rgb_at(colours, k);
+        if (id == 0) {
+            EXPECT_EQ(colour, 0u) << "background pixel " << k;
+            continue;
+        }
+        EXPECT_NE(colour, 0u) << "id " << id - 1 << " drawn black";
+        EXPECT_EQ(colour_of.emplace(id, colour).first->second, colour)
+            << "id " << id - 1 << " in two colours";
+        EXPECT_EQ(id_of.emplace(colour, id).first->second, id)
+            << "ids " << id_of[colour] - 1 << " and " << id - 1 << " share a colour";
+    }
+    EXPECT_GE(colour_of.size(), 2u) << "scene A shows fewer than two faces";
+
+    // the two options are independent: --ids-view alone writes the same picture
+    CliRun only =
+        fb89("render " + kScenes + "/A.json --size 64x48 -q --ids-view " + alone.string());
+    ASSERT_EQ(only.exit_code, 0) << only.err;
+    EXPECT_EQ(slurp(alone), slurp(view));
+    EXPECT_NE(fb89("render --help").out.find("--ids-view"), std::string::npos);
 }
 
 }  // namespace

@@ -1,14 +1,17 @@
 // Tests for fb89 view, used as a person would: under Xvfb, play a recorded stream to its
 // end, take a screenshot of the window, and compare it pixel for pixel with the PNG that
-// fb89 replay writes for the same stream (and with the controller's own framebuffer).
+// fb89 replay writes for the same stream (and with the controller's own framebuffer, tinted
+// by the opcode overlay when it is on); and without any display, the one-line refusal.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
 #include "cli_runner.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
+#include "controller_sim/recorder.h"
 #include "protocol/stream_reader.h"
 
 namespace fb89::testing {
@@ -43,6 +46,19 @@ controller::PngImage replayed_frame(const fs::path& stream) {
     return controller::PngImage{fb.width(), fb.height(), 3, {px.begin(), px.end()}};
 }
 
+// The same, tinted by the opcode overlay as the viewer composes it.
+controller::PngImage overlaid_frame(const fs::path& stream) {
+    protocol::StreamReader reader(stream.string());
+    controller::Controller ctl;
+    controller::Recorder writers;
+    ctl.set_observer([&](uint64_t n, const protocol::Command& c) { writers.record(n, c); });
+    reader.replay_into(ctl);
+    const controller::Framebuffer& fb = ctl.framebuffer();
+    std::vector<uint8_t> rgb;
+    controller::compose_image(fb, &writers, rgb);
+    return controller::PngImage{fb.width(), fb.height(), 3, rgb};
+}
+
 void expect_same_image(const controller::PngImage& shot, const controller::PngImage& ref) {
     ASSERT_EQ(shot.width, ref.width);
     ASSERT_EQ(shot.height, ref.height);
@@ -71,17 +87,72 @@ TEST(ViewCommand, ScreenshotAfterPlayingToTheEndMatchesReplayPng) {
     expect_same_image(controller::read_png(shot), controller::read_png(ref));
 }
 
-TEST(ViewCommand, ScreenshotIsTheFrameAloneWhateverTheOverlayAndStartPosition) {
+// The screenshot is what the window shows of the image: without the overlay, the frame
+// alone, wherever the play started.
+TEST(ViewCommand, ScreenshotWithoutTheOverlayIsTheFrameAloneWhateverTheStartPosition) {
     if (!have_xvfb_run())
         GTEST_SKIP() << "xvfb-run is not installed (scripts/bootstrap installs xvfb)";
     const fs::path stream = record_stream("256x195");
     const fs::path shot = test_dir() / "shot.png";
     fs::remove(shot);
     const CliRun r = run_fb89("view " + stream.string() + " --screenshot " + shot.string() +
-                                  " --exit-at-end --overlay --start-call 3",
+                                  " --exit-at-end --start-call 3",
                               kUnderXvfb);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     expect_same_image(controller::read_png(shot), replayed_frame(stream));
+}
+
+// With the overlay on, the screenshot is the tinted image the window shows: it differs from
+// the plain one wherever the overlay draws, and is the overlay composed in this process.
+TEST(ViewCommand, ScreenshotWithTheOverlayIsTheTintedImage) {
+    if (!have_xvfb_run())
+        GTEST_SKIP() << "xvfb-run is not installed (scripts/bootstrap installs xvfb)";
+    const fs::path stream = record_stream("256x195");
+    const fs::path plain = test_dir() / "plain.png", tinted = test_dir() / "tinted.png";
+    fs::remove(plain);
+    fs::remove(tinted);
+    const std::string play = "view " + stream.string() + " --exit-at-end --screenshot ";
+    const CliRun a = run_fb89(play + plain.string(), kUnderXvfb);
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    const CliRun b = run_fb89(play + tinted.string() + " --overlay", kUnderXvfb);
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    const controller::PngImage with = controller::read_png(tinted);
+    const controller::PngImage without = controller::read_png(plain);
+    const controller::PngImage expected = overlaid_frame(stream);
+    expect_same_image(without, replayed_frame(stream));
+    expect_same_image(with, expected);
+
+    // where the overlay draws (its tint changes the pixel), the two shots differ; elsewhere
+    // they agree
+    ASSERT_EQ(with.pixels.size(), without.pixels.size());
+    std::size_t drawn = 0;
+    for (std::size_t i = 0; i < without.pixels.size(); i += 3) {
+        const bool tinted_here = !std::equal(expected.pixels.begin() + static_cast<long>(i),
+                                             expected.pixels.begin() + static_cast<long>(i) + 3,
+                                             without.pixels.begin() + static_cast<long>(i));
+        const bool differ = !std::equal(with.pixels.begin() + static_cast<long>(i),
+                                        with.pixels.begin() + static_cast<long>(i) + 3,
+                                        without.pixels.begin() + static_cast<long>(i));
+        drawn += tinted_here;
+        EXPECT_EQ(differ, tinted_here) << "pixel " << i / 3;
+        if (differ != tinted_here) break;
+    }
+    EXPECT_GT(drawn, without.pixels.size() / 3 / 2) << "the overlay tints too few pixels";
+}
+
+// As a person runs it on a machine with no screen: no DISPLAY, no SDL_VIDEODRIVER. One line
+// saying why and what to do instead, exit 2; no window on SDL's offscreen driver, no
+// complaint of SDL's own.
+TEST(ViewCommand, WithNoDisplayAtAllExitsTwoInOneLine) {
+    const fs::path stream = record_stream("64x48");
+    const CliRun r = run_fb89("view " + stream.string(),
+                              "timeout 60 env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER ");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.find("fb89: error: no display"), 0u) << r.err;
+    EXPECT_NE(r.err.find("xvfb-run"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.find("XDG_RUNTIME_DIR"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
 }
 
 TEST(ViewCommand, WithoutADisplayExitsTwoSayingSo) {

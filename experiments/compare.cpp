@@ -1,0 +1,184 @@
+// `fb89 compare`'s algorithm: every method on one scene, timed, costed and counted against
+// the Z-buffer's face ids, and the contact sheet of their frames with captions drawn in
+// the bitmap font.
+#include "experiments/compare.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "controller_sim/bitmap_font.h"
+#include "controller_sim/controller.h"
+#include "experiments/id_pass.h"
+#include "experiments/period_runs.h"
+#include "host/raster/screen_setup.h"
+
+namespace fb89::experiments {
+
+namespace {
+
+constexpr uint32_t kMaxColumns = 3, kThumbWidth = 256, kGap = 8, kCaptionLines = 6;
+constexpr uint64_t kMaxThumbHeight = 4 * kThumbWidth;  // a frame far taller than wide
+constexpr protocol::Rgb kBackground{24, 24, 28}, kBand{44, 44, 52};
+constexpr protocol::Rgb kWhite{255, 255, 255}, kGrey{200, 200, 200};
+
+// The frame the controller holds after `commands` (pixels do not depend on the profile).
+controller::Framebuffer frame_of(const protocol::MemoryBuffer& commands) {
+    controller::Controller ctl(controller::load_profile("ideal"));
+    commands.replay_into(ctl);
+    return ctl.framebuffer();
+}
+
+controller::Framebuffer ids_of(const host::Scene& scene, const host::MethodOptions& o) {
+    auto renderer = host::make_renderer(o);
+    return id_framebuffer(scene, *renderer);
+}
+
+uint64_t pixels_differing(const controller::Framebuffer& a, const controller::Framebuffer& b) {
+    const auto pa = a.pixels(), pb = b.pixels();
+    if (pa.size() != pb.size()) return std::max(pa.size(), pb.size()) / 3;
+    uint64_t n = 0;
+    for (size_t i = 0; i + 2 < pa.size(); i += 3)
+        n += pa[i] != pb[i] || pa[i + 1] != pb[i + 1] || pa[i + 2] != pb[i + 2];
+    return n;
+}
+
+// The projection's CPU time, which the native set-up stage adds to the method's own.
+double projection_ms(const host::Scene& scene) {
+    host::Counters counters;
+    host::Stopwatch clock;
+    host::project_scene(scene, host::ColorMode::Shaded, counters);
+    return clock.elapsed().cpu_ms;
+}
+
+// `frame` scaled to the thumbnail by point sampling, its top-left corner at (x0, y0).
+void draw_thumbnail(controller::Framebuffer& sheet, const controller::Framebuffer& frame,
+                    const SheetLayout& l, uint32_t x0, uint32_t y0) {
+    if (frame.width() == 0 || frame.height() == 0) return;
+    for (uint32_t y = 0; y < l.thumb_height; ++y) {
+        const auto sy = static_cast<uint32_t>(uint64_t{y} * frame.height() / l.thumb_height);
+        for (uint32_t x = 0; x < l.thumb_width; ++x) {
+            const auto sx = static_cast<uint32_t>(uint64_t{x} * frame.width() / l.thumb_width);
+            sheet.set_pixel(x0 + x, y0 + y, frame.pixel(sx, sy));
+        }
+    }
+}
+
+std::vector<std::string> caption(const CompareRow& row) {
+    return {row.method,
+            fmt::format("host {:.3f} ms", row.host_ms),
+            fmt::format("controller {:.3f} ms", row.controller.frame_ms),
+            fmt::format("frame {:.3f} ms, {}-bound", row.frame_ms,
+                        row.host_bound ? "host" : "controller"),
+            fmt::format("{} commands: {} fills, {} spans", row.controller.commands,
+                        row.controller.fills, row.controller.spans),
+            fmt::format("{} px differ from zbuffer", row.pixels_differing)};
+}
+
+controller::Framebuffer draw_sheet(const Comparison& c) {
+    const SheetLayout l = sheet_layout(c.width, c.height, c.frames.size());
+    controller::Framebuffer sheet(l.width, l.height);
+    sheet.clear(kBackground);
+    const int text_y = static_cast<int>((l.title_height - controller::kGlyphHeight) / 2);
+    draw_text(sheet, static_cast<int>(l.gap), text_y,
+              fmt::format("{}  {}x{}  host {}  controller {}", c.scene, c.width, c.height, c.host,
+                          c.profile),
+              kWhite);
+    for (size_t i = 0; i < c.frames.size(); ++i) {
+        const uint32_t x = l.gap + static_cast<uint32_t>(i % l.columns) * (l.thumb_width + l.gap);
+        const uint32_t y = l.title_height + static_cast<uint32_t>(i / l.columns) *
+                                                (l.thumb_height + l.caption_height + l.gap);
+        draw_thumbnail(sheet, c.frames[i], l, x, y);
+        sheet.fill_rect({x, y + l.thumb_height, l.thumb_width, l.caption_height}, kBand);
+        const std::vector<std::string> lines = caption(c.rows[i]);
+        for (size_t k = 0; k < lines.size(); ++k)
+            draw_text(sheet, static_cast<int>(x) + 4,
+                      static_cast<int>(y + l.thumb_height) + 4 +
+                          static_cast<int>(k) * controller::kCellHeight,
+                      lines[k], k == 0 ? kWhite : kGrey);
+    }
+    return sheet;
+}
+
+}  // namespace
+
+std::vector<host::MethodOptions> every_method() {
+    std::vector<host::MethodOptions> settings;
+    for (const host::MethodInfo& m : host::methods())
+        settings.emplace_back(m.method);
+    return settings;
+}
+
+Comparison compare_methods(const std::string& file,
+                           const std::vector<host::MethodOptions>& settings,
+                           const ExperimentSettings& s) {
+    Comparison c;
+    c.scene = file;
+    c.host = s.period ? s.period->profile().name : "native";
+    c.profile = s.profile;
+    const controller::CostProfile profile = controller::load_profile(s.profile);
+    host::Scene scene;
+    const host::ScreenScene screen = load_screen(file, s, scene);
+    c.width = static_cast<uint32_t>(screen.width);
+    c.height = static_cast<uint32_t>(screen.height);
+    const std::vector<Measured> r = measure_settings(file, screen, settings, s);
+    // natively set-up is projection + the method's; a 1989 host's set-up phase holds both
+    const double projection = s.period ? 0 : projection_ms(scene);
+    const controller::Framebuffer truth = ids_of(scene, host::Method::ZBuffer);
+    for (size_t m = 0; m < settings.size(); ++m) {
+        CompareRow row;
+        row.method = std::string(host::method_info(settings[m].method).name);
+        row.host_ms = projection + r[m].setup.cpu_ms + r[m].median.cpu_ms;
+        row.controller = controller_figures(r[m].commands, profile);
+        row.frame_ms = std::max(row.host_ms, row.controller.frame_ms);
+        row.host_bound = row.host_ms >= row.controller.frame_ms;
+        row.pixels_differing = pixels_differing(truth, ids_of(scene, settings[m]));
+        c.rows.push_back(row);
+        c.frames.push_back(frame_of(r[m].commands));
+    }
+    c.sheet = draw_sheet(c);
+    return c;
+}
+
+Table comparison_table(const Comparison& c) {
+    Table table({"scene", "method", "host", "host_ms", "commands", "fills", "spans",
+                 "controller_ms", "frame_ms", "bound_by", "pixels_differing"});
+    for (const CompareRow& r : c.rows)
+        table.add({c.scene, r.method, c.host, fixed(r.host_ms, 3),
+                   std::to_string(r.controller.commands), std::to_string(r.controller.fills),
+                   std::to_string(r.controller.spans), fixed(r.controller.frame_ms, 3),
+                   fixed(r.frame_ms, 3), r.host_bound ? "host" : "controller",
+                   std::to_string(r.pixels_differing)});
+    return table;
+}
+
+SheetLayout sheet_layout(uint32_t width, uint32_t height, size_t tiles) {
+    SheetLayout l;
+    const auto n = static_cast<uint32_t>(std::max<size_t>(tiles, 1));
+    l.columns = std::min(n, kMaxColumns);
+    l.rows = (n + l.columns - 1) / l.columns;
+    l.gap = kGap;
+    l.thumb_width = kThumbWidth;
+    const uint64_t scaled = width > 0 ? (uint64_t{height} * kThumbWidth + width / 2) / width : 1;
+    l.thumb_height = static_cast<uint32_t>(std::clamp<uint64_t>(scaled, 1, kMaxThumbHeight));
+    l.caption_height = kCaptionLines * controller::kCellHeight + 6;
+    l.title_height = controller::kCellHeight + 2 * kGap;
+    l.width = l.columns * l.thumb_width + (l.columns + 1) * l.gap;
+    l.height = l.title_height + l.rows * (l.thumb_height + l.caption_height + l.gap);
+    return l;
+}
+
+void draw_text(controller::Framebuffer& fb, int x, int y, const std::string& text,
+               protocol::Rgb color) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        const controller::Glyph& g = controller::glyph(text[i]);
+        const int left = x + static_cast<int>(i) * controller::kCellWidth;
+        for (int row = 0; row < controller::kGlyphHeight; ++row)
+            for (int col = 0; col < controller::kGlyphWidth; ++col)
+                if (controller::glyph_pixel(g, col, row) && fb.contains(left + col, y + row))
+                    fb.set_pixel(static_cast<uint32_t>(left + col), static_cast<uint32_t>(y + row),
+                                 color);
+    }
+}
+
+}  // namespace fb89::experiments

@@ -1,0 +1,71 @@
+// Speed against accuracy for one scene in one go (`fb89 compare`): every given method
+// timed as the experiments time it (measure_settings(): interleaved rounds here, or
+// modelled from emulated runs on a 1989 host), its commands costed by the controller, its
+// face-id buffer counted against the Z-buffer's, and its frame laid out on a contact sheet
+// with a caption of those figures under it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "controller_sim/framebuffer.h"
+#include "experiments/measure.h"
+#include "experiments/settings.h"
+#include "experiments/table.h"
+#include "host/methods.h"
+
+namespace fb89::experiments {
+
+// One method's figures. The host's time per frame is set-up (projection and the method's
+// own) plus hidden-surface, as in the split; the controller's is its modelled frame time;
+// the two-stage pipeline's frame time is the larger of them.
+struct CompareRow {
+    std::string method;
+    double host_ms = 0;
+    ControllerFigures controller;  // commands, fills, spans; frame_ms is the controller's time
+    double frame_ms = 0;
+    bool host_bound = false;        // the host's time bounds the frame, not the controller's
+    uint64_t pixels_differing = 0;  // face ids that differ from the Z-buffer's
+};
+
+struct Comparison {
+    std::string scene;    // the file as given
+    std::string host;     // "native" or the 1989 host profile's name
+    std::string profile;  // the controller's cost profile
+    uint32_t width = 0, height = 0;
+    std::vector<CompareRow> rows;                 // one per method, in the order given
+    std::vector<controller::Framebuffer> frames;  // each method's shaded frame
+    controller::Framebuffer sheet;                // the contact sheet of the frames
+};
+
+// Every method with its default options: the settings `compare` uses.
+std::vector<host::MethodOptions> every_method();
+
+// Renders `file` with each of `settings` (times under `s`; s.scenes is not read) and lays
+// out the sheet. Throws what loading the scene or the profile throws.
+Comparison compare_methods(const std::string& file,
+                           const std::vector<host::MethodOptions>& settings,
+                           const ExperimentSettings& s);
+
+// The rows as a table: scene, method, host, host_ms, commands, fills, spans, controller_ms,
+// frame_ms, bound_by, pixels_differing.
+Table comparison_table(const Comparison& c);
+
+// Where things go on the contact sheet: a title band, then `columns` x `rows` tiles, each
+// the frame scaled to thumb_width (point sampled) with a caption band under it.
+struct SheetLayout {
+    uint32_t columns = 0, rows = 0;
+    uint32_t thumb_width = 0, thumb_height = 0;
+    uint32_t caption_height = 0, title_height = 0, gap = 0;
+    uint32_t width = 0, height = 0;  // of the whole sheet
+};
+// The layout for `tiles` frames of width x height: up to 3 columns, thumbnails 256 px wide.
+SheetLayout sheet_layout(uint32_t width, uint32_t height, size_t tiles);
+
+// Draws `text` in the 5x7 bitmap font (controller_sim/bitmap_font.h) with its top-left
+// corner at (x, y), one 6x10 cell per character; pixels outside `fb` are skipped.
+void draw_text(controller::Framebuffer& fb, int x, int y, const std::string& text,
+               protocol::Rgb color);
+
+}  // namespace fb89::experiments

@@ -1,0 +1,138 @@
+// `fb89 compare` as a user runs it: one row per method in the CSV and JSON, the contact
+// sheet PNG at its layout's size, no face id differing from the Z-buffer's for the exact
+// raster methods, exit 2 for a bad scene, and the same on a 1989 host.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "controller_sim/png_io.h"
+#include "experiments/compare.h"
+#include "tests/cli/cli_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using fb89::testing::CliRun;
+using fb89::testing::slurp;
+using fb89::testing::test_dir;
+
+// Runs fb89 from the repository root, where scenes/A.json is.
+CliRun fb89(const std::string& args) {
+    return fb89::testing::run_fb89(
+        args, "cd " + fs::path(FB89_SCENES_DIR).parent_path().string() + " && ");
+}
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');)
+        cells.push_back(cell);
+    return cells;
+}
+
+// The CSV's rows as column -> value, one map per row.
+std::vector<std::map<std::string, std::string>> read_csv(const std::string& text) {
+    std::stringstream in(text);
+    std::string line;
+    std::getline(in, line);
+    const std::vector<std::string> header = split(line);
+    std::vector<std::map<std::string, std::string>> rows;
+    while (std::getline(in, line)) {
+        const std::vector<std::string> cells = split(line);
+        std::map<std::string, std::string> row;
+        for (size_t i = 0; i < header.size() && i < cells.size(); ++i)
+            row[header[i]] = cells[i];
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
+    const fs::path dir = test_dir();
+    const fs::path sheet = dir / "sheet.png", csv = dir / "compare.csv",
+                   json = dir / "compare.json";
+    for (const fs::path& p : {sheet, csv, json})
+        fs::remove(p);
+    CliRun r = fb89("compare scenes/A.json --size 128x98 --repeat 1 --sheet " + sheet.string() +
+                    " --csv " + csv.string() + " --json " + json.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("pixels_differing"), std::string::npos) << r.out;  // the text table
+
+    ASSERT_TRUE(fs::exists(sheet));
+    const fb89::controller::PngImage png = fb89::controller::read_png(sheet);
+    const fb89::experiments::SheetLayout layout = fb89::experiments::sheet_layout(128, 98, 6);
+    EXPECT_EQ(layout.columns, 3u);
+    EXPECT_EQ(layout.rows, 2u);
+    EXPECT_EQ(png.width, layout.width);
+    EXPECT_EQ(png.height, layout.height);
+
+    const std::string text = slurp(csv);
+    EXPECT_EQ(text.rfind("scene,method,host,host_ms,commands,fills,spans,controller_ms,frame_ms,"
+                         "bound_by,pixels_differing\n",
+                         0),
+              0u)
+        << text;
+    const auto rows = read_csv(text);
+    ASSERT_EQ(rows.size(), 6u);
+    for (const auto& row : rows) {
+        EXPECT_EQ(row.at("scene"), "scenes/A.json");
+        EXPECT_EQ(row.at("host"), "native");
+        const std::string& m = row.at("method");
+        if (m == "zbuffer" || m == "scanline" || m == "warnock" || m == "hybrid") {
+            EXPECT_EQ(row.at("pixels_differing"), "0") << m;  // the exact methods
+        }
+    }
+    EXPECT_EQ(rows[0].at("method"), "zbuffer");
+
+    const nlohmann::json j = nlohmann::json::parse(slurp(json));
+    ASSERT_TRUE(j.is_array());
+    ASSERT_EQ(j.size(), 6u);
+    EXPECT_EQ(j[0]["method"], "zbuffer");
+    EXPECT_EQ(j[0]["pixels_differing"].get<uint64_t>(), 0u);
+    EXPECT_GT(j[0]["commands"].get<uint64_t>(), 0u);
+}
+
+TEST(CompareCommand, SheetDefaultsToComparePngInTheCurrentFolder) {
+    const fs::path dir = test_dir();
+    fs::remove(dir / "compare.png");
+    CliRun r = fb89::testing::run_fb89(
+        "compare " + std::string(FB89_SCENES_DIR) + "/A.json --size 64x49 --repeat 1 -q",
+        "cd " + dir.string() + " && ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_TRUE(fs::exists(dir / "compare.png"));
+}
+
+TEST(CompareCommand, BadInputExitsTwo) {
+    CliRun missing =
+        fb89("compare nowhere.json --repeat 1 --sheet " + (test_dir() / "sheet.png").string());
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_NE(missing.err.find("nowhere.json"), std::string::npos) << missing.err;
+    EXPECT_EQ(fb89("compare scenes/A.json --threshold lots").exit_code, 2);
+    EXPECT_EQ(fb89("compare scenes/A.json --threshold -1").exit_code, 2);
+    EXPECT_EQ(fb89("compare").exit_code, 2);
+}
+
+TEST(PeriodCompare, TimesEveryMethodOnA1989Host) {
+    const fs::path sheet = test_dir() / "sheet.png";
+    CliRun r = fb89("compare scenes/A.json --size 32x24 --host sun3-60 -q --sheet " +
+                    sheet.string() + " --csv -");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rows = read_csv(r.out);
+    ASSERT_EQ(rows.size(), 6u) << r.out;
+    for (const auto& row : rows) {
+        EXPECT_EQ(row.at("host"), "sun3-60");
+        EXPECT_GT(std::stod(row.at("host_ms")), 0.0) << row.at("method");
+    }
+    EXPECT_TRUE(fs::exists(sheet));
+}
+
+}  // namespace
