@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "controller_sim/profile.h"
+
 namespace fb89::cli {
 
 ImageSize parse_size(const std::string& text) {
@@ -74,6 +76,13 @@ std::string nearest_hint(const std::string& word, const std::vector<std::string>
         if (d < best_distance) best = k, best_distance = d;
     }
     return best.empty() ? "" : "; did you mean '" + best + "'?";
+}
+
+std::string profile_option_help() {
+    std::string names;
+    for (const std::string& n : controller::list_profiles())
+        names += n + ", ";
+    return "Controller cost profile: " + names + "or a .json file (fb89 list profiles)";
 }
 
 }  // namespace fb89::cli

@@ -38,6 +38,9 @@ void make_parent_dirs(const std::string& path);
 // "; did you mean 'render'?" when a known name is near `word` (edit distance), else "".
 std::string nearest_hint(const std::string& word, const std::vector<std::string>& known);
 
+// The help of every --profile option: the built-in controller profiles by name.
+std::string profile_option_help();
+
 // Messages for humans go to stderr; --quiet silences them.
 struct Console {
     bool quiet = false;

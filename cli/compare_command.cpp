@@ -111,7 +111,7 @@ void register_compare(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     sub->add_option("--size", a->size, "Image size WxH, overriding the scene's");
-    sub->add_option("--profile", a->profile, "Controller cost profile")->capture_default_str();
+    sub->add_option("--profile", a->profile, profile_option_help())->capture_default_str();
     sub->add_option("--threshold", a->threshold,
                     "Hybrid: Expr. 3.1 threshold, a number or inf (default: the paper's 0.04)");
     sub->add_option("--beam-threshold", a->beam_threshold,

@@ -340,9 +340,7 @@ void register_controller(CLI::App& app, int& exit_code) {
         "controller", "Run the frame-buffer controller as its own process on a Unix socket");
     sub->add_option("--listen", args->listen, "Socket path to create and serve hosts on")
         ->required();
-    sub->add_option("--profile", args->profile,
-                    "Controller cost profile: a built-in name or a .json file")
-        ->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
     sub->add_option("--png", args->png, "Write the last complete frame as PNG");
     sub->add_option("--stats", args->stats,
                     "Write per-connection and controller figures as JSON ('-' for stdout)");

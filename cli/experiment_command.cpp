@@ -147,7 +147,7 @@ void register_experiment(CLI::App& app, int& exit_code) {
     sub->add_option("--repeat", args->repeat, "Interleaved timing rounds per method (median)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    sub->add_option("--profile", args->profile, "Controller cost profile")->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
     sub->add_option("--threshold", args->threshold,
                     "fig3.1 and accuracy: the hybrid's threshold (number, paper or calibrated)")
         ->capture_default_str();

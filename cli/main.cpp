@@ -58,6 +58,23 @@ int main(int argc, char** argv) {
         return app.exit(e);  // --help, --version
     } catch (const CLI::ParseError& e) {
         app.exit(e);
+        // an option no command knows: name the nearest the command does
+        if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+            std::vector<std::string> options;
+            if (argc > 1 && argv[1][0] != '-')
+                for (const CLI::Option* o : app.get_subcommand(argv[1])->get_options())
+                    for (const std::string& name : o->get_lnames())
+                        options.push_back("--" + name);
+            for (int i = 1; i < argc; ++i) {
+                const std::string word = argv[i];
+                if (word.rfind("--", 0) != 0) continue;
+                const std::string given = word.substr(0, word.find('='));
+                if (std::find(options.begin(), options.end(), given) != options.end()) continue;
+                const std::string hint = nearest_hint(given, options);
+                if (!hint.empty())
+                    std::cerr << "fb89: usage: " << given << ":" << hint.substr(1) << "\n";
+            }
+        }
         return kBadInput;
     } catch (const UsageError& e) {
         std::cerr << "fb89: usage: " << e.what() << "\n";

@@ -337,9 +337,7 @@ void register_radiosity(CLI::App& app, int& exit_code) {
     sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
     sub->add_option("--stats", args->stats,
                     "Write host and controller figures as JSON ('-' for stdout)");
-    sub->add_option("--profile", args->profile,
-                    "Controller cost profile: a built-in name or a .json file")
-        ->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, res, adaptive, passes, &exit_code] {
         if (res->count() > 0 && args->ff != "hemicube")

@@ -3,6 +3,8 @@
 // what was asked for: PNG, face-id PNG, command stream, stats JSON. With --connect PATH
 // the same commands then go, as a stream, to an `fb89 controller` process on that socket;
 // the socket is opened only after the host has finished, so no host time includes it.
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -281,9 +283,13 @@ int run_render(const RenderArgs& args) {
 
     // a 1989 host: the same frame on the emulated MC68020 + MC68881, priced
     std::optional<PeriodHostRun> period;
+    const bool show = !args.quiet && isatty(STDERR_FILENO);
+    if (args.host != "native" && show)
+        fmt::print(stderr, "\rrunning the frame's host code on the emulated MC68020 + MC68881 ...");
     if (args.host != "native")
         period = run_on_period_host(args.host, args.scene,
                                     experiments::guest_options(options, args.size), run.commands);
+    if (args.host != "native" && show) fmt::print(stderr, "\r{:<72}\r", "");
 
     if (!args.png.empty()) {
         make_parent_dirs(args.png);
@@ -384,9 +390,7 @@ void register_render(CLI::App& app, int& exit_code) {
                     "Also stream the commands to `fb89 controller --listen PATH` on this socket");
     sub->add_option("--stats", args->stats,
                     "Write host and controller figures as JSON ('-' for stdout)");
-    sub->add_option("--profile", args->profile,
-                    "Controller cost profile: a built-in name or a .json file")
-        ->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
     sub->add_option("--host", args->host,
                     "Host the frame is timed on: native (this machine), sun3-60, sun3-260 or a "
                     ".json host profile; a 1989 host runs fb89's host code on an emulated "

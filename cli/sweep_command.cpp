@@ -85,7 +85,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option("--csv", a->csv, "Write the results as CSV ('-' for stdout)");
     sub->add_option("--size", a->size, "Image size WxH, overriding the scenes'");
-    sub->add_option("--profile", a->profile, "Controller cost profile")->capture_default_str();
+    sub->add_option("--profile", a->profile, profile_option_help())->capture_default_str();
     add_host_options(sub, a->host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
     sub->callback([a, &exit_code] { exit_code = run_sweep(*a); });

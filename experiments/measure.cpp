@@ -60,9 +60,8 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
     std::vector<GuestJob> jobs;
     for (const host::MethodOptions& o : settings)
         jobs.push_back({file, guest_options(o, size)});
-    if (s.progress) std::cerr << fmt::format("\r{}: {} emulated runs   ", file, jobs.size());
+    s.period->set_progress(s.progress, file);
     const std::vector<period::HostCost> costs = s.period->run(jobs);
-    if (s.progress) clear_progress();
     for (size_t m = 0; m < settings.size(); ++m) {
         const double ms = costs[m].phases[static_cast<int>(period::Phase::HiddenSurface)].ms;
         out[m].median = {ms, ms};

@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -132,15 +134,29 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
     std::vector<period::HostCost> out(jobs.size());
     std::vector<std::string> errors(jobs.size());
     std::atomic<size_t> next{0};
+    size_t done = 0;
+    const auto start = std::chrono::steady_clock::now();
+    auto report = [&] {  // under m_mutex
+        ++done;
+        if (!m_progress) return;
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::cerr << fmt::format(
+            "\r{}: {}/{} emulated runs, about {:.0f} s left   ", m_label, done, jobs.size(),
+            elapsed / static_cast<double>(done) * static_cast<double>(jobs.size() - done));
+    };
     auto worker = [&] {
         for (size_t i = next++; i < jobs.size(); i = next++) {
             try {
                 const std::string text = counts_of(jobs[i], job_key(m_guest_fingerprint, jobs[i]));
-                if (text.empty()) continue;  // emitted, not run
-                out[i] = period::price(period::parse_guest_counts(text, jobs[i].scene), m_profile);
+                if (!text.empty())  // else emitted, not run
+                    out[i] =
+                        period::price(period::parse_guest_counts(text, jobs[i].scene), m_profile);
             } catch (const std::exception& e) {
                 errors[i] = e.what();
             }
+            std::lock_guard lock(m_mutex);
+            report();
         }
     };
     std::vector<std::thread> threads;
@@ -150,6 +166,7 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
     worker();
     for (auto& t : threads)
         t.join();
+    if (m_progress) std::cerr << "\r" << std::string(70, ' ') << "\r";
     for (const std::string& e : errors)
         if (!e.empty()) throw period::EmulatorError(e);
     return out;

@@ -39,6 +39,12 @@ class PeriodRuns {
     // zero (emitted() says how many).
     std::vector<period::HostCost> run(const std::vector<GuestJob>& jobs);
 
+    // With progress on, run() shows "label: i/n emulated runs, about T s left" on stderr.
+    void set_progress(bool on, std::string label) {
+        m_progress = on;
+        m_label = std::move(label);
+    }
+
     const period::HostProfile& profile() const { return m_profile; }
     uint64_t emitted() const { return m_emitted; }
     uint64_t emulated() const { return m_emulated; }
@@ -54,6 +60,8 @@ class PeriodRuns {
     std::string m_guest_fingerprint;
     std::mutex m_mutex;
     uint64_t m_emitted = 0, m_emulated = 0;
+    bool m_progress = false;
+    std::string m_label;
 };
 
 // A results folder's file name for a job: a hash of the guest program, the scene file's

@@ -101,6 +101,7 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
         if (s.period) {
             // on a 1989 host: the same δ and form factors, counted once each and priced
             const std::string n = std::to_string(patches > 0 ? patches : default_patches(file));
+            s.period->set_progress(s.progress, file);
             const auto costs = s.period->run({{file, {"--radiosity", "flux", "--patches", n}},
                                               {file, {"--radiosity", "hybrid", "--patches", n}}});
             const int hs = static_cast<int>(period::Phase::HiddenSurface);

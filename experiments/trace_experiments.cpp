@@ -114,6 +114,7 @@ Table experiment_beam_resolution(const ExperimentSettings& s, const std::vector<
             if (s.period) {
                 // on a 1989 host: each counted once, load + set-up + hidden-surface priced
                 const std::string wxh = fmt::format("{}x{}", size.width, size.height);
+                s.period->set_progress(s.progress, fmt::format("{} {}", file, wxh));
                 const auto costs = s.period->run({{file, guest_options(methods[0], wxh)},
                                                   {file, guest_options(methods[1], wxh)}});
                 for (size_t m = 0; m < 2; ++m) {

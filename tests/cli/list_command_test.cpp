@@ -34,6 +34,13 @@ TEST(ListCommand, VersionAndUnknownCommandsSayWhatTheyShould) {
     EXPECT_EQ(typo.exit_code, 2);
     EXPECT_NE(typo.err.find("unknown command 'rendr'; did you mean 'render'?"), std::string::npos)
         << typo.err;
+    CliRun option = run_fb89("render scenes/A.json --thresold 0.1");
+    EXPECT_EQ(option.exit_code, 2);
+    EXPECT_NE(option.err.find("--thresold: did you mean '--threshold'?"), std::string::npos)
+        << option.err;
+    CliRun help = run_fb89("render --help");
+    for (const char* named : {"zbuffer, scanline", "tms34010-50mhz", "sun3-60"})
+        EXPECT_NE(help.out.find(named), std::string::npos) << named << "\n" << help.out;
     CliRun far = run_fb89("frobnicate");
     EXPECT_EQ(far.exit_code, 2);
     EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
