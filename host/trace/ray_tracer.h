@@ -87,7 +87,7 @@ struct TraceSetup {
 inline constexpr double kMinGridDensity = 0.01, kMaxGridDensity = 1000;
 
 struct TraceOptions {
-    int max_reflections = 8;    // mirror bounces followed (0: primary visibility)
+    int max_reflections = 8;                    // mirror bounces followed (0: primary visibility)
     double grid_density = kDefaultGridDensity;  // top-level grid cells per face piece
 };
 
