@@ -9,6 +9,7 @@
 
 #include "cli/common.h"
 #include "controller_sim/controller.h"
+#include "experiments/measure.h"
 #include "experiments/period_runs.h"
 #include "period/emulator.h"
 #include "protocol/stream_reader.h"
@@ -123,15 +124,14 @@ nlohmann::json period_json(const PeriodHostRun& run) {
 
 std::string split_line(const std::string& host_name, double host_ms, const std::string& profile,
                        double controller_ms) {
-    const bool host_bounds = host_ms >= controller_ms;
-    const double frame = std::max(host_ms, controller_ms);
-    const double low = std::min(host_ms, controller_ms);
+    const experiments::FrameSplit f = experiments::frame_split(host_ms, controller_ms);
     return fmt::format(
         "split: host {} {:.3f} ms | controller {} {:.3f} ms | frame {:.3f} ms, bounded by the "
         "{} ({})\n",
-        host_name, host_ms, profile, controller_ms, frame, host_bounds ? "host" : "controller",
-        low > 0 ? fmt::format("{:.2f}x the {}", frame / low, host_bounds ? "controller" : "host")
-                : "the other side takes no time");
+        host_name, host_ms, profile, controller_ms, f.frame_ms,
+        f.host_bounds ? "host" : "controller",
+        f.ratio > 0 ? fmt::format("{:.2f}x the {}", f.ratio, f.host_bounds ? "controller" : "host")
+                    : "the other side takes no time");
 }
 
 void add_host_options(CLI::App* sub, HostArgs& a) {

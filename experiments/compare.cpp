@@ -43,14 +43,6 @@ uint64_t pixels_differing(const controller::Framebuffer& a, const controller::Fr
     return n;
 }
 
-// The projection's CPU time, which the native set-up stage adds to the method's own.
-double projection_ms(const host::Scene& scene) {
-    host::Counters counters;
-    host::Stopwatch clock;
-    host::project_scene(scene, host::ColorMode::Shaded, counters);
-    return clock.elapsed().cpu_ms;
-}
-
 // `frame` scaled to the thumbnail by point sampling, its top-left corner at (x0, y0).
 void draw_thumbnail(controller::Framebuffer& sheet, const controller::Framebuffer& frame,
                     const SheetLayout& l, uint32_t x0, uint32_t y0) {
@@ -102,13 +94,6 @@ controller::Framebuffer draw_sheet(const Comparison& c) {
 
 }  // namespace
 
-std::vector<host::MethodOptions> every_method() {
-    std::vector<host::MethodOptions> settings;
-    for (const host::MethodInfo& m : host::methods())
-        settings.emplace_back(m.method);
-    return settings;
-}
-
 Comparison compare_methods(const std::string& file,
                            const std::vector<host::MethodOptions>& settings,
                            const ExperimentSettings& s) {
@@ -122,16 +107,15 @@ Comparison compare_methods(const std::string& file,
     c.width = static_cast<uint32_t>(screen.width);
     c.height = static_cast<uint32_t>(screen.height);
     const std::vector<Measured> r = measure_settings(file, screen, settings, s);
-    // natively set-up is projection + the method's; a 1989 host's set-up phase holds both
-    const double projection = s.period ? 0 : projection_ms(scene);
     const controller::Framebuffer truth = ids_of(scene, host::Method::ZBuffer);
     for (size_t m = 0; m < settings.size(); ++m) {
         CompareRow row;
         row.method = std::string(host::method_info(settings[m].method).name);
-        row.host_ms = projection + r[m].setup.cpu_ms + r[m].median.cpu_ms;
+        row.host_ms = r[m].setup.cpu_ms + r[m].median.cpu_ms;
         row.controller = controller_figures(r[m].commands, profile);
-        row.frame_ms = std::max(row.host_ms, row.controller.frame_ms);
-        row.host_bound = row.host_ms >= row.controller.frame_ms;
+        const FrameSplit split = frame_split(row.host_ms, row.controller.frame_ms);
+        row.frame_ms = split.frame_ms;
+        row.host_bound = split.host_bounds;
         row.pixels_differing = pixels_differing(truth, ids_of(scene, settings[m]));
         c.rows.push_back(row);
         c.frames.push_back(frame_of(r[m].commands));

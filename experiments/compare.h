@@ -39,9 +39,6 @@ struct Comparison {
     controller::Framebuffer sheet;                // the contact sheet of the frames
 };
 
-// Every method with its default options: the settings `compare` uses.
-std::vector<host::MethodOptions> every_method();
-
 // Renders `file` with each of `settings` (times under `s`; s.scenes is not read) and lays
 // out the sheet. Throws what loading the scene or the profile throws.
 Comparison compare_methods(const std::string& file,

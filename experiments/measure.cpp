@@ -1,5 +1,6 @@
 #include "experiments/measure.h"
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -52,7 +53,20 @@ std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
 std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
                                        const std::vector<host::MethodOptions>& settings,
                                        const ExperimentSettings& s) {
-    if (!s.period) return measure_interleaved(screen, settings, s.repeat, file, s.progress);
+    if (!s.period) {
+        std::vector<Measured> out =
+            measure_interleaved(screen, settings, s.repeat, file, s.progress);
+        // the set-up stage is the projection (timed once here) and the method's own
+        if (screen.world) {
+            host::Counters counters;
+            host::Stopwatch clock;
+            host::project_scene(*screen.world, host::ColorMode::Shaded, counters);
+            const host::Timing projection = clock.elapsed();
+            for (Measured& m : out)
+                m.setup += projection;
+        }
+        return out;
+    }
     // commands and counts from one frame here, untimed
     std::vector<Measured> out = measure_interleaved(screen, settings, 0, file, false);
     const std::string size =
@@ -70,6 +84,22 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
         out[m].setup = {setup, setup};
     }
     return out;
+}
+
+std::vector<host::MethodOptions> every_method() {
+    std::vector<host::MethodOptions> settings;
+    for (const host::MethodInfo& m : host::methods())
+        settings.emplace_back(m.method);
+    return settings;
+}
+
+FrameSplit frame_split(double host_ms, double controller_ms) {
+    FrameSplit f;
+    f.host_bounds = host_ms >= controller_ms;
+    f.frame_ms = std::max(host_ms, controller_ms);
+    const double other = std::min(host_ms, controller_ms);
+    f.ratio = other > 0 ? f.frame_ms / other : 0;
+    return f;
 }
 
 ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,

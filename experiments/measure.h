@@ -42,7 +42,7 @@ void interleave(size_t count, int repeat, const std::string& label, bool progres
 // of its last frame (every frame is the same).
 struct Measured {
     host::Timing median;
-    host::Timing setup;  // the method's own set-up (buffers, grids), once
+    host::Timing setup;  // the whole set-up stage, once: projection and the method's own
     host::Counters counters;
     protocol::MemoryBuffer commands;
 };
@@ -56,6 +56,19 @@ std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
 std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
                                        const std::vector<host::MethodOptions>& settings,
                                        const ExperimentSettings& s);
+
+// Every method, each with its default options.
+std::vector<host::MethodOptions> every_method();
+
+// The two-stage pipeline: the host makes frame n + 1 while the controller tiles frame n, so
+// the frame time is the larger of the two and that side bounds it; `ratio` is frame time
+// over the other side's (0 when that side takes no time).
+struct FrameSplit {
+    double frame_ms = 0;
+    bool host_bounds = false;
+    double ratio = 0;
+};
+FrameSplit frame_split(double host_ms, double controller_ms);
 
 // What the controller makes of one frame's commands under a profile.
 struct ControllerFigures {

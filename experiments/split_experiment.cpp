@@ -10,7 +10,6 @@
 #include "experiments/experiments.h"
 #include "experiments/measure.h"
 #include "experiments/period_runs.h"
-#include "host/raster/screen_setup.h"
 
 namespace fb89::experiments {
 
@@ -19,34 +18,21 @@ Table experiment_split(const ExperimentSettings& s) {
                  "controller_ms", "frame_ms", "bound_by", "ratio", "commands"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
     const std::string host = s.period ? s.period->profile().name : "native";
-    std::vector<host::MethodOptions> settings;
-    for (const host::MethodInfo& m : host::methods())
-        settings.emplace_back(m.method);
+    const std::vector<host::MethodOptions> settings = every_method();
     for (const auto& file : s.scenes) {
         host::Scene scene;
         const host::ScreenScene screen = load_screen(file, s, scene);
         const std::vector<Measured> r = measure_settings(file, screen, settings, s);
-        // natively the set-up stage is projection (timed here once) + the method's set-up;
-        // on a 1989 host the guest's set-up phase holds both
-        double projection_ms = 0;
-        if (!s.period) {
-            host::Counters counters;
-            host::Stopwatch clock;
-            host::project_scene(scene, host::ColorMode::Shaded, counters);
-            projection_ms = clock.elapsed().cpu_ms;
-        }
         for (size_t m = 0; m < settings.size(); ++m) {
             const ControllerFigures ctl = controller_figures(r[m].commands, profile);
-            const double setup_ms = projection_ms + r[m].setup.cpu_ms;
+            const double setup_ms = r[m].setup.cpu_ms;
             const double host_ms = setup_ms + r[m].median.cpu_ms;
-            const bool host_bounds = host_ms >= ctl.frame_ms;
-            const double low = std::min(host_ms, ctl.frame_ms);
+            const FrameSplit split = frame_split(host_ms, ctl.frame_ms);
             table.add({file, std::string(host::method_info(settings[m].method).name), host,
                        fixed(setup_ms, 3), fixed(r[m].median.cpu_ms, 3), fixed(host_ms, 3),
-                       fixed(ctl.frame_ms, 3), fixed(std::max(host_ms, ctl.frame_ms), 3),
-                       host_bounds ? "host" : "controller",
-                       low > 0 ? fixed(std::max(host_ms, ctl.frame_ms) / low, 2) : "",
-                       std::to_string(ctl.commands)});
+                       fixed(ctl.frame_ms, 3), fixed(split.frame_ms, 3),
+                       split.host_bounds ? "host" : "controller",
+                       split.ratio > 0 ? fixed(split.ratio, 2) : "", std::to_string(ctl.commands)});
         }
     }
     return table;
