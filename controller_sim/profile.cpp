@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -24,6 +25,8 @@ using nlohmann::json;
 // Cycle figures above this are rejected: they are typos, and they keep every per-command
 // cycle count of a 16384x16384 frame far inside 64 bits.
 constexpr uint64_t kMaxCycleFigure = 1'000'000;
+// The value of B_bus_bytes_per_s for a bus that takes no time.
+constexpr const char* kUnlimited = "unlimited";
 
 constexpr std::array<std::string_view, 15> kKnownKeys = {
     "name",          "description", "f_cyc_hz", "bpp",          "C_cmd",      "C_setup",
@@ -71,6 +74,16 @@ class FieldReader {
         if (value < 0) fail(field, fmt::format("must not be negative, got {}", v.dump()));
         if (value == 0 && !allow_zero) fail(field, "must be greater than zero");
         return value;
+    }
+
+    // A positive number, or "unlimited": a bus that takes no time (+infinity).
+    double bandwidth(std::string_view field) const {
+        const json& v = require(field);
+        if (v.is_string() && v.get<std::string>() == kUnlimited)
+            return std::numeric_limits<double>::infinity();
+        if (!v.is_number())
+            fail(field, fmt::format("expected a number or \"{}\", got {}", kUnlimited, v.dump()));
+        return number(field, false);
     }
 
     std::string text(std::string_view field, std::string fallback) const {
@@ -165,7 +178,7 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         r.fail("span_as", span_as.empty() ? "missing" : "expected \"line\" or \"fill\"");
     p.c_line_setup = r.cycles("C_line_setup");
     p.c_line_pix = r.cycles("C_line_pix");
-    p.b_bus_bytes_per_s = r.number("B_bus_bytes_per_s", false);
+    p.b_bus_bytes_per_s = r.bandwidth("B_bus_bytes_per_s");
     p.t_handshake_s = r.number("t_handshake_s", true);
     read_bytes(r, p);
     read_sources(r, j, p);
@@ -187,18 +200,22 @@ nlohmann::json CostProfile::to_json() const {
                 {"span_as", controller::to_string(span_as)},
                 {"C_line_setup", c_line_setup},
                 {"C_line_pix", c_line_pix},
-                {"B_bus_bytes_per_s", b_bus_bytes_per_s},
+                {"B_bus_bytes_per_s",
+                 std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
                 {"t_handshake_s", t_handshake_s},
                 {"bytes", bytes_json},
                 {"sources", sources}};
 }
 
 std::string CostProfile::to_string() const {
+    const std::string bus = std::isinf(b_bus_bytes_per_s)
+                                ? std::string("unlimited")
+                                : fmt::format("{:g} MB/s", b_bus_bytes_per_s / 1e6);
     return fmt::format(
         "{} ({:g} MHz, {} bpp, C_cmd {}, C_setup {}, C_op {}, C_row {}, spans as {}, "
-        "C_line_setup {}, C_line_pix {}, bus {:g} MB/s + {:g} us/command)",
+        "C_line_setup {}, C_line_pix {}, bus {} + {:g} us/command)",
         name, f_cyc_hz / 1e6, bpp, c_cmd, c_setup, c_op, c_row, controller::to_string(span_as),
-        c_line_setup, c_line_pix, b_bus_bytes_per_s / 1e6, t_handshake_s * 1e6);
+        c_line_setup, c_line_pix, bus, t_handshake_s * 1e6);
 }
 
 std::vector<std::string> list_profiles() {

@@ -38,7 +38,7 @@ struct CostProfile {
     SpanAs span_as = SpanAs::Line;
     uint32_t c_line_setup = 0;     // LINE set-up
     uint32_t c_line_pix = 0;       // per LINE pixel
-    double b_bus_bytes_per_s = 0;  // host-to-controller bandwidth
+    double b_bus_bytes_per_s = 0;  // host-to-controller bandwidth; +inf: "unlimited"
     double t_handshake_s = 0;      // per command sent
     // Bytes a command occupies on the modelled bus, by protocol::opcode_index. Fixed per
     // opcode whatever the file encoding; 0 means the command is not sent at all.

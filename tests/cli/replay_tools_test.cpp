@@ -238,6 +238,11 @@ TEST(InfoCommand, JsonHasPerFrameOpcodesPixelsAndBytes) {
     EXPECT_EQ(f0["bus_bytes"], 10 + 0 + 12 + 10 + 2);  // tms34010-50mhz
     EXPECT_EQ(f0["stream_bytes"], 16 + 10 + 20 + 16 + 1);
     EXPECT_EQ(j["frames"][1]["stream_bytes"], 16 + 20 + 1);
+
+    // The ideal profile charges no time but counts the same bytes on the bus.
+    CliRun ideal = fb89("info " + stream + " --json --profile ideal");
+    ASSERT_EQ(ideal.exit_code, 0) << ideal.err;
+    EXPECT_EQ(nlohmann::json::parse(ideal.out)["frames"][0]["bus_bytes"], f0["bus_bytes"]);
 }
 
 TEST(InfoCommand, TextShowsHeaderAndOneRowPerFrame) {

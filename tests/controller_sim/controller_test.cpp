@@ -239,6 +239,9 @@ TEST(Controller, IdealProfileCountsWorkButChargesNoTime) {
     EXPECT_EQ(f.bus_busy_us, 0.0);
     EXPECT_EQ(f.controller_busy_us, 0.0);
     EXPECT_EQ(f.end_us, 0.0);
+    // The bytes the commands take on the host port are counted as under the TMS34010:
+    // FRAME_BEGIN 10 + FILL_RECT 12 + DRAW_SPAN 10 + FRAME_END 2. Only their time is free.
+    EXPECT_EQ(f.total().bytes, 34u);
 }
 
 TEST(Controller, ExecuteAndSinkCallsAndMemoryReplayAgree) {

@@ -5,12 +5,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "controller_sim/cost_model.h"
 
 namespace fb89::controller {
 namespace {
@@ -134,6 +137,20 @@ TEST(Profile, NegativeValueErrorNamesField) {
     j = default_profile_json();
     j["B_bus_bytes_per_s"] = 0;
     EXPECT_NE(load_error(j).find("\"B_bus_bytes_per_s\": must be greater than zero"),
+              std::string::npos);
+}
+
+TEST(Profile, UnlimitedBusTakesNoTimeAndRoundTrips) {
+    json j = default_profile_json();
+    j["B_bus_bytes_per_s"] = "unlimited";
+    const CostProfile p = parse_profile(j.dump(), "test");
+    EXPECT_TRUE(std::isinf(p.b_bus_bytes_per_s));
+    EXPECT_EQ(bus_seconds(p, 12), p.t_handshake_s);
+    EXPECT_NE(p.to_string().find("bus unlimited"), std::string::npos);
+    EXPECT_EQ(p.to_json()["B_bus_bytes_per_s"], "unlimited");
+    EXPECT_TRUE(std::isinf(parse_profile(p.to_json().dump(), "again").b_bus_bytes_per_s));
+    j["B_bus_bytes_per_s"] = "fast";
+    EXPECT_NE(load_error(j).find("\"B_bus_bytes_per_s\": expected a number or \"unlimited\""),
               std::string::npos);
 }
 
