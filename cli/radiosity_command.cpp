@@ -31,6 +31,7 @@
 #include "controller_sim/png_io.h"
 #include "experiments/id_pass.h"
 #include "experiments/id_view.h"
+#include "experiments/progress.h"
 #include "host/methods.h"
 #include "host/radiosity/pipeline.h"
 #include "host/raster/screen_setup.h"
@@ -67,17 +68,6 @@ struct RadiosityRun {
     host::HostStats render_stats;
 };
 
-// Stage names on stderr while working, only when it is a terminal.
-struct Progress {
-    bool on = false;
-    void stage(std::string_view name) const {
-        if (on) fmt::print(stderr, "\rradiosity: {:<40}", name);
-    }
-    void done() const {
-        if (on) fmt::print(stderr, "\r{:<52}\r", "");
-    }
-};
-
 host::Scene load_world(const RadiosityArgs& args) {
     host::Scene world = host::load_scene(args.scene);
     if (!args.size.empty()) {
@@ -108,22 +98,26 @@ void render_patches(RadiosityRun& run) {
 // The paper's pipeline up to the solution (host/radiosity/pipeline.h), then the patches
 // through the Z-buffer.
 RadiosityRun run_radiosity(const RadiosityArgs& args) {
-    Progress progress{!args.quiet && isatty(STDERR_FILENO)};
+    experiments::ProgressLine progress(!args.quiet && isatty(STDERR_FILENO));
     RadiosityRun run;
     host::Stopwatch stage;
     run.world = load_world(args);
     run.times.load = stage.elapsed();
     try {
-        run.result = host::solve_radiosity(run.world, args.options,
-                                           [&](std::string_view name) { progress.stage(name); });
+        host::RadiosityObserver observer;
+        observer.stage = [&](std::string_view name) {
+            progress.start(fmt::format("radiosity: {}", name));
+        };
+        observer.work = [&](uint64_t done, uint64_t total) { progress.step(done, total); };
+        run.result = host::solve_radiosity(run.world, args.options, observer);
     } catch (const std::invalid_argument& e) {
-        progress.done();
+        progress.clear();
         throw UsageError(args.scene + ": " + e.what());
     }
     run.result.counts.publish(run.counters);
-    progress.stage("rendering");
+    progress.start("radiosity: rendering");
     render_patches(run);
-    progress.done();
+    progress.clear();
 
     const host::RadiosityTimes& t = run.result.times;
     for (const host::Timing& each :

@@ -21,6 +21,7 @@
 #include "experiments/id_pass.h"
 #include "experiments/id_view.h"
 #include "experiments/period_runs.h"
+#include "experiments/progress.h"
 #include "host/methods.h"
 #include "host/raster/scene_measures.h"
 #include "host/raster/screen_setup.h"
@@ -283,13 +284,16 @@ int run_render(const RenderArgs& args) {
 
     // a 1989 host: the same frame on the emulated MC68020 + MC68881, priced
     std::optional<PeriodHostRun> period;
-    const bool show = !args.quiet && isatty(STDERR_FILENO);
-    if (args.host != "native" && show)
-        fmt::print(stderr, "\rrunning the frame's host code on the emulated MC68020 + MC68881 ...");
-    if (args.host != "native")
-        period = run_on_period_host(args.host, args.scene,
-                                    experiments::guest_options(options, args.size), run.commands);
-    if (args.host != "native" && show) fmt::print(stderr, "\r{:<72}\r", "");
+    if (args.host != "native") {
+        // one emulated run has no measure of its own to estimate from: the time so far
+        experiments::ProgressLine line(!args.quiet && isatty(STDERR_FILENO));
+        line.start(
+            fmt::format("{} on the emulated {} (MC68020 + MC68881)", args.method, args.host));
+        period = line.ticking([&] {
+            return run_on_period_host(args.host, args.scene,
+                                      experiments::guest_options(options, args.size), run.commands);
+        });
+    }
 
     if (!args.png.empty()) {
         make_parent_dirs(args.png);

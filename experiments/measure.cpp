@@ -13,19 +13,6 @@
 
 namespace fb89::experiments {
 
-void show_round(const std::string& label, int round, int rounds,
-                std::chrono::steady_clock::time_point start) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::string left;
-    if (round > 0) left = fmt::format(", about {:.0f} s left", elapsed / round * (rounds - round));
-    std::cerr << fmt::format("\r{}: round {}/{}{}   ", label, round + 1, rounds, left);
-}
-
-void clear_progress() {
-    std::cerr << "\r" << std::string(70, ' ') << "\r";
-}
-
 std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
                                           const std::vector<host::MethodOptions>& settings,
                                           int repeat, const std::string& label, bool progress) {

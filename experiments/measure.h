@@ -2,12 +2,12 @@
 // through it, and what the controller makes of a frame's commands.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "controller_sim/profile.h"
+#include "experiments/progress.h"
 #include "experiments/settings.h"
 #include "host/methods.h"
 #include "host/raster/screen_scene.h"
@@ -17,25 +17,21 @@
 
 namespace fb89::experiments {
 
-// Progress of interleaved rounds on stderr ("label: round i/n, about 12 s left", the time
-// left estimated from the rounds done since `start`), and wiping it.
-void show_round(const std::string& label, int round, int rounds,
-                std::chrono::steady_clock::time_point start);
-void clear_progress();
-
 // The one interleaved-timing loop: a warm-up round, then `repeat` rounds; each round runs
 // every one of `count` settings once, in an order rotated by one from round to round, so
 // that slow drifts of the machine fall on all settings alike. run(m, timed) runs setting m;
 // `timed` is false in the warm-up round, whose figures are not kept.
+// With `progress`, the rounds done show on stderr ("label: 3/11 rounds, about 12 s left").
 template <class Run>
 void interleave(size_t count, int repeat, const std::string& label, bool progress, Run&& run) {
-    const auto start = std::chrono::steady_clock::now();
+    ProgressLine line(progress);
+    line.start(label);
+    const auto rounds = static_cast<uint64_t>(repeat + 1);
     for (int round = -1; round < repeat; ++round) {
-        if (progress) show_round(label, round + 1, repeat + 1, start);
+        line.step(static_cast<uint64_t>(round + 1), rounds, "rounds");
         for (size_t k = 0; k < count; ++k)
             run((k + static_cast<size_t>(round + 1)) % count, round >= 0);
     }
-    if (progress) clear_progress();
 }
 
 // One setting's result of interleaved timing: the median time, the counters and commands

@@ -14,6 +14,8 @@
 
 #include <fmt/format.h>
 
+#include "experiments/progress.h"
+
 namespace fb89::experiments {
 
 namespace {
@@ -135,15 +137,11 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
     std::vector<std::string> errors(jobs.size());
     std::atomic<size_t> next{0};
     size_t done = 0;
-    const auto start = std::chrono::steady_clock::now();
+    ProgressLine line(m_progress);
+    line.start(m_label);
     auto report = [&] {  // under m_mutex
         ++done;
-        if (!m_progress) return;
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::cerr << fmt::format(
-            "\r{}: {}/{} emulated runs, about {:.0f} s left   ", m_label, done, jobs.size(),
-            elapsed / static_cast<double>(done) * static_cast<double>(jobs.size() - done));
+        line.step(done, jobs.size(), "emulated runs");
     };
     auto worker = [&] {
         for (size_t i = next++; i < jobs.size(); i = next++) {
@@ -159,14 +157,21 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
             report();
         }
     };
-    std::vector<std::thread> threads;
     const size_t n = std::min<size_t>(static_cast<size_t>(m_jobs), jobs.size());
-    for (size_t t = 1; t < n; ++t)
-        threads.emplace_back(worker);
-    worker();
-    for (auto& t : threads)
-        t.join();
-    if (m_progress) std::cerr << "\r" << std::string(70, ' ') << "\r";
+    auto all = [&] {
+        std::vector<std::thread> threads;
+        for (size_t t = 1; t < n; ++t)
+            threads.emplace_back(worker);
+        worker();
+        for (auto& t : threads)
+            t.join();
+    };
+    // when every job runs at once, no job ends before the others to measure by: the time so far
+    if (n == jobs.size())
+        line.ticking(all);
+    else
+        all();
+    line.clear();
     for (const std::string& e : errors)
         if (!e.empty()) throw period::EmulatorError(e);
     return out;

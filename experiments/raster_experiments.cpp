@@ -1,8 +1,8 @@
 // The paper's §2 and §3 experiments on the raster methods: Figs. 2.1, 2.4 and 3.1, the
 // hybrid against the Z-buffer, the threshold sweep, and speed against accuracy.
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <iostream>
 #include <limits>
 
 #include <fmt/format.h>
@@ -109,7 +109,14 @@ Table experiment_fig2_4(const ExperimentSettings& s) {
     Table table({"scene", "e_s", "faces", "depth_complexity", "f_v", "predicted", "measured_area",
                  "measured_centres", "area_over_predicted", "sort_computations",
                  "predicted_sort_computations"});
+    // the scenes given, then 3 depths x 7 F_v of ideal scenes (F_v = 4, 16, ..., 16384)
+    const std::array<int, 3> all_layers = {1, 2, 4};
+    const uint64_t total = s.scenes.size() + all_layers.size() * 7;
+    uint64_t done = 0;
+    ProgressLine line(s.progress);
+    line.start("fig2.4");
     for (const auto& file : s.scenes) {
+        line.step(done++, total, "scenes");
         host::Scene scene;
         host::ScreenScene screen = load_screen(file, s, scene);
         host::SceneMeasures m = host::measure_scene(screen);
@@ -125,9 +132,9 @@ Table experiment_fig2_4(const ExperimentSettings& s) {
                    fixed(host::model::sort_face_computations(static_cast<double>(m.faces), d), 0)});
     }
     const int e_s = 512;
-    for (int layers : {1, 2, 4}) {
+    for (int layers : all_layers) {
         for (uint64_t f_v = 4; f_v <= 16384; f_v *= 4) {
-            if (s.progress) std::cerr << fmt::format("\rideal D={} F_v={}   ", layers, f_v);
+            line.step(done++, total, "scenes");
             host::ScreenScene screen = ideal_screen(e_s, layers, f_v);
             uint64_t sorts = 0;
             const uint64_t area = warnock_samples(screen, host::WindowTest::Area, &sorts);
@@ -142,7 +149,6 @@ Table experiment_fig2_4(const ExperimentSettings& s) {
                        0)});
         }
     }
-    if (s.progress) std::cerr << "\r" << std::string(40, ' ') << "\r";
     return table;
 }
 

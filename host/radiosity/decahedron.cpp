@@ -273,13 +273,20 @@ void Decahedra::element_pair(uint32_t ea, uint32_t eb) {
 }  // namespace
 
 Visibility decahedral_hybrid(const Mesh& mesh, const RadiosityWorld& world,
-                             const DecahedralOptions& options, VisibilityCounts& counts) {
+                             const DecahedralOptions& options, VisibilityCounts& counts,
+                             const WorkObserver& work) {
     Visibility delta(static_cast<uint32_t>(mesh.patches.size()));
     Decahedra decahedra(mesh, world, options, counts, delta);
     const auto elements = static_cast<uint32_t>(mesh.elements.size());
-    for (uint32_t ea = 0; ea < elements; ++ea)
+    const uint64_t n = mesh.patches.size();
+    for (uint32_t ea = 0; ea < elements; ++ea) {
         for (uint32_t eb = ea + 1; eb < elements; ++eb)
             decahedra.element_pair(ea, eb);
+        const Element& a = mesh.elements[ea];
+        if (work)
+            work(pairs_before(n, a.first_patch + static_cast<uint64_t>(a.nu * a.nv)),
+                 pairs_before(n, n));
+    }
     return delta;
 }
 

@@ -280,7 +280,8 @@ double polygon_to_polygon(const Polygon& from, const Polygon& to) {
     return std::clamp(sum / (2 * kPi * area_from), 0.0, 1.0);
 }
 
-std::vector<double> exact_form_factors(const Mesh& mesh, const Visibility& delta) {
+std::vector<double> exact_form_factors(const Mesh& mesh, const Visibility& delta,
+                                       const WorkObserver& work) {
     const size_t n = mesh.patches.size();
     if (delta.size() != n)
         throw std::invalid_argument("exact_form_factors: visibility is for another mesh");
@@ -295,6 +296,7 @@ std::vector<double> exact_form_factors(const Mesh& mesh, const Visibility& delta
             f[i * n + j] = fij;
             f[j * n + i] = pj.area > 0 ? fij * pi.area / pj.area : 0.0;  // reciprocity
         }
+        if (work) work(pairs_before(n, i + 1), pairs_before(n, n));
     }
     return f;
 }

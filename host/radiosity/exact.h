@@ -26,6 +26,7 @@ double polygon_to_polygon(const std::vector<glm::dvec3>& from, const std::vector
 
 // Every facing pair's exact unoccluded form factor times δ (0 where hidden): the dense
 // N x N matrix of form_factors.h.
-std::vector<double> exact_form_factors(const Mesh& mesh, const Visibility& delta);
+std::vector<double> exact_form_factors(const Mesh& mesh, const Visibility& delta,
+                                       const WorkObserver& work = {});
 
 }  // namespace fb89::host

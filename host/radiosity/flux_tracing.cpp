@@ -72,7 +72,8 @@ bool FluxTracer::blocked(const glm::dvec3& from, const glm::dvec3& to, uint32_t 
     return hit;
 }
 
-Visibility flux_tracing(const Mesh& mesh, const RadiosityWorld& world, VisibilityCounts& counts) {
+Visibility flux_tracing(const Mesh& mesh, const RadiosityWorld& world, VisibilityCounts& counts,
+                        const WorkObserver& work) {
     Visibility delta(static_cast<uint32_t>(mesh.patches.size()));
     FluxTracer tracer(mesh, world);
     std::vector<uint32_t> front_a, front_b;
@@ -96,6 +97,10 @@ Visibility flux_tracing(const Mesh& mesh, const RadiosityWorld& world, Visibilit
                 for (uint32_t q : front_b)
                     delta.set(p, q, tracer.trace(p, q));
             rays += front_a.size() * front_b.size();
+        }
+        if (work) {
+            const uint64_t n = mesh.patches.size();
+            work(pairs_before(n, a.first_patch + a_count), pairs_before(n, n));
         }
     }
     counts.facing_pairs += rays;

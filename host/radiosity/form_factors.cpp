@@ -27,8 +27,8 @@ double centre_form_factor(const Patch& from, const glm::dvec3& from_normal, cons
     return to.area * cos_from * cos_to / denominator;
 }
 
-std::vector<double> centre_form_factors(const Mesh& mesh, const Visibility& delta,
-                                        CentreForm form) {
+std::vector<double> centre_form_factors(const Mesh& mesh, const Visibility& delta, CentreForm form,
+                                        const WorkObserver& work) {
     const size_t n = mesh.patches.size();
     if (delta.size() != n)
         throw std::invalid_argument("centre_form_factors: visibility is for another mesh");
@@ -43,6 +43,7 @@ std::vector<double> centre_form_factors(const Mesh& mesh, const Visibility& delt
             f[i * n + j] = centre_form_factor(pi, ni, pj, nj, form);
             f[j * n + i] = centre_form_factor(pj, nj, pi, ni, form);
         }
+        if (work) work(pairs_before(n, i + 1), pairs_before(n, n));
     }
     return f;
 }

@@ -21,7 +21,8 @@ enum class CentreForm { PointToPoint, Disk };
 
 // F as a dense row-major N x N matrix: F[i * N + j] is the fraction of what leaves patch i
 // that reaches patch j. Pairs that do not face each other or are hidden get 0.
-std::vector<double> centre_form_factors(const Mesh& mesh, const Visibility& delta, CentreForm form);
+std::vector<double> centre_form_factors(const Mesh& mesh, const Visibility& delta, CentreForm form,
+                                        const WorkObserver& work = {});
 
 // The centre estimate for one pair, unoccluded.
 double centre_form_factor(const Patch& from, const glm::dvec3& from_normal, const Patch& to,

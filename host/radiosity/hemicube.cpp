@@ -160,8 +160,8 @@ std::vector<double> hemicube_form_factors(const Mesh& mesh, int resolution) {
     return hemicube_form_factors(mesh, resolution, counts);
 }
 
-std::vector<double> hemicube_form_factors(const Mesh& mesh, int resolution,
-                                          HemicubeCounts& counts) {
+std::vector<double> hemicube_form_factors(const Mesh& mesh, int resolution, HemicubeCounts& counts,
+                                          const WorkObserver& work) {
     if (resolution < 2 || resolution % 2 != 0)
         throw std::invalid_argument("hemicube_form_factors: resolution must be even and >= 2");
     const size_t n = mesh.patches.size();
@@ -211,6 +211,7 @@ std::vector<double> hemicube_form_factors(const Mesh& mesh, int resolution,
                     f[i * n + static_cast<uint32_t>(j)] += (*face.delta)[c];
             }
         }
+        if (work) work(i + 1, n);
     }
     counts.patches_rasterised += rasterised;
     counts.cells_tested += tested;

@@ -21,6 +21,7 @@ struct HemicubeCounts {
     uint64_t patches_rasterised = 0;  // (patch, hemicube face) pairs that covered a cell
     uint64_t cells_tested = 0;        // depth tests: cells covered by some patch
 };
-std::vector<double> hemicube_form_factors(const Mesh& mesh, int resolution, HemicubeCounts& counts);
+std::vector<double> hemicube_form_factors(const Mesh& mesh, int resolution, HemicubeCounts& counts,
+                                          const WorkObserver& work = {});
 
 }  // namespace fb89::host

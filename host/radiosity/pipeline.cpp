@@ -42,39 +42,40 @@ void check_size(const Mesh& mesh, const std::string& what) {
 }
 
 std::vector<double> form_factors(const RadiosityOptions& o, const Mesh& mesh,
-                                 const Visibility& delta) {
+                                 const Visibility& delta, const WorkObserver& work) {
+    HemicubeCounts hemicube;
     switch (o.form_factors) {
         case FormFactorMethod::Hemicube:
-            return hemicube_form_factors(mesh, o.hemicube_res);
+            return hemicube_form_factors(mesh, o.hemicube_res, hemicube, work);
         case FormFactorMethod::Exact:
-            return exact_form_factors(mesh, delta);
+            return exact_form_factors(mesh, delta, work);
         case FormFactorMethod::Disk:
-            return centre_form_factors(mesh, delta, CentreForm::Disk);
+            return centre_form_factors(mesh, delta, CentreForm::Disk, work);
         default:
-            return centre_form_factors(mesh, delta, CentreForm::PointToPoint);
+            return centre_form_factors(mesh, delta, CentreForm::PointToPoint, work);
     }
 }
 
 // δ, F and B for the current mesh; times add up over adaptive passes.
 void solve_mesh(const RadiosityOptions& o, const RadiosityWorld& world, RadiosityResult& run,
-                const StageObserver& stage) {
+                const RadiosityObserver& observer) {
     auto announce = [&](std::string_view name) {
-        if (stage) stage(name);
+        if (observer.stage) observer.stage(name);
     };
     Stopwatch clock;
     Visibility delta;
     if (o.form_factors == FormFactorMethod::Hybrid) {
         announce("visibility (decahedral hybrid)");
-        delta = decahedral_hybrid(run.mesh, world, {}, run.counts);
+        delta = decahedral_hybrid(run.mesh, world, {}, run.counts, observer.work);
     } else if (o.form_factors != FormFactorMethod::Hemicube) {
         announce("visibility (flux tracing)");
-        delta = flux_tracing(run.mesh, world, run.counts);
+        delta = flux_tracing(run.mesh, world, run.counts, observer.work);
     }
     run.times.visibility += clock.elapsed();
 
     clock.restart();
     announce("form factors");
-    const std::vector<double> F = form_factors(o, run.mesh, delta);
+    const std::vector<double> F = form_factors(o, run.mesh, delta, observer.work);
     run.times.form_factors += clock.elapsed();
 
     clock.restart();
@@ -93,10 +94,10 @@ void solve_mesh(const RadiosityOptions& o, const RadiosityWorld& world, Radiosit
 // Refine where radiosity changes fast and solve again, pass by pass, until nothing is split
 // or the mesh would grow too large.
 void refine_and_solve(const RadiosityOptions& o, const RadiosityWorld& world, RadiosityResult& run,
-                      const StageObserver& stage) {
+                      const RadiosityObserver& observer) {
     for (int pass = 0; o.adaptive > 0 && pass < o.adaptive_passes; ++pass) {
         Stopwatch clock;
-        if (stage) stage("refining");
+        if (observer.stage) observer.stage("refining");
         Mesh refined = refine(run.mesh, run.solution.radiosity, o.adaptive, run.patch_size / 4);
         run.times.meshing += clock.elapsed();
         if (refined.patches.size() == run.mesh.patches.size()) return;
@@ -109,7 +110,7 @@ void refine_and_solve(const RadiosityOptions& o, const RadiosityWorld& world, Ra
         }
         run.mesh = std::move(refined);
         run.patches_per_pass.push_back(run.mesh.patches.size());
-        solve_mesh(o, world, run, stage);
+        solve_mesh(o, world, run, observer);
     }
 }
 
@@ -142,7 +143,7 @@ std::string_view to_string(SolverKind solver) {
 }
 
 RadiosityResult solve_radiosity(const Scene& world, const RadiosityOptions& o,
-                                const StageObserver& stage) {
+                                const RadiosityObserver& observer) {
     if (world.projection != Projection::Perspective)
         throw std::invalid_argument("radiosity needs a perspective (world-space) scene");
     if (!has_emitter(world))
@@ -153,7 +154,7 @@ RadiosityResult solve_radiosity(const Scene& world, const RadiosityOptions& o,
 
     // patches and the grid the rays and queries run in
     Stopwatch clock;
-    if (stage) stage("meshing");
+    if (observer.stage) observer.stage("meshing");
     run.patch_size = patch_size_for(world, o.patches);
     MeshOptions mesh_options;
     mesh_options.patch_size = run.patch_size;
@@ -165,8 +166,8 @@ RadiosityResult solve_radiosity(const Scene& world, const RadiosityOptions& o,
     run.patches_per_pass.push_back(run.mesh.patches.size());
     run.times.meshing = clock.elapsed();
 
-    solve_mesh(o, traced, run, stage);
-    refine_and_solve(o, traced, run, stage);
+    solve_mesh(o, traced, run, observer);
+    refine_and_solve(o, traced, run, observer);
 
     clock.restart();
     run.exposure =

@@ -73,12 +73,16 @@ struct RadiosityResult {
     Scene patches;                   // one flat face per patch, coloured by radiosity
 };
 
-// Called with the name of each stage as it starts (for progress).
-using StageObserver = std::function<void(std::string_view)>;
+// Progress: stage(name) as each stage starts, then work(done, total) now and then inside
+// the long ones (visibility, form factors). Either may be empty.
+struct RadiosityObserver {
+    std::function<void(std::string_view)> stage;
+    WorkObserver work;
+};
 
 // Throws SceneError when the world is not a perspective scene or nothing in it emits, and
 // std::invalid_argument when the mesh would exceed kMaxPatches.
 RadiosityResult solve_radiosity(const Scene& world, const RadiosityOptions& options,
-                                const StageObserver& stage = {});
+                                const RadiosityObserver& observer = {});
 
 }  // namespace fb89::host

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "host/progress.h"
 #include "host/radiosity/mesh.h"
 #include "host/stats.h"
 #include "host/trace/grid.h"
@@ -69,7 +70,8 @@ struct RadiosityWorld {
     const UniformGrid& grid;
 };
 
-Visibility flux_tracing(const Mesh& mesh, const RadiosityWorld& world, VisibilityCounts& counts);
+Visibility flux_tracing(const Mesh& mesh, const RadiosityWorld& world, VisibilityCounts& counts,
+                        const WorkObserver& work = {});
 
 // One flux-tracing ray at a time (flux_tracing.cpp), so that both methods cast the very same
 // rays: from the centre of the lower-numbered patch to the other's, any hit ends it.
@@ -97,6 +99,7 @@ struct DecahedralOptions {
     uint64_t min_pairs_for_query = 0;
 };
 Visibility decahedral_hybrid(const Mesh& mesh, const RadiosityWorld& world,
-                             const DecahedralOptions& options, VisibilityCounts& counts);
+                             const DecahedralOptions& options, VisibilityCounts& counts,
+                             const WorkObserver& work = {});
 
 }  // namespace fb89::host

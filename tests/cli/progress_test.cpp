@@ -22,19 +22,45 @@ TEST(Progress, ATerminalSeesRoundsAndTheTimeLeft) {
         "script -qec '" + kExperiment + " --csv /dev/null' " + log + " >/dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0);
     const std::string seen = slurp(log);
-    EXPECT_NE(seen.find("round 2/4"), std::string::npos) << seen;
+    EXPECT_NE(seen.find("2/4 rounds"), std::string::npos) << seen;
     EXPECT_NE(seen.find("s left"), std::string::npos) << seen;
 }
 
 TEST(Progress, NothingWhenStderrIsNotATerminalOrWithQuiet) {
     CliRun piped = run_fb89(kExperiment.substr(kExperiment.find("experiment")) + " --csv -");
     ASSERT_EQ(piped.exit_code, 0) << piped.err;
-    EXPECT_EQ(piped.err.find("round"), std::string::npos) << piped.err;
+    EXPECT_EQ(piped.err.find("rounds"), std::string::npos) << piped.err;
     const std::string log = (test_dir() / "quiet.txt").string();
     const std::string cmd =
         "script -qec '" + kExperiment + " -q --csv /dev/null' " + log + " >/dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0);
-    EXPECT_EQ(slurp(log).find("round"), std::string::npos) << slurp(log);
+    EXPECT_EQ(slurp(log).find("rounds"), std::string::npos) << slurp(log);
+}
+
+// The radiosity stages report how far they have got, with the time left.
+TEST(Progress, RadiosityShowsEachStageWithTheTimeLeft) {
+    const std::string log = (test_dir() / "radiosity.txt").string();
+    const std::string cmd = "script -qec '" + std::string(FB89_CLI_PATH) + " radiosity " +
+                            FB89_SCENES_DIR + "/garish_room.json --patches 1200 --ff exact' " +
+                            log + " >/dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const std::string seen = slurp(log);
+    EXPECT_NE(seen.find("radiosity: visibility (flux tracing): "), std::string::npos) << seen;
+    EXPECT_NE(seen.find("radiosity: form factors: "), std::string::npos) << seen;
+    EXPECT_NE(seen.find("%, about "), std::string::npos) << seen;
+    EXPECT_NE(seen.find("radiosity: rendering"), std::string::npos) << seen;
+}
+
+// Fig. 2.4 counts the scenes it has done, its ideal scenes among them.
+TEST(Progress, Fig24CountsItsScenes) {
+    const std::string log = (test_dir() / "fig24.txt").string();
+    const std::string cmd = "script -qec '" + std::string(FB89_CLI_PATH) + " experiment fig2.4 " +
+                            FB89_SCENES_DIR + "/A.json --csv /dev/null' " + log +
+                            " >/dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const std::string seen = slurp(log);
+    EXPECT_NE(seen.find("fig2.4: 1/22 scenes, about "), std::string::npos) << seen;
+    EXPECT_NE(seen.find("fig2.4: 21/22 scenes"), std::string::npos) << seen;
 }
 
 }  // namespace

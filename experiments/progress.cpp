@@ -1,0 +1,76 @@
+#include "experiments/progress.h"
+
+#include <iostream>
+
+#include <fmt/format.h>
+
+namespace fb89::experiments {
+
+namespace {
+constexpr uint64_t kEveryUnitUpTo = 1000;
+}  // namespace
+
+void ProgressLine::start(std::string what) {
+    m_what = std::move(what);
+    m_start = std::chrono::steady_clock::now();
+    m_last_shown = {};
+    if (m_on) show(m_what);
+}
+
+double ProgressLine::seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+}
+
+void ProgressLine::step(uint64_t done, uint64_t total, std::string_view unit) {
+    if (!m_on) return;
+    const auto now = std::chrono::steady_clock::now();
+    // few units (rounds, scenes): every one; many (rows, pairs): ten times a second at most
+    if (total > kEveryUnitUpTo && done < total &&
+        now - m_last_shown < std::chrono::milliseconds(100))
+        return;
+    m_last_shown = now;
+    std::string text =
+        unit.empty()
+            ? fmt::format("{}: {:.0f}%", m_what,
+                          total > 0 ? 100.0 * static_cast<double>(done) / static_cast<double>(total)
+                                    : 100.0)
+            : fmt::format("{}: {}/{} {}", m_what, done, total, unit);
+    if (done > 0 && done < total)
+        text += fmt::format(", about {:.0f} s left", seconds() / static_cast<double>(done) *
+                                                         static_cast<double>(total - done));
+    show(text);
+}
+
+void ProgressLine::show(const std::string& text) {
+    std::lock_guard lock(m_out);
+    const std::size_t pad = m_width > text.size() ? m_width - text.size() : 0;
+    std::cerr << '\r' << text << std::string(pad, ' ') << std::flush;
+    m_width = text.size();
+}
+
+void ProgressLine::clear() {
+    if (!m_on) return;
+    std::lock_guard lock(m_out);
+    if (m_width == 0) return;
+    std::cerr << '\r' << std::string(m_width, ' ') << '\r' << std::flush;
+    m_width = 0;
+}
+
+ProgressLine::Ticker::Ticker(ProgressLine& l) : line(l) {
+    thread = std::thread([this] {
+        std::unique_lock lock(mutex);
+        while (!wake.wait_for(lock, std::chrono::seconds(1), [this] { return stop; }))
+            line.show(fmt::format("{}: {:.0f} s", line.m_what, line.seconds()));
+    });
+}
+
+ProgressLine::Ticker::~Ticker() {
+    {
+        std::lock_guard lock(mutex);
+        stop = true;
+    }
+    wake.notify_one();
+    thread.join();
+}
+
+}  // namespace fb89::experiments

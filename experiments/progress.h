@@ -1,0 +1,63 @@
+// One line of progress on stderr, rewritten in place: what is running, how far it has got,
+// and an estimate of the time left. A line that is off prints nothing: the commands turn it
+// on when stderr is a terminal and -q is not given, so pipes and logs stay clean.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <thread>
+
+namespace fb89::experiments {
+
+class ProgressLine {
+  public:
+    explicit ProgressLine(bool on) : m_on(on) {}
+    ~ProgressLine() { clear(); }
+    ProgressLine(const ProgressLine&) = delete;
+    ProgressLine& operator=(const ProgressLine&) = delete;
+
+    bool on() const { return m_on; }
+    // New work named `what` ("scenes/A.json", "radiosity: form factors"); its clock starts.
+    void start(std::string what);
+    // `done` of `total` units of the current work: "what: 3/11 rounds, about 12 s left"
+    // with a unit, "what: 43%, about 12 s left" without. The estimate is the time so far
+    // scaled by what is left; none before the first unit is done. With up to 1000 units
+    // every step is drawn; with more, at most ten a second, and always when done == total.
+    void step(uint64_t done, uint64_t total, std::string_view unit = {});
+    // Runs `work`, showing "what: 12 s" once a second while it runs: for work that has no
+    // measure of its own (one emulated run).
+    template <class Work>
+    auto ticking(Work&& work) {
+        if (!m_on) return work();
+        Ticker ticker(*this);
+        return work();
+    }
+    // Wipes the line.
+    void clear();
+
+  private:
+    struct Ticker {
+        explicit Ticker(ProgressLine& line);
+        ~Ticker();
+        ProgressLine& line;
+        std::mutex mutex;
+        std::condition_variable wake;
+        bool stop = false;
+        std::thread thread;
+    };
+    void show(const std::string& text);
+    double seconds() const;
+
+    bool m_on;
+    std::string m_what;
+    std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
+    std::chrono::steady_clock::time_point m_last_shown{};
+    std::size_t m_width = 0;  // of the text on the line now
+    std::mutex m_out;
+};
+
+}  // namespace fb89::experiments

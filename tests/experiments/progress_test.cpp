@@ -1,0 +1,86 @@
+// Tests of experiments/progress: what the line says, when it estimates, and that a line
+// that is off says nothing.
+#include "experiments/progress.h"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+namespace fb89::experiments {
+namespace {
+
+// Captures std::cerr while alive.
+struct CapturedCerr {
+    std::ostringstream text;
+    std::streambuf* old = std::cerr.rdbuf(text.rdbuf());
+    ~CapturedCerr() { std::cerr.rdbuf(old); }
+};
+
+TEST(ProgressLine, CountsUnitsAndEstimatesOnlyOnceOneIsDone) {
+    CapturedCerr err;
+    {
+        ProgressLine line(true);
+        line.start("fig2.1");
+        line.step(0, 4, "rounds");
+        EXPECT_EQ(err.text.str().find("left"), std::string::npos) << err.text.str();
+        line.step(1, 4, "rounds");
+        line.step(4, 4, "rounds");
+    }
+    const std::string s = err.text.str();
+    EXPECT_NE(s.find("\rfig2.1: 0/4 rounds"), std::string::npos) << s;
+    EXPECT_NE(s.find("\rfig2.1: 1/4 rounds, about "), std::string::npos) << s;
+    EXPECT_NE(s.find("s left"), std::string::npos) << s;
+    // the last step has nothing left to estimate, and the line is wiped at the end
+    const size_t last = s.find("\rfig2.1: 4/4 rounds");
+    ASSERT_NE(last, std::string::npos) << s;
+    EXPECT_EQ(s.find("left", last), std::string::npos) << s;
+    EXPECT_EQ(s.back(), '\r');
+}
+
+TEST(ProgressLine, ManyUnitsAreShownAsAPercentageAtMostTenTimesASecond) {
+    CapturedCerr err;
+    ProgressLine line(true);
+    line.start("form factors");
+    for (uint64_t i = 0; i <= 100'000; ++i)
+        line.step(i, 100'000);
+    const std::string s = err.text.str();
+    EXPECT_NE(s.find("form factors: 0%"), std::string::npos) << s;
+    EXPECT_NE(s.find("form factors: 100%"), std::string::npos) << s;
+    size_t shown = 0;
+    for (size_t at = s.find('\r'); at != std::string::npos; at = s.find('\r', at + 1))
+        ++shown;
+    EXPECT_LT(shown, 100u) << "a hundred thousand steps drew " << shown << " lines";
+}
+
+TEST(ProgressLine, TickingShowsTheTimeSoFar) {
+    CapturedCerr err;
+    ProgressLine line(true);
+    line.start("raytrace on the emulated sun3-60");
+    const int answer = line.ticking([] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1600));
+        return 42;
+    });
+    EXPECT_EQ(answer, 42);
+    // a tick a second; a busy machine may draw it late, so "1 s" or "2 s"
+    const std::string s = err.text.str();
+    EXPECT_TRUE(s.find("raytrace on the emulated sun3-60: 1 s") != std::string::npos ||
+                s.find("raytrace on the emulated sun3-60: 2 s") != std::string::npos)
+        << s;
+}
+
+TEST(ProgressLine, OffSaysNothing) {
+    CapturedCerr err;
+    {
+        ProgressLine line(false);
+        line.start("quiet");
+        line.step(1, 2, "rounds");
+        EXPECT_EQ(line.ticking([] { return 1; }), 1);
+        line.clear();
+    }
+    EXPECT_EQ(err.text.str(), "");
+}
+
+}  // namespace
+}  // namespace fb89::experiments
