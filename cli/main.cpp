@@ -46,8 +46,11 @@ int main(int argc, char** argv) {
         for (const CLI::App* sub : app.get_subcommands({}))
             names.push_back(sub->get_name());
         if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+            // "version" and "help" are near the options that do it
+            std::vector<std::string> near = names;
+            near.insert(near.end(), {"--version", "--help"});
             std::cerr << "fb89: usage: unknown command '" << argv[1] << "'"
-                      << nearest_hint(argv[1], names) << " (fb89 --help lists them)\n";
+                      << nearest_hint(argv[1], near) << " (fb89 --help lists them)\n";
             return kBadInput;
         }
     }

@@ -34,6 +34,11 @@ TEST(ListCommand, VersionAndUnknownCommandsSayWhatTheyShould) {
     EXPECT_EQ(typo.exit_code, 2);
     EXPECT_NE(typo.err.find("unknown command 'rendr'; did you mean 'render'?"), std::string::npos)
         << typo.err;
+    CliRun version = run_fb89("version");
+    EXPECT_EQ(version.exit_code, 2);
+    EXPECT_NE(version.err.find("unknown command 'version'; did you mean '--version'?"),
+              std::string::npos)
+        << version.err;
     CliRun option = run_fb89("render scenes/A.json --thresold 0.1");
     EXPECT_EQ(option.exit_code, 2);
     EXPECT_NE(option.err.find("--thresold: did you mean '--threshold'?"), std::string::npos)
