@@ -42,7 +42,7 @@ struct RenderArgs {
     std::string depth_estimate = "window";
     std::string beam_threshold = "calibrated";
     int reflections = host::TraceOptions{}.max_reflections;
-    double grid_density = host::TraceOptions{}.grid_density;
+    double grid_density = host::BeamOptions{}.grid_density;
     std::string mask;
     int approx_min_side = 0;
     double approx_epsilon = 0;
@@ -68,7 +68,7 @@ void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& m
         {"--threshold", host::kHybridOptions, "hybrid"},
         {"--depth-estimate", host::kHybridOptions, "hybrid"},
         {"--reflections", host::kTraceOptions, "raytrace and beam"},
-        {"--grid-density", host::kTraceOptions, "raytrace and beam"},
+        {"--grid-density", host::kBeamOptions, "beam"},
         {"--beam-threshold", host::kBeamOptions, "beam"},
     };
     host::Method m;
@@ -260,7 +260,7 @@ int run_render(const RenderArgs& args) {
         options.beam.threshold =
             resolve_beam_threshold(args.beam_threshold, &beam_source, args.host);
         options.trace.max_reflections = args.reflections;
-        options.trace.grid_density = args.grid_density;
+        options.beam.grid_density = args.grid_density;
         renderer = host::make_renderer(options);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
@@ -368,8 +368,8 @@ void register_render(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option(
            "--grid-density", args->grid_density,
-           "Raytrace and beam: top-level grid cells per face piece (crowded cells get a grid of "
-           "their own)")
+           "Beam: top-level cells per face piece of the grid the beam queries scan (crowded "
+           "cells get a grid of their own; rays use a BVH)")
         ->check(CLI::Range(host::kMinGridDensity, host::kMaxGridDensity))
         ->capture_default_str();
     sub->add_option("--mask", args->mask,

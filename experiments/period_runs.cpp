@@ -81,7 +81,7 @@ std::vector<std::string> guest_options(const host::MethodOptions& o, const std::
         "--depth-estimate", o.hybrid.depth == host::DepthEstimate::Scene ? "scene" : "window",
         "--beam-threshold", number(o.beam.threshold),
         "--reflections",    std::to_string(o.trace.max_reflections),
-        "--grid-density",   number(o.trace.grid_density)};
+        "--grid-density",   number(o.beam.grid_density)};
     if (!size.empty()) args.insert(args.end(), {"--size", size});
     return args;
 }

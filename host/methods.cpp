@@ -66,11 +66,12 @@ void validate(const MethodOptions& o) {
         if (o.trace.max_reflections < 0 || o.trace.max_reflections > kMaxReflections)
             throw std::invalid_argument("the reflection limit must be 0 to " +
                                         std::to_string(kMaxReflections));
-        if (!(o.trace.grid_density >= kMinGridDensity && o.trace.grid_density <= kMaxGridDensity))
-            throw std::invalid_argument("the grid density must be in [" +
-                                        std::to_string(kMinGridDensity) + ", " +
-                                        std::to_string(kMaxGridDensity) + "] cells per piece");
     }
+    if (info.uses(kBeamOptions) &&
+        !(o.beam.grid_density >= kMinGridDensity && o.beam.grid_density <= kMaxGridDensity))
+        throw std::invalid_argument("the grid density must be in [" +
+                                    std::to_string(kMinGridDensity) + ", " +
+                                    std::to_string(kMaxGridDensity) + "] cells per piece");
     if (info.uses(kBeamOptions) && !(o.beam.threshold >= 0))
         throw std::invalid_argument(
             "the beam threshold must be >= 0 (inf for beams down to single pixels)");

@@ -116,7 +116,7 @@ RayRow measure_ray_side_by_side(const RayScene& scene, const RaySideBySideOption
     // our counters, from the last frames
     const host::Counters& rc = raytrace.stats.counters;
     row.rays = rc.get("rays");
-    row.cells = rc.get("cells_visited");
+    row.cells = rc.get("bvh_nodes_visited");
     row.face_tests = rc.get("ray_face_tests");
     row.beam_rays = beam.stats.counters.get("rays");
     row.pixels_by_beams = beam.stats.counters.get("pixels_by_beams");

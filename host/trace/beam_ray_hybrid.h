@@ -31,7 +31,8 @@ namespace fb89::host {
 inline constexpr double kDefaultBeamThreshold = 1000;
 
 struct BeamOptions {
-    double threshold = kDefaultBeamThreshold;  // Expr. 2.7 threshold (inf: down to pixels)
+    double threshold = kDefaultBeamThreshold;   // Expr. 2.7 threshold (inf: down to pixels)
+    double grid_density = kDefaultGridDensity;  // the beam queries' grid: top-level cells per piece
 };
 
 class BeamRayHybrid final : public Renderer {

@@ -1,5 +1,6 @@
 #include "host/trace/ray_tracer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -8,38 +9,35 @@ namespace fb89::host {
 
 void TraceCounts::publish(Counters& counters) const {
     counters.add("rays", rays);
-    counters.add("cells_visited", cells);
+    counters.add("bvh_nodes_visited", nodes);
     counters.add("ray_face_tests", face_tests);
     counters.add("ray_ties", ties);
 }
 
-RayTracer::RayTracer(const TraceScene& scene, const UniformGrid& grid)
-    : m_scene(scene), m_grid(grid), m_mailbox(scene.faces().size()) {}
+RayTracer::RayTracer(const TraceScene& scene) : m_scene(scene), m_bvh(scene) {}
 
 Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
                            double tmax) const {
-    const Mailbox::Round mailbox = m_mailbox.begin();
     const RaySpace space(ray.dir);
     Hit best{INFINITY, kNoFace};
     uint64_t tests = 0, ties = 0;
-    auto test_list = [&, mailbox](std::span<const uint32_t> pieces) {
-        for (uint32_t piece : pieces) {
-            if (!mailbox.first_visit(piece) || piece == skip) continue;
+    const uint64_t nodes = m_bvh.walk(
+        ray, tmin, tmax,
+        [&](uint32_t piece) {
+            if (piece == skip) return;
             ++tests;
             double t;
-            if (!m_scene.intersect(ray, space, piece, tmin, t) || t > best.t || t > tmax) continue;
+            if (!m_scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) ||
+                t > best.t || t > tmax)
+                return;
             if (t == best.t) {
                 ++ties;
-                if (piece > best.piece) continue;
+                if (piece > best.piece) return;
             }
             best = {t, piece};
-        }
-    };
-    // a hit beyond a cell may yet be beaten
-    const auto walked = m_grid.walk_levels(ray, tmin, tmax, test_list,
-                                           [&](double t_exit) { return best.t <= t_exit; });
-    const uint64_t cells = walked.cells + walked.sub_cells;
-    counts.cells += cells;
+        },
+        [&] { return best.t; });
+    counts.nodes += nodes;
     counts.face_tests += tests;
     counts.ties += ties;
     return best;
@@ -103,12 +101,12 @@ void TraceSetup::build(const ScreenScene& screen, int max_reflections, double gr
     if (!screen.world)
         throw std::logic_error("tracing needs the world scene the screen scene came from");
     scene = std::make_unique<TraceScene>(*screen.world, screen.id_colors, max_reflections);
-    grid = std::make_unique<UniformGrid>(*scene, grid_density);
-    tracer = std::make_unique<RayTracer>(*scene, *grid);
+    if (grid_density > 0) grid = std::make_unique<UniformGrid>(*scene, grid_density);
+    tracer = std::make_unique<RayTracer>(*scene);
 }
 
 void RayTraceRenderer::setup(const ScreenScene& scene) {
-    m_trace.build(scene, m_options.max_reflections, m_options.grid_density);
+    m_trace.build(scene, m_options.max_reflections, 0);  // rays need no grid
     m_row.assign(static_cast<size_t>(scene.width), 0);
 }
 

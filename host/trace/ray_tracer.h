@@ -1,11 +1,10 @@
 // The ray tracer embedded in the paper's hybrid (§4), and the `raytrace` method: one ray
-// through each pixel centre, the nearest face by the uniform grid and the watertight test
+// through each pixel centre, the nearest face by the BVH (bvh.h) and the watertight test
 // (ties go to the lower piece, as the raster methods give them to the lower id), mirrors
 // followed up to a reflection limit, flat Lambertian shading, no shadows. Ray-traced pixels
 // leave as DRAW_SPAN runs of equal colour, row by row; background sends nothing.
 //
-// Each ray has a mailbox (the serial number of the last ray that tested each piece), so a
-// piece listed in several cells is tested once per ray. A reflected ray starts on the
+// Each piece sits in one BVH leaf, so a ray tests it at most once. A reflected ray starts on the
 // mirror and skips it; faces nearer than the scene's tolerance to its start are skipped too
 // (the beam tracer counts any face that near as blocking, so both agree).
 #pragma once
@@ -15,8 +14,8 @@
 #include <vector>
 
 #include "host/raster/renderer.h"
+#include "host/trace/bvh.h"
 #include "host/trace/grid.h"
-#include "host/trace/mailbox.h"
 #include "host/trace/trace_scene.h"
 
 namespace fb89::host {
@@ -26,8 +25,8 @@ inline constexpr int kMaxReflections = 16;
 // Counted in locals by kernels, published once per frame.
 struct TraceCounts {
     uint64_t rays = 0;        // every ray traced: primary and reflected
-    uint64_t cells = 0;       // grid cells visited
-    uint64_t face_tests = 0;  // ray-piece tests after the mailbox
+    uint64_t nodes = 0;       // BVH nodes visited
+    uint64_t face_tests = 0;  // ray-piece tests
     uint64_t ties = 0;        // a piece hit at exactly the best distance so far
     void publish(Counters& counters) const;
 };
@@ -46,9 +45,9 @@ struct RayTrace {
 
 class RayTracer {
   public:
-    RayTracer(const TraceScene& scene, const UniformGrid& grid);
+    explicit RayTracer(const TraceScene& scene);
 
-    // Nearest piece with tmin < t <= tmax, never `skip`. Not thread-safe (the mailbox).
+    // Nearest piece with tmin < t <= tmax, never `skip`.
     Hit closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
                     double tmax = INFINITY) const;
     // The whole path of one primary ray, with its colour.
@@ -58,12 +57,11 @@ class RayTracer {
     }
 
     const TraceScene& scene() const { return m_scene; }
-    const UniformGrid& grid() const { return m_grid; }
+    const RayBvh& bvh() const { return m_bvh; }
 
   private:
     const TraceScene& m_scene;
-    const UniformGrid& m_grid;
-    mutable Mailbox m_mailbox;
+    RayBvh m_bvh;
 };
 
 // A pixel as the renderers keep it before sending: 0 is background (sends nothing), else
@@ -74,7 +72,8 @@ inline uint32_t packed_pixel(protocol::Rgb c) {
 // Sends row y's pixels x0..x1-1 as DRAW_SPAN runs of equal colour; returns the spans sent.
 uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::CommandSink& sink);
 
-// The scene built for tracing at set-up: world faces, grid and tracer.
+// The scene built for tracing at set-up: world faces, tracer and (with a grid density above
+// 0, for the beams) the grid.
 struct TraceSetup {
     std::unique_ptr<TraceScene> scene;
     std::unique_ptr<UniformGrid> grid;
@@ -87,8 +86,7 @@ struct TraceSetup {
 inline constexpr double kMinGridDensity = 0.01, kMaxGridDensity = 1000;
 
 struct TraceOptions {
-    int max_reflections = 8;                    // mirror bounces followed (0: primary visibility)
-    double grid_density = kDefaultGridDensity;  // top-level grid cells per face piece
+    int max_reflections = 8;  // mirror bounces followed (0: primary visibility)
 };
 
 // `raytrace`: the ray tracer alone.

@@ -35,17 +35,6 @@ std::array<glm::dvec3, 2> local_colors(const Scene& scene, const Face& face,
 
 }  // namespace
 
-RaySpace::RaySpace(const glm::dvec3& d) {
-    const glm::dvec3 a = glm::abs(d);
-    kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-    kx = (kz + 1) % 3;
-    ky = (kx + 1) % 3;
-    if (d[kz] < 0) std::swap(kx, ky);  // keep the winding
-    sx = d[kx] / d[kz];
-    sy = d[ky] / d[kz];
-    sz = 1.0 / d[kz];
-}
-
 TraceScene::TraceScene(const Scene& scene, bool id_colors, int max_reflections)
     : m_width(scene.width),
       m_height(scene.height),
@@ -93,15 +82,6 @@ TraceScene::TraceScene(const Scene& scene, bool id_colors, int max_reflections)
     }
     const double size = m_faces.empty() ? 1.0 : std::max(glm::length(hi - lo), 1e-30);
     m_tolerance = size * 1e-9;
-}
-
-Ray TraceScene::pixel_ray(int x, int y) const {
-    const double cx = x + 0.5, cy = y + 0.5;
-    if (m_orthographic) return {{cx, cy, -1.0}, {0, 0, 1}};
-    const double ndc_x = 2.0 * cx / m_width - 1.0;
-    const double ndc_y = 1.0 - 2.0 * cy / m_height;
-    const glm::dvec3 dir = m_forward + ndc_x * m_right + ndc_y * m_up;
-    return {m_eye + m_near * dir, dir};  // dir's depth component is 1: t is depth
 }
 
 protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count) {

@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -57,7 +58,7 @@ struct Hit {
 // and the shear that makes it the +z axis.
 struct RaySpace {
     int kx = 0, ky = 1, kz = 2;
-    double sx = 0, sy = 0, sz = 1;
+    double sx = 0, sy = 0;
     explicit RaySpace(const glm::dvec3& dir);
 };
 
@@ -84,9 +85,11 @@ class TraceScene {
     double primary_length() const { return m_primary_length; }
     bool orthographic() const { return m_orthographic; }
 
-    // The watertight test of one piece: true with t when the ray hits it at tmin < t.
-    bool intersect(const Ray& ray, const RaySpace& space, uint32_t piece, double tmin,
-                   double& t) const;
+    // The watertight test of one piece: true with t when the ray hits it at tmin < t. A hit
+    // beyond `wanted` may be reported as none (the caller has a nearer one): the plane is
+    // checked against both ends first, without a division.
+    bool intersect(const Ray& ray, const RaySpace& space, uint32_t piece, double tmin, double& t,
+                   double wanted = INFINITY) const;
 
     // Lengths below this are "touching" for beam queries (a billionth of the scene's size).
     double tolerance() const { return m_tolerance; }
@@ -117,15 +120,39 @@ struct PathHit {
 
 protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count);
 
-// Inline: the ray tracer's innermost call.
+// Inline, as the ray tracer calls them once per ray or test.
+inline RaySpace::RaySpace(const glm::dvec3& d) {
+    const glm::dvec3 a = glm::abs(d);
+    kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    kx = (kz + 1) % 3;
+    ky = (kx + 1) % 3;
+    if (d[kz] < 0) std::swap(kx, ky);  // keep the winding
+    sx = d[kx] / d[kz];
+    sy = d[ky] / d[kz];
+}
+
+inline Ray TraceScene::pixel_ray(int x, int y) const {
+    const double cx = x + 0.5, cy = y + 0.5;
+    if (m_orthographic) return {{cx, cy, -1.0}, {0, 0, 1}};
+    const double ndc_x = 2.0 * cx / m_width - 1.0;
+    const double ndc_y = 1.0 - 2.0 * cy / m_height;
+    const glm::dvec3 dir = m_forward + ndc_x * m_right + ndc_y * m_up;
+    return {m_eye + m_near * dir, dir};  // dir's depth component is 1: t is depth
+}
+
 inline bool TraceScene::intersect(const Ray& ray, const RaySpace& s, uint32_t piece, double tmin,
-                                  double& t) const {
+                                  double& t, double wanted) const {
     const TraceFace& f = m_faces[piece];
-    // plane first: most faces behind the best hit so far stop here
+    // plane first: most faces behind the best hit so far stop here. Without dividing: the
+    // plane's distance is num / denom; with both made positive-denominator, a face is
+    // dropped only when it is clearly outside (tmin, wanted], by a margin far above the
+    // rounding of the products, so the exact test below decides every face near either end.
     const double denom = glm::dot(f.normal, ray.dir);
     if (denom == 0) return false;
-    const double th = (f.plane - glm::dot(f.normal, ray.origin)) / denom;
-    if (!(th > tmin)) return false;
+    const double num = f.plane - glm::dot(f.normal, ray.origin);
+    const double a = denom > 0 ? num : -num, b = denom > 0 ? denom : -denom;
+    constexpr double kMargin = 1e-14;
+    if (a <= tmin * b * (1 - kMargin) || a > wanted * b * (1 + kMargin)) return false;
 
     // watertight inside test in ray space
     const glm::dvec3* v = vertices_of(f);
@@ -152,8 +179,8 @@ inline bool TraceScene::intersect(const Ray& ray, const RaySpace& s, uint32_t pi
         py = qy;
     }
     if (det == 0) return false;  // edge-on
-    t = th;
-    return true;
+    t = num / denom;
+    return t > tmin;
 }
 
 }  // namespace fb89::host

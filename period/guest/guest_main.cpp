@@ -33,7 +33,7 @@ struct GuestArgs {
     double threshold = host::kPaperThreshold;
     double beam_threshold = host::kDefaultBeamThreshold;
     int reflections = host::TraceOptions{}.max_reflections;
-    double grid_density = host::TraceOptions{}.grid_density;
+    double grid_density = host::BeamOptions{}.grid_density;
     int approx_min = 0;
     double approx_eps = 0;
     bool ids = false;
@@ -51,7 +51,7 @@ host::MethodOptions method_options(const GuestArgs& a) {
         a.depth_estimate == "scene" ? host::DepthEstimate::Scene : host::DepthEstimate::Window;
     o.beam.threshold = a.beam_threshold;
     o.trace.max_reflections = a.reflections;
-    o.trace.grid_density = a.grid_density;
+    o.beam.grid_density = a.grid_density;
     return o;
 }
 
@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
     app.add_option("--depth-estimate", a.depth_estimate, "Hybrid: window or scene");
     app.add_option("--beam-threshold", a.beam_threshold, "Beam: Expr. 2.7 threshold");
     app.add_option("--reflections", a.reflections, "Raytrace and beam: mirror bounces");
-    app.add_option("--grid-density", a.grid_density, "Raytrace and beam: cells per piece");
+    app.add_option("--grid-density", a.grid_density, "Beam: grid cells per piece");
     app.add_option("--approx-min", a.approx_min, "Approximate fills: smallest side");
     app.add_option("--approx-eps", a.approx_eps, "Approximate fills: centres missed");
     app.add_flag("--ids", a.ids, "Render the face-id pass instead of the shaded frame");

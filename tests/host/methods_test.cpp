@@ -45,12 +45,14 @@ TEST(Methods, EachMethodReadsOnlyItsOwnOptionGroups) {
 }
 
 TEST(Methods, OutOfRangeOptionsAreRefusedOnlyWhereTheMethodReadsThem) {
-    MethodOptions o(Method::RayTrace);
-    o.trace.grid_density = 0;
+    MethodOptions o(Method::Beam);
+    o.beam.grid_density = 0;
     EXPECT_THROW(make_renderer(o), std::invalid_argument);
-    o.trace.grid_density = kMaxGridDensity * 2;
+    o.beam.grid_density = kMaxGridDensity * 2;
     EXPECT_THROW(validate(o), std::invalid_argument);
-    o.trace.grid_density = TraceOptions{}.grid_density;
+    o.method = Method::RayTrace;  // rays use the BVH: the grid density is not theirs
+    EXPECT_NO_THROW(validate(o));
+    o.beam.grid_density = BeamOptions{}.grid_density;
     o.trace.max_reflections = kMaxReflections + 1;
     EXPECT_THROW(validate(o), std::invalid_argument);
     o.method = Method::ZBuffer;  // the Z-buffer reads no trace options

@@ -17,7 +17,7 @@ using testing::world_scene;
 // A scene, its grid and tracers, and the classification of one pixel window.
 struct Beams {
     explicit Beams(const Scene& scene)
-        : trace(scene, true, 8), grid(trace), rays(trace, grid), beams(trace, grid) {}
+        : trace(scene, true, 8), grid(trace), rays(trace), beams(trace, grid) {}
 
     BeamClass classify(const PixelRect& w) {
         const int xs[4] = {w.x0, w.x1 - 1, w.x1 - 1, w.x0};

@@ -19,8 +19,7 @@ using testing::world_scene;
 TEST(RayTracer, NoRaySlipsThroughSharedEdgesOrVertices) {
     const Scene scene = testing::lattice_through_pixel_centres(61, 6);
     TraceScene trace(scene, true, 0);
-    UniformGrid grid(trace);
-    RayTracer tracer(trace, grid);
+    RayTracer tracer(trace);
     TraceCounts counts;
     RayTrace path;
     // every pixel centre within the mesh's outline, borders included
@@ -37,8 +36,7 @@ TEST(RayTracer, AnExactTieGoesToTheLowerPieceAndIsCounted) {
     add_square(s, 0, 0, 0, 1, {1, 0, 0});
     add_square(s, 0, 0, 0, 1, {0, 1, 0});  // the same square again: every hit ties
     TraceScene trace(s, true, 0);
-    UniformGrid grid(trace);
-    RayTracer tracer(trace, grid);
+    RayTracer tracer(trace);
     TraceCounts counts;
     RayTrace path;
     tracer.trace_pixel(16, 16, path, counts);
@@ -48,7 +46,7 @@ TEST(RayTracer, AnExactTieGoesToTheLowerPieceAndIsCounted) {
 }
 
 TEST(RayTracer, ClosestHitEqualsEveryPieceTriedInTurn) {
-    // seeded random triangles in a box, rays in random directions: the grid walk must find
+    // seeded random triangles in a box, rays in random directions: the BVH walk must find
     // what testing every piece finds
     Scene s = world_scene(8, 8);
     uint64_t state = 1989;
@@ -62,8 +60,7 @@ TEST(RayTracer, ClosestHitEqualsEveryPieceTriedInTurn) {
         add_face(s, {c + jitter(), c + jitter(), c + jitter()}, {1, 1, 1});
     }
     TraceScene trace(s, true, 0);
-    UniformGrid grid(trace, 3.0);
-    RayTracer tracer(trace, grid);
+    RayTracer tracer(trace);
     TraceCounts counts;
     for (int r = 0; r < 2000; ++r) {
         const Ray ray{{next() * 6 - 3, next() * 6 - 3, next() * 6 - 3},
@@ -77,7 +74,7 @@ TEST(RayTracer, ClosestHitEqualsEveryPieceTriedInTurn) {
         }
         ASSERT_EQ(hit.piece, brute.piece) << "ray " << r;
     }
-    EXPECT_LT(counts.face_tests, 2000u * 400u / 4) << "the grid should test few pieces";
+    EXPECT_LT(counts.face_tests, 2000u * 400u / 4) << "the BVH should test few pieces";
 }
 
 TEST(RayTracer, FacingMirrorsStopAtTheReflectionLimit) {
@@ -88,8 +85,7 @@ TEST(RayTracer, FacingMirrorsStopAtTheReflectionLimit) {
     add_square(s, 0, 0, 1, 10, {1, 1, 1}, 1.0);   // behind it
     for (int limit : {0, 1, 5}) {
         TraceScene trace(s, true, limit);
-        UniformGrid grid(trace);
-        RayTracer tracer(trace, grid);
+        RayTracer tracer(trace);
         TraceCounts counts;
         RayTrace path;
         tracer.trace_pixel(8, 8, path, counts);
@@ -106,8 +102,7 @@ TEST(RayTracer, AMirrorMixesItsColourWithWhatItReflects) {
     s.light.ambient = 1;                         // unlit colours: easy sums
     add_square(s, 0, 0, 0, 3, {1, 0, 0}, 0.25);  // the mirror, facing the eye
     TraceScene trace(s, false, 4);
-    UniformGrid grid(trace);
-    RayTracer tracer(trace, grid);
+    RayTracer tracer(trace);
     TraceCounts counts;
     RayTrace path;
     tracer.trace_pixel(0, 0, path, counts);

@@ -1,0 +1,155 @@
+// The ray tracer's bounding volume hierarchy: a binary tree of boxes over the face pieces,
+// built top-down by the surface area heuristic over binned centroids (Goldsmith and Salmon
+// 1987; the binning of Wald 2007), walked nearer child first with a fixed-size stack.
+//
+// How ours differs from a renderer's BVH: it must find exactly the piece the watertight
+// double-precision test (trace_scene.h) finds nearest, never one less. The boxes are kept
+// in float, for small nodes and cheap slab tests, so each is rounded outward and padded by
+// kPad of the scene's extent (its largest coordinate, eye included): far more than the
+// rounding of a float ray and a float slab test, so a box never misses a ray that reaches
+// its pieces. The slab test's exit is widened by a few float ulps as well (Ize 2013). The
+// pieces themselves are tested in double, as before. Each piece sits in one leaf, so a ray
+// tests a piece at most once and needs no mailbox.
+//
+// The uniform grid (grid.h) stays for what rays do not do: beam and decahedral volume
+// queries scan cells.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "host/trace/trace_scene.h"
+
+namespace fb89::host {
+
+class RayBvh {
+  public:
+    explicit RayBvh(const TraceScene& scene);
+
+    struct Node {
+        float lo[3], hi[3];
+        uint32_t index;  // a leaf's first entry in pieces(); an inner node's second child
+        uint16_t count;  // pieces in a leaf; 0 for an inner node (its first child follows it)
+        uint16_t axis;   // an inner node's split axis
+    };
+    static_assert(sizeof(Node) == 32);
+
+    const std::vector<Node>& nodes() const { return m_nodes; }
+    const std::vector<uint32_t>& pieces() const { return m_pieces; }
+    // The deepest level from the root (1); the walk's stack is sized for kMaxDepth.
+    int depth() const { return m_depth; }
+    static constexpr int kMaxDepth = 64;
+    static constexpr size_t kMaxLeaf = 1;  // pieces in a leaf at most, unless they cannot split
+    static constexpr double kPad = 1e-5;   // of the scene's extent, around every box
+
+    // A ray as the walk sees it: float origin and reciprocal direction (a zero component
+    // replaced by a tiny one of the same sign), and the direction's signs.
+    struct FloatRay {
+        float origin[3], inv[3];
+        bool negative[3];
+        explicit FloatRay(const Ray& ray);
+    };
+    // Where the ray enters a node's box within [t0, t1], or false if it misses it there.
+    static bool enters(const Node& n, const FloatRay& r, float t0, float t1, float& t_enter);
+
+    // Walks the leaves whose boxes the ray crosses for tmin < t <= tmax, nearer boxes first;
+    // test(piece) tests one piece; best() is the distance of the best hit so far, which
+    // prunes boxes entered beyond it. Returns the nodes whose boxes were tested.
+    template <class Test, class Best>
+    uint64_t walk(const Ray& ray, double tmin, double tmax, Test&& test, Best&& best) const;
+
+    struct Box;
+    struct Item;
+
+  private:
+    // Makes the node of items [first, last) and its subtrees; returns the deepest level.
+    int build(std::vector<Item>& items, size_t first, size_t last, int depth, double pad);
+
+    std::vector<Node> m_nodes;
+    std::vector<uint32_t> m_pieces;
+    int m_depth = 0;
+};
+
+// A distance t >= 0 as a float no smaller than it, and one no larger (for pruning and box
+// tests, where a float on the wrong side would lose a hit): the float nearest t is within
+// half an ulp of it, so stepping 2^-22 of it outward always lands on the right side.
+inline float float_up(double t) {
+    if (!(t < 3.0e38)) return INFINITY;
+    return static_cast<float>(t) * (1.0f + 0x1p-22f);
+}
+inline float float_down(double t) {
+    return static_cast<float>(t) * (1.0f - 0x1p-22f);
+}
+
+inline bool RayBvh::enters(const Node& n, const FloatRay& r, float t0, float t1, float& t_enter) {
+    // slabs, near and far planes chosen by the direction's signs; the exit widened by a few
+    // ulps for the rounding of the products (Ize 2013)
+    constexpr float kWiden = 1.0f + 8.0f * 0x1p-24f;
+    for (int a = 0; a < 3; ++a) {
+        const float near = ((r.negative[a] ? n.hi[a] : n.lo[a]) - r.origin[a]) * r.inv[a];
+        const float far = ((r.negative[a] ? n.lo[a] : n.hi[a]) - r.origin[a]) * r.inv[a] * kWiden;
+        t0 = near > t0 ? near : t0;
+        t1 = far < t1 ? far : t1;
+    }
+    t_enter = t0;
+    return t0 <= t1;
+}
+
+template <class Test, class Best>
+uint64_t RayBvh::walk(const Ray& ray, double tmin, double tmax, Test&& test, Best&& best) const {
+    if (m_nodes.empty()) return 0;
+    const FloatRay r(ray);
+    const float t0 = float_down(tmin), t1 = float_up(tmax);
+    struct Pending {
+        uint32_t node;
+        float t_enter;
+    };
+    Pending stack[kMaxDepth];
+    int top = 0;
+    uint64_t visited = 1;
+    float t_enter;
+    if (!enters(m_nodes[0], r, t0, t1, t_enter)) return visited;
+    uint32_t at = 0;
+    for (;;) {
+        const Node& n = m_nodes[at];
+        if (n.count > 0) {
+            // leaf: its pieces
+            for (uint32_t i = n.index; i < n.index + n.count; ++i)
+                test(m_pieces[i]);
+        } else {
+            // inner: both children's boxes, the nearer now and the farther later
+            const uint32_t a = at + 1, b = n.index;
+            const float limit = std::min(t1, float_up(best()));
+            float ta, tb;
+            const bool hit_a = enters(m_nodes[a], r, t0, limit, ta);
+            const bool hit_b = enters(m_nodes[b], r, t0, limit, tb);
+            visited += 2;
+            if (hit_a && hit_b) {
+                const bool a_first = ta <= tb;
+                stack[top++] = a_first ? Pending{b, tb} : Pending{a, ta};
+                at = a_first ? a : b;
+                continue;
+            }
+            if (hit_a || hit_b) {
+                at = hit_a ? a : b;
+                continue;
+            }
+        }
+        // the next pending box not entered beyond the best hit found since it was pushed
+        for (;;) {
+            if (top == 0) return visited;
+            const Pending p = stack[--top];
+            if (p.t_enter <= float_up(best())) {
+                at = p.node;
+                break;
+            }
+        }
+    }
+}
+
+}  // namespace fb89::host
