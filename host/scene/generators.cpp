@@ -1,5 +1,6 @@
 #include "host/scene/generators.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <random>
@@ -218,6 +219,37 @@ GeneratedPolygons scatter_from_json(const JsonFields& o, const Scene& scene) {
     return copies_from_json(o, scene, placements);
 }
 
+// [a, b]: two numbers in [min, max], integers when `integers`.
+std::pair<double, double> pair_or(const JsonFields& o, const char* key,
+                                  std::pair<double, double> fallback, double min, double max,
+                                  bool integers) {
+    if (!o.has(key)) return fallback;
+    const auto& a = o.node().at(key);
+    auto fits = [&](const nlohmann::json& v) {
+        return (integers ? v.is_number_integer() : v.is_number()) && v.get<double>() >= min &&
+               v.get<double>() <= max;
+    };
+    if (!a.is_array() || a.size() != 2 || !fits(a[0]) || !fits(a[1]))
+        o.fail(key,
+               fmt::format("[x, z], {} in [{}, {}]", integers ? "integers" : "numbers", min, max));
+    return {a[0].get<double>(), a[1].get<double>()};
+}
+
+// {"cells": [nx, nz], "size": [sx, sz], "height": h, "octaves": n, "seed": s}
+GeneratedPolygons terrain_from_json(const JsonFields& o) {
+    TerrainOptions t;
+    auto [nx, nz] = pair_or(o, "cells", {t.cells_x, t.cells_z}, 1, 4096, true);
+    t.cells_x = static_cast<int>(nx);
+    t.cells_z = static_cast<int>(nz);
+    if (static_cast<long long>(terrain_face_count(t)) > kMaxGeneratedFaces)
+        o.fail("cells", fmt::format("at most {} faces in all (2 per cell)", kMaxGeneratedFaces));
+    std::tie(t.size_x, t.size_z) = pair_or(o, "size", {t.size_x, t.size_z}, 1e-9, 1e9, false);
+    t.height = o.number_or("height", t.height, 0, 1e9);
+    t.octaves = o.integer_or("octaves", t.octaves, 1, 16);
+    t.seed = static_cast<uint64_t>(o.integer_or("seed", 1, 0, 1 << 30));
+    return generate_terrain(t);
+}
+
 }  // namespace
 
 GeneratedPolygons generate_box(const glm::dvec3& lo, const glm::dvec3& hi) {
@@ -300,6 +332,7 @@ GeneratedPolygons generate_random_triangles(int width, int height, int count, do
     }
     return out;
 }
+
 
 GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
     std::string kind = o.string("generator");
@@ -385,9 +418,14 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
                      "translation", "aspect", "material", "transform"});
         return shell_from_json(o);
     }
+    if (kind == "terrain") {
+        o.only_keys(
+            {"generator", "cells", "size", "height", "octaves", "seed", "material", "transform"});
+        return terrain_from_json(o);
+    }
     o.fail("generator",
            "one of \"box\", \"quad\", \"ideal\", \"random_triangles\", \"lathe\", "
-           "\"sphere\", \"array\", \"scatter\", \"shell\"");
+           "\"sphere\", \"array\", \"scatter\", \"shell\", \"terrain\"");
 }
 
 }  // namespace fb89::host

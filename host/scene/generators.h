@@ -1,7 +1,8 @@
 // Procedural scene objects: `box`, `quad`, the paper's ideal scene (§2, Fig. 2.3) and random
 // triangles here; surfaces of revolution (`lathe`, `sphere`) in lathe.h; a sea shell swept
 // along a logarithmic helico-spiral (`shell`, for the paper's image I, §4) in shell.h; copies
-// of a group of parts (`array`, `scatter`) in copies.h. Later methods add their own beside
+// of a group of parts (`array`, `scatter`) in copies.h; a seeded height field (`terrain`, the
+// growth benchmark's scene ladder, bench/growth) here. Later methods add their own beside
 // these.
 #pragma once
 
@@ -42,6 +43,27 @@ GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_
 // other). The same seed gives the same triangles.
 GeneratedPolygons generate_random_triangles(int width, int height, int count, double area,
                                             uint64_t seed);
+
+// A seeded height field over the xz plane, centred on the origin: cells_x x cells_z cells
+// over size_x x size_z, each cell two triangles, 2 * cells_x * cells_z faces in all; cell
+// (i, k), i along x and k along z, makes faces 2 * (k * cells_x + i) and the one after. The
+// height is a sum of `octaves` fields of bumps (products of two sine waves across each
+// other, turned by a random angle, with random phases), each of twice the frequency and half
+// the amplitude of the one before, scaled so that it stays within
+// +-height / 2; faces are coloured by height (grass, rock, snow) and wound with normals
+// upward (+y). Neighbouring faces share their vertices exactly. The same seed gives the same
+// terrain on every machine with the same libm.
+struct TerrainOptions {
+    int cells_x = 64;
+    int cells_z = 32;
+    double size_x = 4;
+    double size_z = 2;
+    double height = 0.5;
+    int octaves = 6;
+    uint64_t seed = 1;
+};
+size_t terrain_face_count(const TerrainOptions& o);
+GeneratedPolygons generate_terrain(const TerrainOptions& o);
 
 // Reads an object's generator fields and builds it. Errors name the field. The parts of an
 // `array` or `scatter` are generator objects read by this same function.

@@ -1,6 +1,6 @@
-// Generators: lathe and sphere (face counts, planar convex faces, closed oriented surfaces)
-// and copies of parts, regular (`array`) and seeded random (`scatter`), from C++ and from
-// scene files.
+// Generators: lathe and sphere (face counts, planar convex faces, closed oriented surfaces),
+// copies of parts, regular (`array`) and seeded random (`scatter`), and the seeded `terrain`
+// of the growth benchmark's ladder, from C++ and from scene files.
 #include "host/scene/generators.h"
 
 #include <gtest/gtest.h>
@@ -196,6 +196,70 @@ TEST(Copies, ScatterReturnsFewerWhenTheyDoNotFit) {
     EXPECT_LT(scatter_placements(o).size(), 1000u);
 }
 
+// ---- terrain ----
+
+TerrainOptions terrain(int cells_x, int cells_z, uint64_t seed) {
+    TerrainOptions o;
+    o.cells_x = cells_x;
+    o.cells_z = cells_z;
+    o.seed = seed;
+    return o;
+}
+
+TEST(Terrain, FaceCountIsTwoPerCell) {
+    for (auto [nx, nz] : {std::pair{1, 1}, {2, 1}, {16, 8}, {64, 32}, {7, 13}}) {
+        const TerrainOptions o = terrain(nx, nz, 1);
+        EXPECT_EQ(generate_terrain(o).size(), 2u * nx * nz);
+        EXPECT_EQ(terrain_face_count(o), 2u * nx * nz);
+    }
+    // the growth ladder's top rung: 1024 x 512 cells
+    EXPECT_EQ(terrain_face_count(terrain(1024, 512, 1989)), 1'048'576u);
+}
+
+TEST(Terrain, TheSameSeedGivesTheSameFacesAndAnotherSeedOthers) {
+    const GeneratedPolygons a = generate_terrain(terrain(24, 12, 7));
+    const GeneratedPolygons b = generate_terrain(terrain(24, 12, 7));
+    const GeneratedPolygons c = generate_terrain(terrain(24, 12, 8));
+    ASSERT_EQ(a.size(), b.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].vertices, b[i].vertices);
+        EXPECT_EQ(a[i].color, b[i].color);
+        differ += a[i].vertices != c[i].vertices;
+    }
+    EXPECT_EQ(differ, a.size());
+}
+
+TEST(Terrain, FacesArePlanarConvexUpwardAndWithinTheHeight) {
+    TerrainOptions o = terrain(20, 10, 3);
+    o.height = 0.8;
+    const GeneratedPolygons faces = generate_terrain(o);
+    EXPECT_EQ(faces_not_planar_convex(faces), 0u);
+    for (const auto& f : faces) {
+        EXPECT_GT(newell_normal(f.vertices).y, 0);
+        for (const auto& v : f.vertices) {
+            EXPECT_LE(std::abs(v.y), 0.4);
+            EXPECT_LE(std::abs(v.x), o.size_x / 2);
+            EXPECT_LE(std::abs(v.z), o.size_z / 2);
+        }
+    }
+}
+
+TEST(Terrain, InteriorEdgesAreSharedExactlyInOppositeDirections) {
+    const int nx = 6, nz = 4;
+    std::map<std::pair<Key, Key>, int> edges;
+    for (const auto& f : generate_terrain(terrain(nx, nz, 5)))
+        for (size_t i = 0; i < 3; ++i)
+            ++edges[{key_of(f.vertices[i]), key_of(f.vertices[(i + 1) % 3])}];
+    size_t shared = 0;
+    for (const auto& [edge, uses] : edges) {
+        EXPECT_EQ(uses, 1);
+        shared += edges.count({edge.second, edge.first});
+    }
+    // per cell: one diagonal; between cells: (nx - 1) nz + nx (nz - 1) edges, each both ways
+    EXPECT_EQ(shared, 2u * (nx * nz + (nx - 1) * nz + nx * (nz - 1)));
+}
+
 // ---- from scene files ----
 
 const char* kCamera =
@@ -261,6 +325,23 @@ TEST(GeneratorsJson, ScatterWithTheSameSeedLoadsTheSameFaces) {
     }
 }
 
+TEST(GeneratorsJson, TerrainLoadsItsCellsAsTrianglesSeeded) {
+    const char* hills = R"({"generator": "terrain", "cells": [8, 4], "size": [2, 1],
+                            "height": 0.3, "seed": 11})";
+    Scene a = parse(hills), b = parse(hills);
+    EXPECT_EQ(a.face_count, 64u);
+    EXPECT_EQ(a.triangulated, 0u);
+    EXPECT_EQ(a.dropped, 0u);
+    ASSERT_EQ(b.faces.size(), a.faces.size());
+    for (size_t i = 0; i < a.faces.size(); ++i)
+        EXPECT_EQ(a.faces[i].vertices, b.faces[i].vertices);
+    TerrainOptions o = terrain(8, 4, 11);
+    o.size_x = 2;
+    o.size_z = 1;
+    o.height = 0.3;
+    EXPECT_EQ(a.faces[5].vertices, generate_terrain(o)[5].vertices);
+}
+
 struct BadGenerator {
     const char* object;
     const char* expected;  // a fragment the message must contain
@@ -317,7 +398,16 @@ INSTANTIATE_TEST_SUITE_P(
             "faces)"},
         BadGenerator{R"({"generator": "sphere", "radius": 1, "segments": 4096, "rings": 4096})",
                      "objects[0].rings: expected at most 10000000 faces in all"},
-        BadGenerator{R"({"generator": "cone"})", "\"lathe\", \"sphere\", \"array\", \"scatter\""}));
+        BadGenerator{R"({"generator": "terrain", "cells": [8, 0.5]})",
+                     "objects[0].cells: expected [x, z], integers in [1, 4096]"},
+        BadGenerator{R"({"generator": "terrain", "cells": [4096, 4096]})",
+                     "objects[0].cells: expected at most 10000000 faces in all"},
+        BadGenerator{R"({"generator": "terrain", "size": [1, -1]})",
+                     "objects[0].size: expected [x, z], numbers in"},
+        BadGenerator{R"({"generator": "terrain", "octaves": 0})",
+                     "objects[0].octaves: expected an integer in [1, 16]"},
+        BadGenerator{R"({"generator": "cone"})",
+                     "\"lathe\", \"sphere\", \"array\", \"scatter\", \"shell\", \"terrain\""}));
 
 }  // namespace
 }  // namespace fb89::host
