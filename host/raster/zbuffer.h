@@ -11,12 +11,19 @@
 //
 // Faces are drawn in ascending id order, so the shared rule's tie case (equal depth, lower
 // id wins) is met by keeping the first face at equal depth: the inner loop needs only a
-// strict less-than. The window is worked in bands of rows, as a tiler would: faces are
-// binned to the bands they meet, and each band is depth-tested in one band-sized pair of
-// buffers (a few hundred KB, reused band after band, so they stay in cache instead of
-// being fetched from memory every frame), then its spans leave and the band is zeroed.
-// The face buffer doubles as the depth buffer's "empty" mark, so the depth buffer is never
-// cleared.
+// strict less-than. The window is worked in bands of rows, as a sort-middle tiler would
+// (Molnar et al. 1994): faces are binned to the bands they meet, and each band is
+// depth-tested in one band-sized pair of buffers (a few hundred KB, reused band after
+// band, so they stay in cache instead of being fetched from memory every frame), then its
+// spans leave and the band is zeroed (band_spans.h). The face buffer doubles as the depth
+// buffer's "empty" mark, so the depth buffer is never cleared.
+//
+// Where the time goes, and what keeps it short: a band's faces lie far apart in the scene,
+// so their records and edges are fetched several faces ahead of the one drawn; coverage is
+// row_span() per row (an exact division per edge, cheap next to the pixels); the depth
+// test is branch-free and four pixels wide where the CPU has AVX2, two with SSE2
+// (depth_rows.h); span emission finds where the face changes eight entries at a
+// time and takes colours from a per-face table built while binning.
 #pragma once
 
 #include <span>
@@ -49,23 +56,31 @@ class ZBuffer final : public Renderer {
     void keep_face_buffer(bool keep) { m_keep = keep; }
     const std::vector<uint32_t>& face_buffer() const { return m_kept; }
 
+    // For tests and benchmarks: whether the AVX2 depth test may be used where the CPU has
+    // it (the default). The baseline kernel (SSE2, or scalar) gives identical results.
+    void allow_avx2(bool allow) { m_allow_avx2 = allow; }
+
   private:
     void prepare(const ScreenScene& scene, const PixelRect& window);
-    uint64_t emit(const ScreenScene& scene, const PixelRect& window, protocol::CommandSink& sink);
-    void draw_face(const ScreenScene& scene, uint32_t index, const PixelRect& window,
+    int bin_faces(const ScreenScene& scene, std::span<const uint32_t> faces,
+                  const PixelRect& window, ZBufferCounts& counts);
+    void draw_band(const ScreenScene& scene, int band_index, const PixelRect& band,
                    ZBufferCounts& counts);
+    uint64_t emit(const PixelRect& band, protocol::CommandSink& sink);
 
     int m_width = 0, m_height = 0;
-    std::vector<double> m_depth;
     // Buffers for one band of kBandRows rows, reused band after band: a few hundred KB
     // that stay in cache, where whole-screen buffers would be fetched from memory again
-    // every frame.
+    // every frame. Padded past the last row for the vector kernels.
     static constexpr int kBandRows = 32;
+    std::vector<double> m_depth;
     std::vector<uint32_t> m_face;               // all zero between bands
     std::vector<std::vector<uint32_t>> m_bins;  // faces meeting each band, ascending
     std::vector<uint32_t> m_kept;               // whole-screen face buffer, with m_keep
     bool m_keep = false;
     std::vector<uint32_t> m_all;
+    std::vector<uint32_t> m_color;  // packed colour of each binned face, for emission
+    bool m_allow_avx2 = true;
 };
 
 }  // namespace fb89::host
