@@ -3,9 +3,11 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +15,8 @@
 #include <sstream>
 
 #include <fmt/format.h>
+
+#include "period/phases.h"
 
 namespace fb89::period {
 
@@ -54,6 +58,36 @@ struct Pipe {
             if (f >= 0) ::close(f);
     }
 };
+
+// The bounds of one emulated run: the caller's time limit unless $FB89_GUEST_TIME_LIMIT
+// (seconds) is lower, and $FB89_GUEST_MEMORY_LIMIT MiB of guest memory (default
+// kGuestMemoryMiB).
+struct GuestLimits {
+    double seconds;
+    rlim_t memory_bytes;
+};
+GuestLimits guest_limits(double time_limit_s) {
+    GuestLimits l{time_limit_s, static_cast<rlim_t>(kGuestMemoryMiB) << 20};
+    if (const char* t = std::getenv("FB89_GUEST_TIME_LIMIT"); t && *t) {
+        const double s = std::strtod(t, nullptr);
+        if (s > 0) l.seconds = std::min(l.seconds, s);
+    }
+    if (const char* m = std::getenv("FB89_GUEST_MEMORY_LIMIT"); m && *m) {
+        const long long mib = std::strtoll(m, nullptr, 10);
+        if (mib > 0) l.memory_bytes = static_cast<rlim_t>(mib) << 20;
+    }
+    return l;
+}
+
+// "in phase hidden_surface" from the plugin's phase file (then removed), or "" when the
+// guest marked no phase.
+std::string last_phase(const char* path) {
+    std::ifstream in(path);
+    int phase = -1;
+    in >> phase;
+    std::filesystem::remove(path);
+    return phase >= 0 ? fmt::format("in phase {}", phase_name(phase)) : "before its first phase";
+}
 
 // Reads the child's stdout and stderr until both close or the time runs out.
 bool drain(int out_fd, int err_fd, std::vector<uint8_t>& out, std::string& err,
@@ -110,11 +144,20 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
                      const std::filesystem::path& folder, const std::vector<std::string>& args,
                      const std::string& what, double time_limit_s) {
     char counts_path[] = "/tmp/fb89_counts_XXXXXX";
-    const int counts_fd = ::mkstemp(counts_path);
-    if (counts_fd < 0) throw EmulatorError("cannot make a temporary file for the counts");
-    ::close(counts_fd);
+    char phase_path[] = "/tmp/fb89_phase_XXXXXX";
+    for (char* path : {counts_path, phase_path}) {
+        const int fd = ::mkstemp(path);
+        if (fd < 0) throw EmulatorError("cannot make a temporary file for the counts");
+        ::close(fd);
+    }
+    const GuestLimits limits = guest_limits(time_limit_s);
     std::vector<std::string> argv_text{
-        parts.qemu, "-cpu", "m68020", "-plugin", parts.plugin + ",out=" + counts_path, program};
+        parts.qemu,
+        "-cpu",
+        "m68020",
+        "-plugin",
+        parts.plugin + ",out=" + counts_path + ",phase=" + phase_path,
+        program};
     argv_text.insert(argv_text.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (auto& a : argv_text)
@@ -129,6 +172,13 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     if (child == 0) {
         ::dup2(out.fd[1], STDOUT_FILENO);
         ::dup2(err.fd[1], STDERR_FILENO);
+        // the guest's memory: every page it maps is a writable private mapping of qemu's
+        const rlimit data{limits.memory_bytes, limits.memory_bytes};
+        ::setrlimit(RLIMIT_DATA, &data);
+        // no core file: a guest's would land in the scene's folder, and writing one of a
+        // large guest under the emulator takes minutes
+        const rlimit no_core{0, 0};
+        ::setrlimit(RLIMIT_CORE, &no_core);
         if (::chdir(folder.c_str()) != 0) ::_exit(126);
         ::execve(argv[0], argv.data(), envp);
         ::_exit(127);
@@ -139,7 +189,7 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     std::string guest_err;
     const bool in_time = drain(out.fd[0], err.fd[0], run.stream, guest_err,
                                start + std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                           std::chrono::duration<double>(time_limit_s)));
+                                           std::chrono::duration<double>(limits.seconds)));
     if (!in_time) ::kill(child, SIGKILL);
     int status = 0;
     ::waitpid(child, &status, 0);
@@ -149,17 +199,30 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     text << counts.rdbuf();
     run.counts_json = text.str();
     std::filesystem::remove(counts_path);
+    const std::string where = last_phase(phase_path);
 
     const std::string said = guest_err.empty() ? "" : ": " + guest_err.substr(0, 2000);
     if (!in_time)
-        throw EmulatorError(fmt::format("the emulated host ran past its limit of {:.0f} s on {}",
-                                        time_limit_s, what));
+        throw EmulatorError(
+            fmt::format("the emulated host ran past its limit of {:g} s {} on {} "
+                        "(stopped; nothing written)",
+                        limits.seconds, where, what));
+    if (guest_err.find("std::bad_alloc") != std::string::npos ||
+        guest_err.find("Cannot allocate memory") != std::string::npos)
+        throw EmulatorError(
+            fmt::format("the emulated host ran out of memory (limit {} MiB) {} "
+                        "on {} (nothing written){}",
+                        limits.memory_bytes >> 20, where, what, said));
     if (WIFSIGNALED(status))
-        throw EmulatorError(fmt::format("the emulated host crashed (signal {}) on {}{}",
-                                        WTERMSIG(status), what, said));
+        throw EmulatorError(
+            fmt::format("the emulated host crashed (signal {}) {} on {} (nothing "
+                        "written){}",
+                        WTERMSIG(status), where, what, said));
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        throw EmulatorError(fmt::format("the emulated host failed (exit {}) on {}{}",
-                                        WIFEXITED(status) ? WEXITSTATUS(status) : -1, what, said));
+        throw EmulatorError(
+            fmt::format("the emulated host failed (exit {}) {} on {} (nothing "
+                        "written){}",
+                        WIFEXITED(status) ? WEXITSTATUS(status) : -1, where, what, said));
     run.counts = parse_guest_counts(run.counts_json, "the counting plugin's output");
     return run;
 }

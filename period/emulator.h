@@ -36,8 +36,14 @@ struct GuestRun {
     double wall_s = 0;            // how long the emulation took here
 };
 
+// Guest memory allowed by default ($FB89_GUEST_MEMORY_LIMIT MiB overrides it): far above
+// what any bundled scene needs, and below what would let one run take the machine.
+inline constexpr long kGuestMemoryMiB = 2048;
+
 // Runs the guest on `scene` with `options` (the guest's own, e.g. {"--method", "zbuffer"}),
-// for at most `time_limit_s` seconds. Throws EmulatorError.
+// for at most `time_limit_s` seconds ($FB89_GUEST_TIME_LIMIT may lower it) and
+// kGuestMemoryMiB of memory. A guest that crashes, runs past the time (it is killed) or out
+// of memory throws EmulatorError naming the phase it was in; nothing of its output is kept.
 GuestRun run_guest(const EmulatorParts& parts, const std::filesystem::path& scene,
                    const std::vector<std::string>& options, double time_limit_s = 3600);
 

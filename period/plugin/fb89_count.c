@@ -522,6 +522,7 @@ static FILE *dump_fp;          /* optional dump=PATH: per-insn key log */
 static bool multi_vcpu;
 static pid_t install_pid;     /* a forked guest child must not write */
 static uint64_t bad_markers;
+static FILE *phase_fp; /* phase=PATH: the current phase, rewritten at each marker */
 
 static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
 {
@@ -626,6 +627,12 @@ static void vcpu_syscall(qemu_plugin_id_t id, unsigned int vcpu_index,
     flush_counts();
     cur_phase = (unsigned)a1;
     phase_entered[cur_phase]++;
+    if (phase_fp) {
+        /* the phase so far, for whoever must say where a guest that dies stopped */
+        rewind(phase_fp);
+        fprintf(phase_fp, "%u\n", cur_phase);
+        fflush(phase_fp);
+    }
 }
 
 /* ---- output --------------------------------------------------------------- */
@@ -736,11 +743,17 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
             out_path = a + 4;
         } else if (strncmp(a, "dump=", 5) == 0 && a[5]) {
             dump_path = a + 5;
+        } else if (strncmp(a, "phase=", 6) == 0 && a[6]) {
+            phase_fp = fopen(a + 6, "w");
+            if (!phase_fp) {
+                report("fb89_count: cannot open phase= file for writing\n");
+                return 1;
+            }
         } else {
             char msg[512];
             snprintf(msg, sizeof(msg),
                      "fb89_count: unknown argument '%s' "
-                     "(expected out=PATH [dump=PATH])\n", a);
+                     "(expected out=PATH [dump=PATH] [phase=PATH])\n", a);
             report(msg);
             return 1;
         }
