@@ -333,7 +333,6 @@ GeneratedPolygons generate_random_triangles(int width, int height, int count, do
     return out;
 }
 
-
 GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
     std::string kind = o.string("generator");
     if (kind == "box") {
