@@ -1,7 +1,6 @@
 #include "cli/common.h"
 
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 #include <regex>
 
@@ -9,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "controller_sim/profile.h"
+#include "protocol/atomic_file.h"
 
 namespace fb89::cli {
 
@@ -41,10 +41,7 @@ void write_text(const std::string& path, const std::string& text) {
         return;
     }
     make_parent_dirs(path);
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write the file", path));
+    protocol::write_file_atomically(path, text);
 }
 
 void Console::note(const std::string& text) const {

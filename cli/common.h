@@ -26,10 +26,11 @@ using experiments::ImageSize;
 // "WxH", e.g. "1024x780"; throws UsageError.
 ImageSize parse_size(const std::string& text);
 
-// Writes JSON (indented) to a path, or to stdout for "-". Throws std::runtime_error
-// naming the path on failure.
+// Writes JSON (indented) to a path, or to stdout for "-". A file is written whole or not at
+// all (protocol/atomic_file.h). Throws std::runtime_error naming the path on failure.
 void write_json(const std::string& path, const nlohmann::json& value);
-// Writes text to a path, or to stdout for "-". Throws std::runtime_error naming the path.
+// Writes text to a path (whole or not at all), or to stdout for "-". Throws
+// std::runtime_error naming the path.
 void write_text(const std::string& path, const std::string& text);
 
 // Creates the parent folder of an output path if needed.

@@ -1,5 +1,6 @@
 // fb89: one executable, one subcommand per file in cli/.
 #include <algorithm>
+#include <csignal>
 #include <iostream>
 #include <vector>
 
@@ -13,6 +14,9 @@
 
 int main(int argc, char** argv) {
     using namespace fb89::cli;
+    // A file size limit (ulimit -f) then fails the write with EFBIG, which every writer
+    // reports naming the file, instead of killing fb89 with a half-written temporary.
+    std::signal(SIGXFSZ, SIG_IGN);
     CLI::App app{
         "fb89: image and intervisibility coherence in rendering, on an emulated 1989 "
         "graphics pipeline (Marks, Walsh, Christensen & Friedell, GI '90)"};

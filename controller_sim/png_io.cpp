@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "controller_sim/framebuffer.h"
+#include "protocol/atomic_file.h"
 
 namespace fb89::controller {
 
@@ -124,24 +125,20 @@ void write_png(const std::filesystem::path& path, uint32_t width, uint32_t heigh
         fail(path, fmt::format("cannot write a {}x{} image", width, height));
     if (rgb.size() != std::size_t{width} * height * 3)
         fail(path, fmt::format("{} bytes given for a {}x{} RGB image", rgb.size(), width, height));
-    File f(std::fopen(path.c_str(), "wb"));
-    if (!f) fail(path, fmt::format("cannot open for writing: {}", std::strerror(errno)));
-
     std::vector<png_bytep> rows = row_pointers(rgb.data(), height, std::size_t{width} * 3);
-    char message[kMessageSize] = "";
-    WriteStructs s;
-    s.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
-    s.info = s.png ? png_create_info_struct(s.png) : nullptr;
-    if (!s.info) fail(path, "out of memory in libpng");
-    const bool ok = write_rows(s.png, s.info, f.get(), width, height, rows.data());
-    const bool closed = std::fclose(f.release()) == 0;
-    if (!ok || !closed) {
-        const std::string what = ok ? fmt::format("write error: {}", std::strerror(errno))
-                                    : fmt::format("PNG write error: {}", message);
-        std::error_code ignored;
-        std::filesystem::remove(path, ignored);  // no half-written image left behind
-        fail(path, what);
-    }
+    // whole or not at all: a failed write leaves the old file as it was
+    protocol::write_file_atomically(path, [&](std::FILE* f) {
+        char message[kMessageSize] = "";
+        WriteStructs s;
+        s.png =
+            png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
+        s.info = s.png ? png_create_info_struct(s.png) : nullptr;
+        if (!s.info) fail(path, "out of memory in libpng");
+        if (write_rows(s.png, s.info, f, width, height, rows.data())) return;
+        // a failed fwrite (a full disk, a file size limit) left its cause in errno
+        if (std::ferror(f) && errno != 0) fail(path, std::strerror(errno));
+        fail(path, fmt::format("PNG write error: {}", message));
+    });
 }
 
 void write_png(const std::filesystem::path& path, const Framebuffer& fb) {

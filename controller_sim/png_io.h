@@ -1,6 +1,7 @@
 // PNG output of frames and PNG input for golden tests, through libpng.
 //
-// Writing: 8-bit RGB, no interlace, default compression. Reading: 8-bit RGB or RGBA only,
+// Writing: 8-bit RGB, no interlace, default compression, whole or not at all
+// (protocol/atomic_file.h). Reading: 8-bit RGB or RGBA only,
 // bytes exactly as stored (no gamma or colour conversion), so face-id buffers compare
 // exactly. Errors are std::runtime_error naming the path and what is wrong.
 #pragma once

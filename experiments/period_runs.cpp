@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "experiments/progress.h"
+#include "protocol/atomic_file.h"
 
 namespace fb89::experiments {
 
@@ -52,13 +53,7 @@ std::string shell_quoted(const std::string& s) {
 
 // Written beside the target and renamed when whole, so a folder never holds half a result.
 void write_whole(const fs::path& path, const std::string& text) {
-    const fs::path tmp = path.string() + fmt::format(".tmp{}", ::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out.flush()) throw std::runtime_error(tmp.string() + ": cannot write");
-    }
-    fs::rename(tmp, path);
+    protocol::write_file_atomically(path, text);
 }
 
 std::string fingerprint(const std::string& guest) {
@@ -107,7 +102,7 @@ PeriodRuns::PeriodRuns(const std::string& host, int jobs, std::string results_di
     if (!m_emit.empty() && m_results.empty())
         throw std::runtime_error("--emit-jobs needs --results DIR, where the jobs write");
     if (!m_results.empty()) fs::create_directories(m_results);
-    if (!m_emit.empty()) std::ofstream(m_emit, std::ios::trunc);  // a fresh list
+    if (!m_emit.empty()) write_whole(m_emit, "");  // a fresh list
 }
 
 std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
@@ -121,7 +116,7 @@ std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
             line.append(shell_quoted(o));
         }
         std::lock_guard lock(m_mutex);
-        std::ofstream(m_emit, std::ios::app) << line << "\n";
+        m_emit_list += line + "\n";
         ++m_emitted;
         return "";
     }
@@ -172,6 +167,7 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
     else
         all();
     line.clear();
+    if (!m_emit.empty()) write_whole(m_emit, m_emit_list);  // the whole list so far, at once
     for (const std::string& e : errors)
         if (!e.empty()) throw period::EmulatorError(e);
     return out;

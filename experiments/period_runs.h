@@ -56,6 +56,7 @@ class PeriodRuns {
     period::HostProfile m_profile;
     int m_jobs = 1;
     std::string m_results, m_emit, m_fb89;
+    std::string m_emit_list;  // the jobs emitted so far, one shell line each
     period::EmulatorParts m_parts;
     std::string m_guest_fingerprint;
     std::mutex m_mutex;

@@ -6,6 +6,7 @@ Reads FOLDER/fig2_1.csv and FOLDER/fig2_4.csv, writes FOLDER/fig2_1.png and fig2
 import csv
 import os
 import sys
+import tempfile
 
 import matplotlib
 
@@ -17,6 +18,25 @@ import matplotlib.ticker  # noqa: E402
 def read(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
+
+
+def save(fig, path):
+    """Saves the chart whole or not at all: to a hidden temporary beside `path`, then renamed
+    over it, so a failed or killed run leaves the old chart (docs/RELIABILITY.md, Outputs)."""
+    folder, name = os.path.split(path)
+    fd, tmp = tempfile.mkstemp(dir=folder or ".", prefix=f".{name}.tmp-")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            fig.savefig(f, format="png", dpi=110)
+            f.flush()
+            os.fsync(f.fileno())
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
 
 
 def scene_label(path):
@@ -46,7 +66,7 @@ def fig2_1(folder):
     left.legend()
     fig.suptitle("Fig. 2.1 re-run: Warnock, scan-line and Z-buffer at 1024x780")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "fig2_1.png"), dpi=110)
+    save(fig, os.path.join(folder, "fig2_1.png"))
 
 
 def fig2_4(folder):
@@ -83,7 +103,7 @@ def fig2_4(folder):
     right.grid(which="both", alpha=0.3)
     fig.suptitle("Fig. 2.4 re-run: predicted and actual window samples")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "fig2_4.png"), dpi=110)
+    save(fig, os.path.join(folder, "fig2_4.png"))
 
 
 def threshold_value(text):
@@ -110,7 +130,7 @@ def fig3_1(folder):
         ax.legend(fontsize=8)
     fig.suptitle("Fig. 3.1 re-run: hybrid rendering time vs threshold, 1024x780")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "fig3_1.png"), dpi=110)
+    save(fig, os.path.join(folder, "fig3_1.png"))
 
     fig, axes = plt.subplots(1, len(scenes), figsize=(6 * len(scenes), 4.5), squeeze=False)
     for ax, scene in zip(axes[0], scenes):
@@ -127,7 +147,7 @@ def fig3_1(folder):
         ax.grid(which="both", alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "split.png"), dpi=110)
+    save(fig, os.path.join(folder, "split.png"))
 
 
 def accuracy(folder):
@@ -147,7 +167,7 @@ def accuracy(folder):
         ax.legend()
     fig.suptitle("Speed against accuracy: approximate fills on scenes A-F")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "accuracy.png"), dpi=110)
+    save(fig, os.path.join(folder, "accuracy.png"))
 
 
 def fig4_8(folder):
@@ -182,7 +202,7 @@ def fig4_8(folder):
         ax.legend(fontsize=8)
     fig.suptitle("Figs. 4.8 and 4.11 re-run: rendering time vs resolution")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "fig4_8.png"), dpi=110)
+    save(fig, os.path.join(folder, "fig4_8.png"))
 
 
 def beam_threshold(folder):
@@ -208,7 +228,7 @@ def beam_threshold(folder):
         ax.legend(fontsize=8)
     fig.suptitle("Beam-ray hybrid against its threshold, 1024x780 (every frame equals the ray tracer's)")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "beam_threshold.png"), dpi=110)
+    save(fig, os.path.join(folder, "beam_threshold.png"))
 
 
 def ff_error(folder):
@@ -236,7 +256,7 @@ def ff_error(folder):
         ax.legend(fontsize=8)
     fig.suptitle("Speed against accuracy in radiosity (dotted: the reference's own error estimate)")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "radiosity_error.png"), dpi=110)
+    save(fig, os.path.join(folder, "radiosity_error.png"))
 
 
 def split_both_sides(folder):
@@ -261,7 +281,7 @@ def split_both_sides(folder):
     ax.grid(which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "split_both_sides.png"), dpi=110)
+    save(fig, os.path.join(folder, "split_both_sides.png"))
 
 
 def main():

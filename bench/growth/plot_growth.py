@@ -10,6 +10,7 @@ open markers.
 import csv
 import os
 import sys
+import tempfile
 
 import matplotlib
 
@@ -20,6 +21,25 @@ import matplotlib.pyplot as plt  # noqa: E402
 def read(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
+
+
+def save(fig, path):
+    """Saves the chart whole or not at all: to a hidden temporary beside `path`, then renamed
+    over it, so a failed or killed run leaves the old chart (docs/RELIABILITY.md, Outputs)."""
+    folder, name = os.path.split(path)
+    fd, tmp = tempfile.mkstemp(dir=folder or ".", prefix=f".{name}.tmp-")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            fig.savefig(f, format="png", dpi=110)
+            f.flush()
+            os.fsync(f.fileno())
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
 
 
 def slope_of(slopes, method, quantity):
@@ -69,7 +89,7 @@ def main(folder):
         ax.legend(fontsize=7)
     fig.suptitle("Growth: terrain ladder at 1024x780, slopes fitted over the top three rungs")
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "growth.png"), dpi=110)
+    save(fig, os.path.join(folder, "growth.png"))
 
 
 if __name__ == "__main__":
