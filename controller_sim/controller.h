@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,11 @@ class Controller final : public protocol::CommandSink {
 
     // Executes any command through the opcode table.
     void execute(const protocol::Command& c);
+    // Executes commands in order: the same framebuffer, counters and times as execute() on
+    // each, faster. The open frame's FILL_RECTs and DRAW_SPANs take a fast path that keeps
+    // their counters and clocks in locals (execute_drawing); every other command goes
+    // through execute(c). With an observer set, every command does.
+    void execute(std::span<const protocol::Command> commands);
 
     const CostProfile& profile() const { return m_stats.profile; }
     const Framebuffer& framebuffer() const { return m_fb; }
@@ -103,33 +109,46 @@ class Controller final : public protocol::CommandSink {
     void set_observer(Observer observer) { m_observer = std::move(observer); }
 
   private:
-    // What an exec_* function did; execute() turns it into counters and time.
+    // What an exec_* function did; account() turns it into counters and time.
     struct Executed {
         uint64_t cycles = 0;
         uint64_t pixels = 0;
         bool clipped = false;
         bool outside = false;
     };
-    using ExecFn = Executed (Controller::*)(const protocol::Command&);
     struct OpcodeEntry {
         const char* name;
         int param_count;  // fields on the wire, as in docs/PROTOCOL.md
         uint32_t bytes;   // modelled bytes, from the profile
         double bus_us;    // bus time of one command
-        ExecFn exec;
     };
     static std::array<OpcodeEntry, protocol::kOpcodeCount> make_opcode_table(const CostProfile& p);
 
-    Executed exec_frame_begin(const protocol::Command& c);
-    Executed exec_fill_rect(const protocol::Command& c);
-    Executed exec_draw_span(const protocol::Command& c);
-    Executed exec_marker(const protocol::Command& c);
-    Executed exec_frame_end(const protocol::Command& c);
+    Executed exec_frame_begin(const protocol::FrameBegin& c);
+    Executed exec_fill_rect(const protocol::FillRect& c);
+    Executed exec_draw_span(const protocol::DrawSpan& c);
+    Executed exec_marker(const protocol::Marker& c);
+    Executed exec_frame_end(const protocol::FrameEnd& c);
 
-    void account(int opcode, const OpcodeEntry& e, const Executed& x);
+    // One command: its exec_*, its accounting, and for FRAME_END the frame's close.
+    void step(const protocol::FrameBegin& c);
+    void step(const protocol::FillRect& c);
+    void step(const protocol::DrawSpan& c);
+    void step(const protocol::Marker& c);
+    void step(const protocol::FrameEnd& c);
+    // A sink call: step() alone, or through execute() when an observer wants the Command.
+    template <class C>
+    void submit_one(const C& c);
+
+    // The fast path of execute(span): the open frame's drawing commands from commands[i]
+    // on; returns the index of the first command it did not take.
+    std::size_t execute_drawing(std::span<const protocol::Command> commands, std::size_t i);
+
+    void account(protocol::Opcode opcode, const Executed& x);
     void close_frame(bool complete);
 
     std::array<OpcodeEntry, protocol::kOpcodeCount> m_opcodes;
+    CycleCosts m_costs;
     double m_us_per_cycle;
     Framebuffer m_fb;
     ControllerStats m_stats;

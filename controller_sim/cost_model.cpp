@@ -6,6 +6,11 @@
 // MAME leaves to the GSP program, is charged here.
 #include "controller_sim/cost_model.h"
 
+#include <bit>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
 namespace fb89::controller {
 
 uint64_t words(uint64_t x, uint64_t w, uint32_t pixels_per_word) {
@@ -25,6 +30,20 @@ uint64_t draw_span_cycles(const CostProfile& p, uint32_t x, uint32_t n) {
 uint64_t frame_begin_cycles(const CostProfile& p, uint32_t width, uint32_t height) {
     if (width == 0 || height == 0) return command_only_cycles(p);
     return fill_rect_cycles(p, PixelRect{0, 0, width, height});
+}
+
+CycleCosts::CycleCosts(const CostProfile& p)
+    : m_cmd(p.c_cmd),
+      m_fill_base(uint64_t{p.c_cmd} + p.c_setup),
+      m_row(p.c_row),
+      m_op(p.c_op),
+      m_line_base(uint64_t{p.c_cmd} + p.c_line_setup),
+      m_line_pix(p.c_line_pix),
+      m_span_as_fill(p.span_as == SpanAs::Fill) {
+    if (p.bpp == 0 || 16 % p.bpp != 0 || !std::has_single_bit(p.bpp))
+        throw std::invalid_argument(
+            fmt::format("profile {}: bpp must be 1, 2, 4, 8 or 16, got {}", p.name, p.bpp));
+    m_word_shift = static_cast<uint32_t>(std::countr_zero(p.pixels_per_word()));
 }
 
 double bus_seconds(const CostProfile& p, uint32_t bytes) {

@@ -29,6 +29,34 @@ inline uint64_t command_only_cycles(const CostProfile& p) {
     return p.c_cmd;
 }
 
+// The formulas above, for the controller's per-command path: the profile's figures widened
+// to 64 bits once, FILL_RECT's constant part summed, and the division by P a shift (bpp is
+// a power of two, so P is). Same results as fill_rect_cycles / draw_span_cycles /
+// command_only_cycles for every input.
+class CycleCosts {
+  public:
+    // Throws std::invalid_argument unless bpp is 1, 2, 4, 8 or 16 (as load_profile checks).
+    explicit CycleCosts(const CostProfile& p);
+
+    uint64_t fill_rect(const PixelRect& r) const {
+        return m_fill_base + uint64_t{r.h} * (m_row + m_op * words(r.x, r.w));
+    }
+    uint64_t draw_span(uint32_t x, uint32_t n) const {
+        if (m_span_as_fill) return m_fill_base + m_row + m_op * words(x, n);
+        return m_line_base + m_line_pix * n;
+    }
+    uint64_t command_only() const { return m_cmd; }
+
+  private:
+    uint64_t words(uint64_t x, uint64_t w) const {
+        return ((x + w - 1) >> m_word_shift) - (x >> m_word_shift) + 1;
+    }
+
+    uint64_t m_cmd, m_fill_base, m_row, m_op, m_line_base, m_line_pix;
+    uint32_t m_word_shift = 0;  // log2 P
+    bool m_span_as_fill;
+};
+
 // Seconds a command of `bytes` modelled bytes occupies the bus: bytes / B_bus + t_handshake.
 // A command of 0 modelled bytes (MARKER) is not sent: 0.
 double bus_seconds(const CostProfile& p, uint32_t bytes);

@@ -1,28 +1,19 @@
-// The controller's framebuffer and the clipping every drawing command goes through.
+// The controller's framebuffer (the clipping every drawing command goes through is inline
+// in framebuffer.h, on the controller's per-command path).
 //
-// Hot path: fill_pixels writes one row with plain stores for short runs and with doubling
-// memcpy for long ones; fill_rect and clear fill one row and copy it to the others.
+// Hot path: every row is written by fill_run (pixel_fill.h) from the colour's pattern, made
+// once per command; clear fills the whole framebuffer as one run, as its rows touch.
 #include "controller_sim/framebuffer.h"
 
-#include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "controller_sim/xxhash64.h"
+
 namespace fb89::controller {
 
 namespace {
-
-// Intersects [lo, lo + len) with [0, limit); returns false when nothing is left.
-bool clip_interval(int64_t lo, int64_t len, uint32_t limit, uint32_t& out_lo, uint32_t& out_len) {
-    const int64_t a = std::max<int64_t>(lo, 0);
-    const int64_t b = std::min<int64_t>(lo + len, limit);
-    if (b <= a) return false;
-    out_lo = static_cast<uint32_t>(a);
-    out_len = static_cast<uint32_t>(b - a);
-    return true;
-}
 
 void check_size(uint32_t width, uint32_t height) {
     if (width > kMaxFrameSide || height > kMaxFrameSide)
@@ -32,41 +23,8 @@ void check_size(uint32_t width, uint32_t height) {
 
 }  // namespace
 
-std::optional<Clipped> clip_fill_rect(const protocol::FillRect& c, uint32_t width,
-                                      uint32_t height) {
-    Clipped out;
-    if (!clip_interval(c.x, c.w, width, out.rect.x, out.rect.w)) return std::nullopt;
-    if (!clip_interval(c.y, c.h, height, out.rect.y, out.rect.h)) return std::nullopt;
-    out.clipped = out.rect.w != c.w || out.rect.h != c.h;
-    return out;
-}
-
-std::optional<Clipped> clip_span(const protocol::DrawSpan& c, uint32_t width, uint32_t height) {
-    if (c.x1 < c.x0) return std::nullopt;
-    const int64_t n = int64_t{c.x1} - c.x0 + 1;
-    Clipped out;
-    if (!clip_interval(c.x0, n, width, out.rect.x, out.rect.w)) return std::nullopt;
-    if (!clip_interval(c.y, 1, height, out.rect.y, out.rect.h)) return std::nullopt;
-    out.clipped = out.rect.w != n;
-    return out;
-}
-
 void fill_pixels(uint8_t* p, std::size_t n, protocol::Rgb c) {
-    // short runs: plain stores
-    const std::size_t head = std::min<std::size_t>(n, 16);
-    for (std::size_t i = 0; i < head; ++i) {
-        p[3 * i] = c.r;
-        p[3 * i + 1] = c.g;
-        p[3 * i + 2] = c.b;
-    }
-    // long runs: copy what is written so far onto the rest, doubling each time
-    std::size_t done = head * 3;
-    const std::size_t total = n * 3;
-    while (done < total) {
-        const std::size_t chunk = std::min(done, total - done);
-        std::memcpy(p + done, p, chunk);
-        done += chunk;
-    }
+    fill_run(p, n, rgb_pattern(c));
 }
 
 Framebuffer::Framebuffer(uint32_t width, uint32_t height) {
@@ -82,25 +40,16 @@ void Framebuffer::resize(uint32_t width, uint32_t height) {
 }
 
 void Framebuffer::clear(protocol::Rgb c) {
-    if (m_width == 0 || m_height == 0) return;
-    fill_rect(PixelRect{0, 0, m_width, m_height}, c);
+    // rows are contiguous: one run over the whole framebuffer
+    fill_run(m_pixels.data(), std::size_t{m_width} * m_height, rgb_pattern(c));
 }
 
 void Framebuffer::fill_rect(const PixelRect& r, protocol::Rgb c) {
-    // first row, then copies of it
-    uint8_t* first = m_pixels.data() + row_offset(r.y) + std::size_t{r.x} * 3;
-    fill_pixels(first, r.w, c);
-    const std::size_t row_bytes = std::size_t{r.w} * 3;
+    const RgbPattern pattern = rgb_pattern(c);
     const std::size_t stride = std::size_t{m_width} * 3;
-    uint8_t* p = first;
-    for (uint32_t i = 1; i < r.h; ++i) {
-        p += stride;
-        std::memcpy(p, first, row_bytes);
-    }
-}
-
-void Framebuffer::draw_span(uint32_t y, uint32_t x, uint32_t n, protocol::Rgb c) {
-    fill_pixels(m_pixels.data() + row_offset(y) + std::size_t{x} * 3, n, c);
+    uint8_t* p = m_pixels.data() + row_offset(r.y) + std::size_t{r.x} * 3;
+    for (uint32_t i = 0; i < r.h; ++i, p += stride)
+        fill_run(p, r.w, pattern);
 }
 
 protocol::Rgb Framebuffer::pixel(uint32_t x, uint32_t y) const {
@@ -113,19 +62,15 @@ void Framebuffer::set_pixel(uint32_t x, uint32_t y, protocol::Rgb c) {
 }
 
 uint64_t Framebuffer::checksum() const {
-    constexpr uint64_t kOffsetBasis = 0xcbf29ce484222325ULL;
-    constexpr uint64_t kPrime = 0x100000001b3ULL;
-    uint64_t h = kOffsetBasis;
-    auto mix = [&h](uint8_t byte) {
-        h ^= byte;
-        h *= kPrime;
-    };
-    for (uint32_t v : {m_width, m_height})
-        for (int i = 0; i < 4; ++i)
-            mix(static_cast<uint8_t>(v >> (8 * i)));
-    for (uint8_t byte : m_pixels)
-        mix(byte);
-    return h;
+    uint8_t size[8];
+    for (int i = 0; i < 4; ++i) {
+        size[i] = static_cast<uint8_t>(m_width >> (8 * i));
+        size[4 + i] = static_cast<uint8_t>(m_height >> (8 * i));
+    }
+    Xxh64 h;
+    h.update(size, sizeof size);
+    h.update(m_pixels.data(), m_pixels.size());
+    return h.digest();
 }
 
 }  // namespace fb89::controller

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "controller_sim/pixel_fill.h"
 #include "protocol/command.h"
 
 namespace fb89::controller {
@@ -32,9 +33,11 @@ struct Clipped {
     PixelRect rect;
     bool clipped = false;
 };
-std::optional<Clipped> clip_fill_rect(const protocol::FillRect& c, uint32_t width, uint32_t height);
+inline std::optional<Clipped> clip_fill_rect(const protocol::FillRect& c, uint32_t width,
+                                             uint32_t height);
 // A span is a one-row rectangle; x1 < x0 is empty.
-std::optional<Clipped> clip_span(const protocol::DrawSpan& c, uint32_t width, uint32_t height);
+inline std::optional<Clipped> clip_span(const protocol::DrawSpan& c, uint32_t width,
+                                        uint32_t height);
 
 class Framebuffer {
   public:
@@ -55,7 +58,9 @@ class Framebuffer {
     // `r` must lie inside the framebuffer (as clip_fill_rect returns it).
     void fill_rect(const PixelRect& r, protocol::Rgb c);
     // Pixels x .. x+n-1 of row y, which must lie inside the framebuffer.
-    void draw_span(uint32_t y, uint32_t x, uint32_t n, protocol::Rgb c);
+    void draw_span(uint32_t y, uint32_t x, uint32_t n, protocol::Rgb c) {
+        fill_run(m_pixels.data() + row_offset(y) + std::size_t{x} * 3, n, rgb_pattern(c));
+    }
 
     protocol::Rgb pixel(uint32_t x, uint32_t y) const;  // (x, y) must be inside
     void set_pixel(uint32_t x, uint32_t y, protocol::Rgb c);
@@ -64,7 +69,8 @@ class Framebuffer {
     std::span<const uint8_t> pixels() const { return m_pixels; }
     const uint8_t* row(uint32_t y) const { return m_pixels.data() + row_offset(y); }
 
-    // 64-bit FNV-1a over width and height (each 4 bytes, little-endian) and then the pixels.
+    // XXH64 (seed 0, xxhash64.h) of width and height (each 4 bytes, little-endian) and then
+    // the pixels.
     uint64_t checksum() const;
 
   private:
@@ -75,7 +81,42 @@ class Framebuffer {
     std::vector<uint8_t> m_pixels;
 };
 
-// Fills n RGB888 pixels starting at p: the inner loop of every fill, clear and span.
+namespace detail {
+
+// Intersects [lo, lo + len) with [0, limit); returns false when nothing is left.
+inline bool clip_interval(int64_t lo, int64_t len, uint32_t limit, uint32_t& out_lo,
+                          uint32_t& out_len) {
+    const int64_t a = lo > 0 ? lo : 0;
+    const int64_t b = lo + len < int64_t{limit} ? lo + len : int64_t{limit};
+    if (b <= a) return false;
+    out_lo = static_cast<uint32_t>(a);
+    out_len = static_cast<uint32_t>(b - a);
+    return true;
+}
+
+}  // namespace detail
+
+inline std::optional<Clipped> clip_fill_rect(const protocol::FillRect& c, uint32_t width,
+                                             uint32_t height) {
+    Clipped out;
+    if (!detail::clip_interval(c.x, c.w, width, out.rect.x, out.rect.w)) return std::nullopt;
+    if (!detail::clip_interval(c.y, c.h, height, out.rect.y, out.rect.h)) return std::nullopt;
+    out.clipped = out.rect.w != c.w || out.rect.h != c.h;
+    return out;
+}
+
+inline std::optional<Clipped> clip_span(const protocol::DrawSpan& c, uint32_t width,
+                                        uint32_t height) {
+    if (c.x1 < c.x0) return std::nullopt;
+    const int64_t n = int64_t{c.x1} - c.x0 + 1;
+    Clipped out;
+    if (!detail::clip_interval(c.x0, n, width, out.rect.x, out.rect.w)) return std::nullopt;
+    if (!detail::clip_interval(c.y, 1, height, out.rect.y, out.rect.h)) return std::nullopt;
+    out.clipped = out.rect.w != n;
+    return out;
+}
+
+// Fills n RGB888 pixels starting at p (fill_run with the colour's pattern).
 void fill_pixels(uint8_t* p, std::size_t n, protocol::Rgb c);
 
 }  // namespace fb89::controller

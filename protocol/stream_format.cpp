@@ -51,23 +51,6 @@ void put_i32(std::vector<uint8_t>& out, int32_t v) {
     put_u32(out, static_cast<uint32_t>(v));
 }
 
-uint16_t get_u16(const uint8_t* p) {
-    return static_cast<uint16_t>(p[0] | (p[1] << 8));
-}
-
-uint32_t get_u32(const uint8_t* p) {
-    return static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) |
-           (static_cast<uint32_t>(p[2]) << 16) | (static_cast<uint32_t>(p[3]) << 24);
-}
-
-uint64_t get_u64(const uint8_t* p) {
-    return static_cast<uint64_t>(get_u32(p)) | (static_cast<uint64_t>(get_u32(p + 4)) << 32);
-}
-
-int32_t get_i32(const uint8_t* p) {
-    return static_cast<int32_t>(get_u32(p));
-}
-
 // --- encoders ------------------------------------------------------------------------
 
 namespace {
@@ -155,10 +138,9 @@ Command decode_fixed_payload(Opcode op, const uint8_t* p) {
         case Opcode::FrameBegin:
             return FrameBegin{get_u32(p), get_u32(p + 4), get_u32(p + 8), get_rgb(p + 12)};
         case Opcode::FillRect:
-            return FillRect{get_i32(p), get_i32(p + 4), get_u32(p + 8), get_u32(p + 12),
-                            get_rgb(p + 16)};
+            return decode_fill_rect(p);
         case Opcode::DrawSpan:
-            return DrawSpan{get_i32(p), get_i32(p + 4), get_i32(p + 8), get_rgb(p + 12)};
+            return decode_draw_span(p);
         case Opcode::FrameEnd:
             return FrameEnd{};
         case Opcode::Marker:

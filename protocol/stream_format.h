@@ -45,6 +45,8 @@ inline constexpr uint32_t kMaxFrameDimension = 16384;
 // prefix only; its text follows.
 std::optional<std::size_t> payload_size(uint8_t opcode);  // nullopt: not a command opcode
 inline constexpr std::size_t kFrameBeginRecordSize = 16;  // opcode + 15-byte payload
+inline constexpr std::size_t kFillRectRecordSize = 20;    // opcode + 19-byte payload
+inline constexpr std::size_t kDrawSpanRecordSize = 16;    // opcode + 15-byte payload
 inline constexpr std::size_t kMaxRecordSize = 1 + 2 + kMaxMarkerLength;
 
 // --- trailing index ------------------------------------------------------------------
@@ -88,10 +90,21 @@ void put_u16(std::vector<uint8_t>& out, uint16_t v);
 void put_u32(std::vector<uint8_t>& out, uint32_t v);
 void put_u64(std::vector<uint8_t>& out, uint64_t v);
 void put_i32(std::vector<uint8_t>& out, int32_t v);  // two's complement
-uint16_t get_u16(const uint8_t* p);
-uint32_t get_u32(const uint8_t* p);
-uint64_t get_u64(const uint8_t* p);
-int32_t get_i32(const uint8_t* p);
+// Inline: the reader decodes every record with them. Compilers turn each into one load
+// (plus a byte swap on big-endian hosts).
+inline uint16_t get_u16(const uint8_t* p) {
+    return static_cast<uint16_t>(p[0] | (p[1] << 8));
+}
+inline uint32_t get_u32(const uint8_t* p) {
+    return static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) |
+           (static_cast<uint32_t>(p[2]) << 16) | (static_cast<uint32_t>(p[3]) << 24);
+}
+inline uint64_t get_u64(const uint8_t* p) {
+    return static_cast<uint64_t>(get_u32(p)) | (static_cast<uint64_t>(get_u32(p + 4)) << 32);
+}
+inline int32_t get_i32(const uint8_t* p) {
+    return static_cast<int32_t>(get_u32(p));
+}
 
 // --- encoders (append to out) --------------------------------------------------------
 // Throw std::invalid_argument for what version 1 cannot carry (see check_*).
@@ -103,6 +116,63 @@ void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Foot
 // Decodes a fixed-size command record's payload (not MARKER); p points after the opcode
 // and holds payload_size(opcode) bytes.
 Command decode_fixed_payload(Opcode op, const uint8_t* p);
+// The same for the two drawing commands, inline for the reader's per-record fast path.
+inline FillRect decode_fill_rect(const uint8_t* p) {
+    return FillRect{get_i32(p), get_i32(p + 4), get_u32(p + 8), get_u32(p + 12),
+                    Rgb{p[16], p[17], p[18]}};
+}
+inline DrawSpan decode_draw_span(const uint8_t* p) {
+    return DrawSpan{get_i32(p), get_i32(p + 4), get_i32(p + 8), Rgb{p[12], p[13], p[14]}};
+}
+
+namespace detail {
+
+// The T that out holds, made one if it holds another alternative: in the common case (runs
+// of one opcode) a record's fields are then stored one by one into the command in place.
+// Stored as a whole struct, the compiler may write it with overlapping 8-byte moves, which
+// the controller's 4-byte loads of the same fields cannot take from the store buffer.
+template <class T>
+T& held(Command& out) {
+    if (T* t = std::get_if<T>(&out)) return *t;
+    return out.emplace<T>();
+}
+
+}  // namespace detail
+
+// The StreamReader's fast path: decodes the FILL_RECT, DRAW_SPAN or FRAME_END record at p
+// (which must hold kFillRectRecordSize bytes, whatever the opcode) into out and returns its
+// size in bytes. Returns 0, leaving out as it was, for any other opcode and for a span that
+// check_command refuses (x1 < x0): those take the general path.
+inline std::size_t decode_common_record(const uint8_t* p, Command& out) {
+    switch (p[0]) {
+        case static_cast<uint8_t>(Opcode::DrawSpan): {
+            const DrawSpan s = decode_draw_span(p + 1);
+            if (s.x1 < s.x0) return 0;
+            DrawSpan& d = detail::held<DrawSpan>(out);
+            d.y = s.y;
+            d.x0 = s.x0;
+            d.x1 = s.x1;
+            d.color = s.color;
+            return kDrawSpanRecordSize;
+        }
+        case static_cast<uint8_t>(Opcode::FillRect): {
+            const FillRect f = decode_fill_rect(p + 1);
+            FillRect& d = detail::held<FillRect>(out);
+            d.x = f.x;
+            d.y = f.y;
+            d.w = f.w;
+            d.h = f.h;
+            d.color = f.color;
+            return kFillRectRecordSize;
+        }
+        case static_cast<uint8_t>(Opcode::FrameEnd):
+            detail::held<FrameEnd>(out);
+            return 1;
+        default:
+            return 0;
+    }
+}
+
 FrameIndexEntry decode_index_entry(const uint8_t* p);
 // nullopt when the footer magic is absent.
 std::optional<Footer> decode_footer(const uint8_t* p);

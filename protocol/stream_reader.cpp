@@ -1,7 +1,9 @@
 // StreamReader: incremental decoder of fb89 streams (docs/PROTOCOL.md). Files and stdin
 // are read with POSIX read() into a bounded buffer that grows only to the largest record
 // or header property version 1 allows, so a corrupt length field can never make it
-// allocate more; a pipe delivers commands as soon as they arrive.
+// allocate more; a pipe delivers commands as soon as they arrive. FILL_RECT, DRAW_SPAN and
+// FRAME_END records already in the buffer are decoded by a fast path (decode_buffered); the
+// general path reads every other record and reports every error.
 #include "protocol/stream_reader.h"
 
 #include <fcntl.h>
@@ -224,6 +226,8 @@ void StreamReader::read_property(uint32_t i) {
 // --- commands ------------------------------------------------------------------------
 
 bool StreamReader::next(Command& out) {
+    // (an error also sets m_done: decode_buffered reads nothing then)
+    if (decode_buffered({&out, 1}) == 1) return true;
     if (m_error) throw *m_error;
     if (m_done) return false;
     const uint64_t at = offset();
@@ -246,6 +250,50 @@ bool StreamReader::next(Command& out) {
     m_last_offset = at;
     m_last_number = m_next_command++;
     return true;
+}
+
+// The fast path of next() and read_batch(), for the records that make up almost every
+// stream: decodes FILL_RECT, DRAW_SPAN and FRAME_END records wholly in the buffer straight
+// into out[0], out[1], ..., with the read position and command numbers kept in locals.
+// Stops at out's end, after a FRAME_END, where fewer than kFillRectRecordSize bytes are
+// buffered, and before any other record -- FRAME_BEGIN, MARKER, the index, an unknown
+// opcode, a span with x1 < x0 -- which the general path then reads or reports, so both
+// accept and refuse exactly the same records. Returns how many it decoded.
+std::size_t StreamReader::decode_buffered(std::span<Command> out) {
+    if (m_done) return 0;
+    const uint8_t* const buf = m_buf.data();
+    std::size_t pos = m_pos, last = m_pos, n = 0;
+    while (n < out.size() && m_end - pos >= kFillRectRecordSize) {
+        const std::size_t size = decode_common_record(buf + pos, out[n]);
+        if (size == 0) break;
+        last = pos;
+        pos += size;
+        ++n;
+        if (size == 1) break;  // FRAME_END
+    }
+    if (n > 0) {
+        m_last_offset = m_buf_offset + last;
+        m_last_number = m_next_command + n - 1;
+        m_next_command += n;
+        m_pos = pos;
+    }
+    return n;
+}
+
+std::size_t StreamReader::read_batch(std::span<Command> out) {
+    std::size_t n = 0;
+    try {
+        while (n < out.size()) {
+            const std::size_t fast = decode_buffered(out.subspan(n));
+            n += fast;
+            if (fast > 0 && std::holds_alternative<FrameEnd>(out[n - 1])) break;
+            if (n == out.size() || !next(out[n])) break;
+            if (std::holds_alternative<FrameEnd>(out[n++])) break;
+        }
+    } catch (const StreamError&) {
+        if (n == 0) throw;  // else kept in m_error for the next call
+    }
+    return n;
 }
 
 // Decodes the record at m_pos (its opcode byte) and moves past it.

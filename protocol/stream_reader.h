@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,12 @@ class StreamReader {
     // frame index, or where a cut stream stops at a record boundary). Throws StreamError on
     // corrupt or truncated input, and again on every call after that.
     bool next(Command& out);
+    // Reads up to out.size() commands into out's first elements, in order, and returns how
+    // many; a batch ends after a FRAME_END, so that the caller sees each frame as it ends.
+    // 0 at the end of the stream. A StreamError is thrown only when no command precedes it
+    // in the batch: a batch stops short of the error, and the next call throws it.
+    std::size_t read_batch(std::span<Command> out);
+
     uint64_t command_number() const { return m_last_number; }  // of the last command read
     uint64_t command_offset() const { return m_last_offset; }  // byte offset of its record
     uint64_t next_command_number() const { return m_next_command; }
@@ -78,6 +85,7 @@ class StreamReader {
     void reposition(uint64_t at);
     void read_header();
     void read_property(uint32_t i);
+    std::size_t decode_buffered(std::span<Command> out);
     Command read_record(uint8_t opcode, uint64_t at);
     void read_index(uint64_t at);
     [[noreturn]] void fail(const std::string& what, uint64_t at, const std::string& where,

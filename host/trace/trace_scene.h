@@ -157,9 +157,9 @@ inline bool TraceScene::intersect(const Ray& ray, const RaySpace& s, uint32_t pi
     // watertight inside test in ray space
     const glm::dvec3* v = vertices_of(f);
     auto sheared = [&](const glm::dvec3& p, double& x, double& y) {
-        const glm::dvec3 a = p - ray.origin;
-        x = a[s.kx] - s.sx * a[s.kz];
-        y = a[s.ky] - s.sy * a[s.kz];
+        const glm::dvec3 r = p - ray.origin;
+        x = r[s.kx] - s.sx * r[s.kz];
+        y = r[s.ky] - s.sy * r[s.kz];
     };
     double x0, y0, px, py;
     sheared(v[0], x0, y0);

@@ -1,11 +1,17 @@
 // Tests of controller_sim/controller: execution into the framebuffer, per-opcode counters,
-// clipping, commands outside frames, per-frame results and pipeline timing.
+// clipping, commands outside frames, per-frame results, pipeline timing, and the batch
+// path and the sink calls against executing each command.
 #include "controller_sim/controller.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <span>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "protocol/memory_buffer.h"
@@ -257,6 +263,115 @@ TEST(Controller, ExecuteAndSinkCallsAndMemoryReplayAgree) {
         b.execute(cmd);
     EXPECT_EQ(a.frames().at(0).checksum, b.frames().at(0).checksum);
     EXPECT_EQ(a.stats().totals, b.stats().totals);
+}
+
+// A stream with every case the batch path must hand over or count: commands before any
+// frame and between frames, FRAME_END outside a frame, frames of several sizes (one pixel,
+// odd, full), fills and spans inside, clipped at every edge, wholly outside and empty,
+// markers, and a frame closed by the next FRAME_BEGIN.
+std::vector<protocol::Command> mixed_commands() {
+    std::vector<protocol::Command> out;
+    uint32_t seed = 12345;
+    const auto next = [&seed](int64_t lo, int64_t hi) {
+        seed = seed * 1664525u + 1013904223u;
+        return static_cast<int32_t>(lo + static_cast<int64_t>(seed >> 8) % (hi - lo + 1));
+    };
+    const auto drawing = [&](int32_t w, int32_t h, int n) {
+        for (int i = 0; i < n; ++i) {
+            const Rgb c{static_cast<uint8_t>(next(0, 255)), 9, static_cast<uint8_t>(i)};
+            const int32_t x = next(-40, w + 40), y = next(-3, h + 3);
+            if (i % 3 == 0) {
+                out.push_back(FillRect{x, y, static_cast<uint32_t>(next(0, w + 8)),
+                                       static_cast<uint32_t>(next(0, 6)), c});
+            } else if (i % 50 == 7) {
+                out.push_back(DrawSpan{y, x, x - 1, c});  // x1 < x0: empty
+            } else {
+                out.push_back(DrawSpan{y, x, x + next(0, i % 7 == 1 ? 3 * w : 20), c});
+            }
+            if (i % 97 == 0) out.push_back(Marker{"m"});
+        }
+    };
+    drawing(50, 50, 20);
+    out.push_back(FrameEnd{});
+    const int32_t sizes[][2] = {{1, 1}, {37, 23}, {1024, 780}, {16, 1}, {3, 300}};
+    for (uint32_t f = 0; f < 5; ++f) {
+        const auto [w, h] = sizes[f];
+        out.push_back(FrameBegin{f, static_cast<uint32_t>(w), static_cast<uint32_t>(h), kGrey});
+        drawing(w, h, 400);
+        if (f != 2) out.push_back(FrameEnd{});  // frame 2 is closed by frame 3's FRAME_BEGIN
+        if (f == 3) drawing(w, h, 10);          // between frames
+    }
+    out.push_back(FrameBegin{9, 64, 48, kRed});
+    drawing(64, 48, 50);  // left open
+    return out;
+}
+
+// Everything a replay reports, exactly (doubles included), and the pixels.
+void expect_same_run(const Controller& a, const Controller& b, const std::string& what) {
+    EXPECT_EQ(a.stats().to_json(), b.stats().to_json()) << what;
+    EXPECT_EQ(a.commands_executed(), b.commands_executed()) << what;
+    EXPECT_EQ(a.elapsed_us(), b.elapsed_us()) << what;
+    ASSERT_EQ(a.in_frame(), b.in_frame()) << what;
+    EXPECT_EQ(a.open_frame().checksum, b.open_frame().checksum) << what;
+    EXPECT_EQ(a.open_frame().ops, b.open_frame().ops) << what;
+    EXPECT_TRUE(std::ranges::equal(a.framebuffer().pixels(), b.framebuffer().pixels())) << what;
+}
+
+std::vector<CostProfile> batch_profiles() {
+    CostProfile slow_bus = default_profile();
+    slow_bus.name = "slow bus, spans as fills, 4 bpp";
+    slow_bus.b_bus_bytes_per_s = 1e6;
+    slow_bus.span_as = SpanAs::Fill;
+    slow_bus.bpp = 4;
+    return {default_profile(), load_profile("ideal"), slow_bus};
+}
+
+TEST(Controller, BatchesGiveWhatExecutingEachCommandGives) {
+    const std::vector<protocol::Command> commands = mixed_commands();
+    for (const CostProfile& p : batch_profiles()) {
+        Controller one(p);
+        for (const protocol::Command& c : commands)
+            one.execute(c);
+        for (std::size_t batch :
+             {std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{64}, commands.size()}) {
+            Controller batched(p);
+            for (std::size_t i = 0; i < commands.size(); i += batch) {
+                const std::size_t n = std::min(batch, commands.size() - i);
+                batched.execute(std::span(commands).subspan(i, n));
+            }
+            expect_same_run(one, batched, fmt::format("{}, batches of {}", p.name, batch));
+        }
+    }
+}
+
+TEST(Controller, SinkCallsGiveWhatExecuteGivesWithAndWithoutAnObserver) {
+    const std::vector<protocol::Command> commands = mixed_commands();
+    Controller executed, sunk, observed;
+    std::vector<uint64_t> seen;
+    observed.set_observer(
+        [&](uint64_t number, const protocol::Command&) { seen.push_back(number); });
+    for (const protocol::Command& c : commands) {
+        executed.execute(c);
+        sunk.submit(c);
+        observed.submit(c);
+    }
+    expect_same_run(executed, sunk, "sink calls");
+    expect_same_run(executed, observed, "sink calls, observed");
+    ASSERT_EQ(seen.size(), commands.size());
+    for (std::size_t i = 0; i < seen.size(); ++i)
+        ASSERT_EQ(seen[i], i);
+}
+
+TEST(Controller, BatchesShowAnObserverEveryCommandInOrder) {
+    const std::vector<protocol::Command> commands = mixed_commands();
+    Controller c;
+    std::vector<protocol::Command> seen;
+    c.set_observer([&](uint64_t number, const protocol::Command& cmd) {
+        EXPECT_EQ(number, seen.size());
+        seen.push_back(cmd);
+    });
+    c.execute(commands);
+    EXPECT_EQ(seen, commands);
 }
 
 TEST(Controller, StatsJsonAndSummaryReportEveryOpcode) {

@@ -1,8 +1,13 @@
 // Tests of controller_sim/cost_model: the check values of docs/COST_MODEL.md, the word
-// count against MAME's left/full/right decomposition, and the bus/controller pipeline.
+// count against MAME's left/full/right decomposition, CycleCosts against the formulas, and
+// the bus/controller pipeline.
 #include "controller_sim/cost_model.h"
 
 #include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace fb89::controller {
 namespace {
@@ -105,6 +110,48 @@ TEST(CostModel, IdealProfileCostsNothing) {
     EXPECT_EQ(frame_begin_cycles(p, 1024, 780), 0u);
     for (uint32_t b : p.bytes)
         EXPECT_EQ(bus_seconds(p, b), 0.0);
+}
+
+// Every built-in profile, and the TMS34010's at every bpp with spans both ways and non-zero
+// set-up and row charges, so that each term of each formula counts.
+std::vector<CostProfile> profiles_to_compare() {
+    std::vector<CostProfile> out;
+    for (const std::string& name : list_profiles())
+        out.push_back(load_profile(name));
+    for (uint32_t bpp : {1u, 2u, 4u, 8u, 16u})
+        for (SpanAs span_as : {SpanAs::Line, SpanAs::Fill}) {
+            CostProfile p = tms34010();
+            p.bpp = bpp;
+            p.span_as = span_as;
+            p.c_row = 3;
+            p.c_line_setup = 17;
+            out.push_back(p);
+        }
+    return out;
+}
+
+TEST(CycleCosts, EqualTheCostFormulasForEveryProfileAndPlacement) {
+    for (const CostProfile& p : profiles_to_compare()) {
+        const CycleCosts costs(p);
+        EXPECT_EQ(costs.command_only(), command_only_cycles(p)) << p.to_string();
+        for (uint32_t x : {0u, 1u, 3u, 7u, 8u, 15u, 16u, 17u, 1023u, 16383u})
+            for (uint32_t w : {1u, 2u, 5u, 15u, 16u, 17u, 33u, 1024u, 16384u}) {
+                ASSERT_EQ(costs.draw_span(x, w), draw_span_cycles(p, x, w))
+                    << p.to_string() << " x=" << x << " w=" << w;
+                for (uint32_t h : {1u, 2u, 780u, 16384u})
+                    ASSERT_EQ(costs.fill_rect(PixelRect{x, 5, w, h}),
+                              fill_rect_cycles(p, PixelRect{x, 5, w, h}))
+                        << p.to_string() << " x=" << x << " w=" << w << " h=" << h;
+            }
+    }
+}
+
+TEST(CycleCosts, RefuseABppThatIsNotAPowerOfTwoUpTo16) {
+    for (uint32_t bpp : {0u, 3u, 32u}) {
+        CostProfile p = tms34010();
+        p.bpp = bpp;
+        EXPECT_THROW(CycleCosts{p}, std::invalid_argument) << "bpp " << bpp;
+    }
 }
 
 // Bus 2 us, execution 1 us: each command waits for the bus; the controller idles between.

@@ -1,5 +1,5 @@
 // Tests of controller_sim/framebuffer: clipping, exact pixel coverage of fills and spans,
-// size limits and the checksum.
+// size limits and the checksum (XXH64, controller_sim/xxhash64.h).
 #include "controller_sim/framebuffer.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +8,8 @@
 #include <limits>
 #include <stdexcept>
 #include <vector>
+
+#include "controller_sim/xxhash64.h"
 
 namespace fb89::controller {
 namespace {
@@ -125,9 +127,22 @@ TEST(Framebuffer, ClipSpanCutsEndsAndRejectsOutsideOrReversed) {
     EXPECT_EQ(c->rect, (PixelRect{0, 0, 10, 1}));
 }
 
-TEST(Framebuffer, ChecksumIsFnv1aOverSizeAndPixels) {
-    // FNV-1a 64 of 01 00 00 00 01 00 00 00 00 00 00, computed independently
-    EXPECT_EQ(Framebuffer(1, 1).checksum(), 0x5d1ee66e34429d67ULL);
+TEST(Framebuffer, ChecksumIsXxh64OverSizeAndPixels) {
+    // XXH64 (seed 0) of 01 00 00 00 01 00 00 00 00 00 00, computed independently (libxxhash)
+    EXPECT_EQ(Framebuffer(1, 1).checksum(), 0x34f0036812ea8873ULL);
+    // of 04 00 00 00 03 00 00 00 and twelve pixels 12 34 56: more than one 32-byte stripe
+    Framebuffer fb(4, 3);
+    fb.clear(Rgb{0x12, 0x34, 0x56});
+    EXPECT_EQ(fb.checksum(), 0x9ef4ae36bd54dd6bULL);
+}
+
+TEST(Framebuffer, ChecksumIsXxh64OfTheSizeBytesThenThePixelBytes) {
+    Framebuffer fb(37, 23);
+    for (uint32_t y = 0; y < fb.height(); ++y)
+        fb.draw_span(y, y % 5, 30, Rgb{static_cast<uint8_t>(y), 7, static_cast<uint8_t>(3 * y)});
+    std::vector<uint8_t> bytes = {37, 0, 0, 0, 23, 0, 0, 0};
+    bytes.insert(bytes.end(), fb.pixels().begin(), fb.pixels().end());
+    EXPECT_EQ(fb.checksum(), xxh64(bytes.data(), bytes.size()));
 }
 
 TEST(Framebuffer, ChecksumChangesWhenOnePixelChanges) {
