@@ -89,19 +89,37 @@ std::string last_phase(const char* path) {
     return phase >= 0 ? fmt::format("in phase {}", phase_name(phase)) : "before its first phase";
 }
 
-// Reads the child's stdout and stderr until both close or the time runs out.
-bool drain(int out_fd, int err_fd, std::vector<uint8_t>& out, std::string& err,
-           std::chrono::steady_clock::time_point deadline) {
+// The child's resident memory in bytes, from /proc; 0 if it cannot be read.
+uint64_t resident_bytes(pid_t child) {
+    std::ifstream status("/proc/" + std::to_string(child) + "/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmRSS:", 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) << 10;
+    return 0;
+}
+
+enum class Drained { Closed, OutOfTime, OutOfMemory };
+
+// Reads the child's stdout and stderr until both close, the time runs out, or the child's
+// resident memory passes `memory_bytes` (looked at every 50 ms).
+Drained drain(pid_t child, int out_fd, int err_fd, std::vector<uint8_t>& out, std::string& err,
+              std::chrono::steady_clock::time_point deadline, uint64_t memory_bytes) {
     pollfd fds[2] = {{out_fd, POLLIN, 0}, {err_fd, POLLIN, 0}};
     int open = 2;
     char buf[65536];
+    auto next_look = std::chrono::steady_clock::now();
     while (open > 0) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-            deadline - std::chrono::steady_clock::now());
-        if (left.count() <= 0) return false;
-        if (::poll(fds, 2, static_cast<int>(std::min<int64_t>(left.count(), 1000))) < 0) {
+        const auto now = std::chrono::steady_clock::now();
+        if (now >= next_look) {
+            if (resident_bytes(child) > memory_bytes) return Drained::OutOfMemory;
+            next_look = now + std::chrono::milliseconds(50);
+        }
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now).count();
+        if (left <= 0) return Drained::OutOfTime;
+        if (::poll(fds, 2, static_cast<int>(std::min<int64_t>(left, 50))) < 0) {
             if (errno == EINTR) continue;
-            return false;
+            return Drained::OutOfTime;
         }
         for (int i = 0; i < 2; ++i) {
             if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
@@ -116,7 +134,7 @@ bool drain(int out_fd, int err_fd, std::vector<uint8_t>& out, std::string& err,
             }
         }
     }
-    return true;
+    return Drained::Closed;
 }
 
 }  // namespace
@@ -172,8 +190,12 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     if (child == 0) {
         ::dup2(out.fd[1], STDOUT_FILENO);
         ::dup2(err.fd[1], STDERR_FILENO);
-        // the guest's memory: every page it maps is a writable private mapping of qemu's
-        const rlimit data{limits.memory_bytes, limits.memory_bytes};
+        // the guest's memory: every page it maps is a writable private mapping of qemu's.
+        // The parent watches resident memory against the limit; this bound, above it by
+        // room for the emulator's own buffers, only stops a guest that maps far more than
+        // it touches (qemu then searches for room until the time limit ends it)
+        const rlim_t mapped = 2 * limits.memory_bytes + (rlim_t{512} << 20);
+        const rlimit data{mapped, mapped};
         ::setrlimit(RLIMIT_DATA, &data);
         // no core file: a guest's would land in the scene's folder, and writing one of a
         // large guest under the emulator takes minutes
@@ -187,10 +209,11 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     ::close(err.fd[1]), err.fd[1] = -1;
     GuestRun run;
     std::string guest_err;
-    const bool in_time = drain(out.fd[0], err.fd[0], run.stream, guest_err,
-                               start + std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                           std::chrono::duration<double>(limits.seconds)));
-    if (!in_time) ::kill(child, SIGKILL);
+    const Drained drained = drain(child, out.fd[0], err.fd[0], run.stream, guest_err,
+                                  start + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                              std::chrono::duration<double>(limits.seconds)),
+                                  limits.memory_bytes);
+    if (drained != Drained::Closed) ::kill(child, SIGKILL);
     int status = 0;
     ::waitpid(child, &status, 0);
     run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -202,12 +225,12 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     const std::string where = last_phase(phase_path);
 
     const std::string said = guest_err.empty() ? "" : ": " + guest_err.substr(0, 2000);
-    if (!in_time)
+    if (drained == Drained::OutOfTime)
         throw EmulatorError(
             fmt::format("the emulated host ran past its limit of {:g} s {} on {} "
                         "(stopped; nothing written)",
                         limits.seconds, where, what));
-    if (guest_err.find("std::bad_alloc") != std::string::npos ||
+    if (drained == Drained::OutOfMemory || guest_err.find("std::bad_alloc") != std::string::npos ||
         guest_err.find("Cannot allocate memory") != std::string::npos)
         throw EmulatorError(
             fmt::format("the emulated host ran out of memory (limit {} MiB) {} "

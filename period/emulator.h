@@ -37,7 +37,8 @@ struct GuestRun {
 };
 
 // Guest memory allowed by default ($FB89_GUEST_MEMORY_LIMIT MiB overrides it): far above
-// what any bundled scene needs, and below what would let one run take the machine.
+// what any bundled scene needs, and below what would let one run take the machine. It bounds
+// the emulator's resident memory (guest and emulator together), looked at every 50 ms.
 inline constexpr long kGuestMemoryMiB = 2048;
 
 // Runs the guest on `scene` with `options` (the guest's own, e.g. {"--method", "zbuffer"}),

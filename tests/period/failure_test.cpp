@@ -1,6 +1,6 @@
-// A 1989-host run that goes wrong: a guest that crashes, loops or exits non-zero under the
-// emulator is stopped within its bounds, reported with the phase it was in, and leaves
-// no output behind (period/kernels/fault.cpp fails on purpose).
+// A 1989-host run that goes wrong: a guest that crashes, loops, runs out of memory or exits
+// non-zero under the emulator is stopped within its bounds, reported with the phase it was
+// in, and leaves no output behind (period/kernels/fault.cpp fails on purpose).
 #include "period/emulator.h"
 
 #include <gtest/gtest.h>
@@ -26,7 +26,9 @@ std::string failure(const std::string& mode) {
 
 // Sets an environment variable for the life of the object.
 struct ScopedEnv {
-    ScopedEnv(const char* name, const char* value) : name(name) { ::setenv(name, value, 1); }
+    ScopedEnv(const char* variable, const char* value) : name(variable) {
+        ::setenv(name, value, 1);
+    }
     ~ScopedEnv() { ::unsetenv(name); }
     const char* name;
 };
@@ -41,6 +43,14 @@ TEST(PeriodFailure, ALoopIsStoppedAtTheTimeLimit) {
     ScopedEnv limit("FB89_GUEST_TIME_LIMIT", "2");
     const std::string e = failure("loop");
     EXPECT_NE(e.find("ran past its limit of 2 s in phase hidden_surface"), std::string::npos) << e;
+}
+
+TEST(PeriodFailure, RunningOutOfMemoryIsStoppedAtTheMemoryLimit) {
+    ScopedEnv memory("FB89_GUEST_MEMORY_LIMIT", "96");
+    ScopedEnv time("FB89_GUEST_TIME_LIMIT", "120");  // so a missed bound fails, not hangs
+    const std::string e = failure("hog");
+    EXPECT_NE(e.find("ran out of memory (limit 96 MiB) in phase hidden_surface"), std::string::npos)
+        << e;
 }
 
 TEST(PeriodFailure, ANonZeroExitIsReportedWithItsPhase) {
