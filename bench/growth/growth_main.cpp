@@ -4,7 +4,6 @@
 // child process of its own; writes growth.csv, growth_slopes.csv and growth.md into --out
 // and prints the markdown. scripts/bench-growth runs it and draws the chart.
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <string>
@@ -15,6 +14,7 @@
 #include "bench/growth/child_process.h"
 #include "bench/growth/growth_run.h"
 #include "bench/growth/report.h"
+#include "protocol/atomic_file.h"
 
 namespace {
 
@@ -24,9 +24,7 @@ using namespace fb89;
 constexpr uint64_t kMaxRungFaces = uint64_t{1} << 22;
 
 void write_text(const std::filesystem::path& file, const std::string& text) {
-    std::ofstream out(file);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write " + file.string());
+    protocol::write_file_atomically(file, text);
 }
 
 int run(const std::filesystem::path& out, const growth::GrowthOptions& options) {

@@ -1,12 +1,13 @@
 #include "bench/growth/ladder.h"
 
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <unordered_map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+
+#include "protocol/atomic_file.h"
 
 namespace fb89::growth {
 
@@ -85,9 +86,7 @@ std::filesystem::path write_scene(const Rung& rung, const std::filesystem::path&
     }
     const auto file =
         dir / fmt::format("terrain_{}{}.json", rung.faces(), obj.empty() ? "" : "_obj");
-    std::ofstream out(file);
-    out << scene.dump(2) << "\n";
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
+    protocol::write_file_atomically(file, scene.dump(2) + "\n");
     return file;
 }
 
@@ -114,9 +113,7 @@ uint64_t write_obj(const Rung& rung, const std::filesystem::path& file) {
     const std::string text =
         obj_text(host::generate_terrain(rung.terrain()),
                  fmt::format("bench/growth terrain, {} faces, seed {}", rung.faces(), kLadderSeed));
-    std::ofstream out(file, std::ios::binary);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", file.string()));
+    protocol::write_file_atomically(file, text);
     return text.size();
 }
 

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "bench/peers/ray_side_by_side.h"
 #include "bench/peers/side_by_side.h"
 #include "host/trace/beam_ray_hybrid.h"
+#include "protocol/atomic_file.h"
 
 namespace {
 
@@ -59,11 +59,10 @@ int run_rays(const Args& args) {
 
     std::cout << ray_human_table(rows);
     if (!args.csv.empty()) {
-        std::ofstream out(args.csv);
-        out << ray_csv_header() << "\n";
+        std::string text = ray_csv_header() + "\n";
         for (const RayRow& r : rows)
-            out << ray_csv_row(r) << "\n";
-        if (!out) throw std::runtime_error("cannot write " + args.csv);
+            text += ray_csv_row(r) + "\n";
+        fb89::protocol::write_file_atomically(args.csv, text);
     }
     // exit 1 when our ray tracer and Embree's robust mode disagree inside a face, or when
     // the beam hybrid's ids differ from the ray tracer's
@@ -120,11 +119,10 @@ int run_llvmpipe(const Args& args) {
 
     std::cout << human_table(rows);
     if (!csv.empty()) {
-        std::ofstream out(csv);
-        out << csv_header() << "\n";
+        std::string text = csv_header() + "\n";
         for (const SideBySideRow& r : rows)
-            out << csv_row(r) << "\n";
-        if (!out) throw std::runtime_error("cannot write " + csv);
+            text += csv_row(r) + "\n";
+        fb89::protocol::write_file_atomically(csv, text);
     }
     // exit 1 when a check failed: coverage, or an id mismatch that is neither a depth tie
     // nor within llvmpipe's float error, or the hybrid differing from the Z-buffer
