@@ -10,36 +10,20 @@ open markers.
 import csv
 import os
 import sys
-import tempfile
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.dont_write_bytecode = True  # nothing written beside the scripts
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from atomic_chart import save  # noqa: E402
+
 
 def read(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
-
-
-def save(fig, path):
-    """Saves the chart whole or not at all: to a hidden temporary beside `path`, then renamed
-    over it, so a failed or killed run leaves the old chart (docs/RELIABILITY.md, Outputs)."""
-    folder, name = os.path.split(path)
-    fd, tmp = tempfile.mkstemp(dir=folder or ".", prefix=f".{name}.tmp-")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            fig.savefig(f, format="png", dpi=110)
-            f.flush()
-            os.fsync(f.fileno())
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
 
 
 def slope_of(slopes, method, quantity):
