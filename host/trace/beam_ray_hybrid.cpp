@@ -40,15 +40,31 @@ void BeamRayHybrid::setup(const ScreenScene& scene) {
     m_beams = std::make_unique<BeamTracer>(*m_trace.scene, *m_trace.grid);
     m_depth = std::max(1.0, measure_scene(scene).depth_complexity);
     m_width = scene.width;
-    const size_t pixels = static_cast<size_t>(scene.width) * scene.height;
-    m_pixels.assign(pixels, 0);
-    m_by_beam.assign(pixels, 0);
+    m_height = scene.height;
+    m_pixels.assign(static_cast<size_t>(scene.width) * scene.height, 0);
+    m_row_from.assign(static_cast<size_t>(scene.height), scene.width);
+    m_row_to.assign(static_cast<size_t>(scene.height), 0);
+    m_pixels_clean = true;
+    m_beam_windows.clear();
+}
+
+const std::vector<uint8_t>& BeamRayHybrid::beam_mask() const {
+    m_beam_mask.assign(static_cast<size_t>(m_width) * m_height, 0);
+    for (const PixelRect& w : m_beam_windows)
+        for (int y = w.y0; y < w.y1; ++y)
+            std::fill_n(&m_beam_mask[static_cast<size_t>(y) * m_width + w.x0], w.width(), 1);
+    return m_beam_mask;
 }
 
 void BeamRayHybrid::render(const ScreenScene& scene, protocol::CommandSink& sink,
                            HostStats& stats) {
-    std::fill(m_pixels.begin(), m_pixels.end(), 0);
-    std::fill(m_by_beam.begin(), m_by_beam.end(), 0);
+    if (!m_pixels_clean) {  // an earlier frame was cut short (its sink threw)
+        std::fill(m_pixels.begin(), m_pixels.end(), 0);
+        std::fill(m_row_from.begin(), m_row_from.end(), m_width);
+        std::fill(m_row_to.begin(), m_row_to.end(), 0);
+    }
+    m_pixels_clean = false;
+    m_beam_windows.clear();
     Frame frame{sink, {}, {}};
     const PixelRect screen = scene.screen();
     if (!screen.empty()) {
@@ -65,11 +81,18 @@ void BeamRayHybrid::render(const ScreenScene& scene, protocol::CommandSink& sink
         }
         window(frame, screen, corners);
     }
-    // ray-traced pixels leave as spans, row by row
+    // ray-traced pixels leave as spans, row by row; the rest of each row is 0 (sends nothing)
     uint64_t spans = 0;
-    for (int y = 0; y < scene.height; ++y)
-        spans +=
-            emit_packed_row(&m_pixels[static_cast<size_t>(y) * m_width], y, 0, scene.width, sink);
+    for (int y = 0; y < scene.height; ++y) {
+        const int from = m_row_from[y], to = m_row_to[y];
+        if (from >= to) continue;
+        uint32_t* row = &m_pixels[static_cast<size_t>(y) * m_width];
+        spans += emit_packed_row(row, y, from, to, sink);
+        std::fill(row + from, row + to, 0);
+        m_row_from[y] = m_width;
+        m_row_to[y] = 0;
+    }
+    m_pixels_clean = true;
 
     frame.rays.publish(stats.counters);
     frame.beams.publish(stats.counters);
@@ -95,8 +118,7 @@ void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* con
                                   static_cast<uint32_t>(w.height()), path.color});
             ++frame.fills;
         }
-        for (int y = w.y0; y < w.y1; ++y)
-            std::fill_n(&m_by_beam[static_cast<size_t>(y) * m_width + w.x0], w.width(), 1);
+        m_beam_windows.push_back(w);
         frame.pixels_by_beams += static_cast<uint64_t>(w.area());
         return;
     }
@@ -157,6 +179,10 @@ void BeamRayHybrid::rays_for_window(Frame& frame, const PixelRect& w,
     int xs[4], ys[4];
     corner_pixels(w, xs, ys);
     RayTrace path;
+    for (int y = w.y0; y < w.y1; ++y) {
+        m_row_from[y] = std::min(m_row_from[y], w.x0);
+        m_row_to[y] = std::max(m_row_to[y], w.x1);
+    }
     for (int y = w.y0; y < w.y1; ++y)
         for (int x = w.x0; x < w.x1; ++x) {
             const RayTrace* t = nullptr;

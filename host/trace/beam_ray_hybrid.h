@@ -43,8 +43,9 @@ class BeamRayHybrid final : public Renderer {
     void setup(const ScreenScene& scene) override;
     void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
 
-    // After render: per pixel, 1 when a beam decided it, 0 when the ray tracer did.
-    const std::vector<uint8_t>& beam_mask() const { return m_by_beam; }
+    // After render: per pixel, 1 when a beam decided it, 0 when the ray tracer did (made
+    // from the frame's beam windows when asked for).
+    const std::vector<uint8_t>& beam_mask() const;
     double depth_complexity() const { return m_depth; }
 
   private:
@@ -57,9 +58,15 @@ class BeamRayHybrid final : public Renderer {
     TraceSetup m_trace;
     std::unique_ptr<BeamTracer> m_beams;
     double m_depth = 1;
-    int m_width = 0;
-    std::vector<uint32_t> m_pixels;  // ray-traced pixels, packed_pixel(); 0 elsewhere
-    std::vector<uint8_t> m_by_beam;
+    int m_width = 0, m_height = 0;
+    // Ray-traced pixels, packed_pixel(); 0 elsewhere, and 0 everywhere between frames: only
+    // the columns [m_row_from[y], m_row_to[y]) of row y were written this frame, so only
+    // they are sent and cleared (beams decide most pixels of a coherent scene).
+    std::vector<uint32_t> m_pixels;
+    std::vector<int> m_row_from, m_row_to;
+    bool m_pixels_clean = true;                // false while a frame is being made
+    std::vector<PixelRect> m_beam_windows;     // the frame's windows decided by beams
+    mutable std::vector<uint8_t> m_beam_mask;  // beam_mask(), made on demand
 };
 
 }  // namespace fb89::host
