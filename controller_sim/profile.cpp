@@ -148,7 +148,7 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     json j;
     try {
         j = json::parse(json_text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // a syntax error, or a number too large for a double
         throw std::runtime_error(fmt::format("profile {}: not valid JSON: {}", origin, e.what()));
     }
     if (!j.is_object())

@@ -78,18 +78,28 @@ const PhaseCounts* GuestCounts::phase(int p) const {
 
 GuestCounts parse_guest_counts(std::string_view text, const std::string& origin) {
     GuestCounts out;
+    // a count is a non-negative integer as the plugin writes it; anything else (a negative,
+    // fractional or huge number) is refused, never converted
+    const auto count = [](const nlohmann::json& v, const std::string& what) {
+        if (!v.is_number_unsigned())
+            throw std::runtime_error(fmt::format("{} must be a count, got {}", what, v.dump()));
+        return v.get<uint64_t>();
+    };
     try {
         const nlohmann::json j = nlohmann::json::parse(text);
-        if (j.value("tool", "") != "fb89_count" || j.value("version", 0) != 1)
+        if (!j.is_object() || j.value("tool", "") != "fb89_count" || j.value("version", 0) != 1)
             throw std::runtime_error("not the output of the fb89_count plugin, version 1");
-        out.instructions = j.at("guest_instructions").get<uint64_t>();
+        out.instructions = count(j.at("guest_instructions"), "guest_instructions");
         for (const auto& p : j.at("phases")) {
             PhaseCounts c;
-            c.phase = p.at("phase").get<int>();
-            c.entered = p.at("entered").get<uint64_t>();
-            c.instructions = p.at("instructions").get<uint64_t>();
+            const uint64_t phase = count(p.at("phase"), "a phase");
+            if (phase > 15)  // the plugin keeps phases 0 to 15
+                throw std::runtime_error(fmt::format("phase {} is unknown", phase));
+            c.phase = static_cast<int>(phase);
+            c.entered = count(p.at("entered"), "entered");
+            c.instructions = count(p.at("instructions"), "instructions");
             for (const auto& [key, n] : p.at("classes").items())
-                c.classes[key] = n.get<uint64_t>();
+                c.classes[key] = count(n, key);
             out.phases.push_back(std::move(c));
         }
     } catch (const nlohmann::json::exception& e) {

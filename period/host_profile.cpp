@@ -86,7 +86,13 @@ CostRule rule_of(const json& r, const std::string& origin, const std::string& at
     if (r.contains("fpu")) rule.fpu = number(r, "fpu", origin, at);
     rule.fetch = indices(r, "fetch", origin, at);
     rule.calc = indices(r, "calc", origin, at);
-    if (r.contains("accesses")) rule.accesses = static_cast<int>(number(r, "accesses", origin, at));
+    if (r.contains("accesses")) {
+        // memory accesses an instruction makes: a small count (without it, its memory operands)
+        const json& a = r["accesses"];
+        if (!a.is_number_integer() || a.get<int64_t>() < 0 || a.get<int64_t>() > 64)
+            fail(origin, at + "\"accesses\" must be an integer from 0 to 64");
+        rule.accesses = static_cast<int>(a.get<int64_t>());
+    }
     if (r.contains("source") && r["source"].is_string()) rule.source = r["source"];
     return rule;
 }
@@ -110,7 +116,7 @@ HostProfile parse_host_profile(std::string_view text, const std::string& origin)
     json j;
     try {
         j = json::parse(text, nullptr, true, true);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // a syntax error, or a number too large for a double
         fail(origin, std::string("not valid JSON: ") + e.what());
     }
     if (!j.is_object()) fail(origin, "must be a JSON object");
@@ -118,7 +124,10 @@ HostProfile parse_host_profile(std::string_view text, const std::string& origin)
     HostProfile p;
     if (!j.contains("name") || !j["name"].is_string()) fail(origin, "\"name\" must be a string");
     p.name = j["name"];
-    p.description = j.value("description", "");
+    if (j.contains("description")) {
+        if (!j["description"].is_string()) fail(origin, "\"description\" must be a string");
+        p.description = j["description"];
+    }
     p.cpu_clock_mhz = number(j, "cpu_clock_mhz", origin, "");
     p.fpu_clock_mhz = number(j, "fpu_clock_mhz", origin, "");
     if (p.cpu_clock_mhz <= 0 || p.fpu_clock_mhz <= 0) fail(origin, "clocks must be > 0 MHz");

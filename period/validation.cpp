@@ -50,7 +50,7 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
     json j;
     try {
         j = json::parse(source);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // a syntax error, or a number too large for a double
         fail(origin, std::string("not valid JSON: ") + e.what());
     }
     if (!j.is_object() || !j.contains("schema") || j["schema"] != 1)
