@@ -116,7 +116,7 @@ RayRow measure_ray_side_by_side(const RayScene& scene, const RaySideBySideOption
     // our counters, from the last frames
     const host::Counters& rc = raytrace.stats.counters;
     row.rays = rc.get("rays");
-    row.cells = rc.get("bvh_nodes_visited");
+    row.nodes = rc.get("bvh_nodes_visited");
     row.face_tests = rc.get("ray_face_tests");
     row.beam_rays = beam.stats.counters.get("rays");
     row.pixels_by_beams = beam.stats.counters.get("pixels_by_beams");
@@ -131,7 +131,7 @@ std::string ray_csv_header() {
            "vs_robust_differ,vs_robust_coverage,vs_robust_boundary,vs_robust_diagonal,"
            "vs_robust_interior,vs_default_differ,vs_default_coverage,vs_default_boundary,"
            "vs_default_diagonal,vs_default_interior,"
-           "packets_vs_single,beam_vs_raytrace,raytrace_rays,cells_per_ray,face_tests_per_ray,"
+           "packets_vs_single,beam_vs_raytrace,raytrace_rays,nodes_per_ray,face_tests_per_ray,"
            "beam_rays,pixels_by_beams";
 }
 
@@ -149,7 +149,7 @@ std::string ray_csv_row(const RayRow& r) {
         ratio(r.embree_robust_ms, r.raytrace_ms), ratio(r.embree_single_ms, r.beam_ms),
         ratio(r.embree_packets_ms, r.beam_ms), a.differ, a.coverage, a.on_boundary, a.diagonal,
         a.interior, b.differ, b.coverage, b.on_boundary, b.diagonal, b.interior,
-        r.packets_vs_single, r.beam_vs_raytrace, r.rays, double(r.cells) / rays,
+        r.packets_vs_single, r.beam_vs_raytrace, r.rays, double(r.nodes) / rays,
         double(r.face_tests) / rays, r.beam_rays, r.pixels_by_beams);
 }
 
@@ -167,7 +167,7 @@ std::string ray_human_table(const std::vector<RayRow>& rows) {
     out += "ms: median wall-clock per frame; ratios: Embree time / ours (> 1: ours is faster)\n\n";
 
     out += fmt::format("{:<32} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "Mrays/s",
-                       "embree1", "embree16", "robust1", "raytrace", "beam*", "cells/r", "tests/r",
+                       "embree1", "embree16", "robust1", "raytrace", "beam*", "nodes/r", "tests/r",
                        "beam rays");
     for (const RayRow& r : rows) {
         const double px = r.pixels(), rays = r.rays ? double(r.rays) : 1.0;
@@ -175,11 +175,11 @@ std::string ray_human_table(const std::vector<RayRow>& rows) {
             "{:<32} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.2f} {:>9}\n",
             r.scene, mrays(px, r.embree_single_ms), mrays(px, r.embree_packets_ms),
             mrays(px, r.embree_robust_ms), mrays(px, r.raytrace_ms), mrays(px, r.beam_ms),
-            double(r.cells) / rays, double(r.face_tests) / rays, r.beam_rays);
+            double(r.nodes) / rays, double(r.face_tests) / rays, r.beam_rays);
     }
     out +=
-        "beam*: Mpixels/s (it traces fewer rays than pixels); cells/r, tests/r: our raytrace's\n"
-        "grid cells visited and ray-face tests per ray\n\n";
+        "beam*: Mpixels/s (it traces fewer rays than pixels); nodes/r, tests/r: our raytrace's\n"
+        "BVH nodes visited and ray-face tests per ray\n\n";
 
     out += fmt::format("{:<32} {:<46} {:<46} {:>9} {:>9}\n", "agreement (our raytrace)",
                        "vs Embree robust", "vs Embree default", "e16!=e1", "beam!=rt");

@@ -42,7 +42,7 @@ struct RayRow {
     uint64_t packets_vs_single = 0;     // pixels where the packets' ids differ from rtcIntersect1's
     uint64_t beam_vs_raytrace = 0;      // pixels where our two methods' ids differ
     // our counters in one frame
-    uint64_t rays = 0, cells = 0, face_tests = 0;  // raytrace
+    uint64_t rays = 0, nodes = 0, face_tests = 0;  // raytrace: rays, BVH nodes visited, tests
     uint64_t beam_rays = 0, pixels_by_beams = 0;   // beam
     std::string embree;                            // Embree's description
 
