@@ -117,8 +117,13 @@ controller::ControllerStats kept_stats(const controller::Controller& ctl) {
     return s;
 }
 
-void add_into(controller::ControllerStats& all, const controller::ControllerStats& s) {
-    all.frames.insert(all.frames.end(), s.frames.begin(), s.frames.end());
+// Adds one connection's figures to the server's; its frames themselves only when
+// `keep_frames` (for --stats), so that a long-running controller stays the same size.
+void add_into(controller::ControllerStats& all, const controller::ControllerStats& s,
+              bool keep_frames) {
+    if (keep_frames) all.frames.insert(all.frames.end(), s.frames.begin(), s.frames.end());
+    all.frames_closed += s.frames_closed;
+    all.frames_incomplete += s.frames_incomplete;
     for (std::size_t i = 0; i < all.totals.size(); ++i) {
         all.totals[i] += s.totals[i];
         all.unframed[i] += s.unframed[i];
@@ -168,14 +173,20 @@ class Server {
             std::optional<protocol::UniqueFd> conn = listener.accept(signals.wake_fd());
             if (!conn) break;
             serve(*conn);
-            write_outputs();
+            // --png and --stats: after a connection, at most once a second (rewriting a
+            // growing --stats after each of thousands of hosts would cost their square)
+            const auto now = std::chrono::steady_clock::now();
+            if (now - m_last_written >= std::chrono::seconds(1)) {
+                write_outputs();
+                m_last_written = now;
+            }
         }
         if (g_signal != 0)
             m_console.note(fmt::format("controller: stopped by signal {}; removing {}",
                                        static_cast<int>(g_signal), listener.path()));
         if (m_served > 1 && !m_args.quiet)
             fmt::print("all {} connections: {} frames kept, {} cut\n{}", m_served,
-                       m_all.frames.size(), m_cut, m_all.summary());
+                       m_all.frames_closed, m_cut, m_all.summary());
         write_outputs();
         return m_cut > 0 ? kBadInput : kSuccess;
     }
@@ -193,9 +204,11 @@ class Server {
     std::unique_ptr<controller::Display> m_display;  // --view
     controller::Recorder m_writers;
     std::chrono::steady_clock::time_point m_last_shown;
-    controller::ControllerStats m_all;              // every kept frame, every connection
+    // every connection's figures (and, for --stats, its frames and a record of it)
+    controller::ControllerStats m_all;
     std::optional<controller::Framebuffer> m_last;  // the last complete frame, for --png
     nlohmann::json m_connections = nlohmann::json::array();
+    std::chrono::steady_clock::time_point m_last_written;
     int m_served = 0, m_cut = 0;
 };
 
@@ -264,7 +277,8 @@ void Server::serve(protocol::UniqueFd& conn) {
     g_active_fd = -1;
 
     const controller::ControllerStats kept = kept_stats(ctl);
-    add_into(m_all, kept);
+    const bool keep_records = !m_args.stats.empty();
+    add_into(m_all, kept, keep_records);
     const uint64_t commands = ctl.commands_executed();
     nlohmann::json record = {{"connection", m_served},
                              {"host", host},
@@ -306,7 +320,7 @@ void Server::serve(protocol::UniqueFd& conn) {
         if (!m_args.quiet) fmt::print("{}", kept.summary());
     }
     std::fflush(stdout);
-    m_connections.push_back(std::move(record));
+    if (keep_records) m_connections.push_back(std::move(record));
     conn.reset();
 }
 
@@ -341,9 +355,12 @@ void register_controller(CLI::App& app, int& exit_code) {
     sub->add_option("--listen", args->listen, "Socket path to create and serve hosts on")
         ->required();
     sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
-    sub->add_option("--png", args->png, "Write the last complete frame as PNG");
+    sub->add_option("--png", args->png,
+                    "Write the last complete frame as PNG (at most once a second, and at exit)");
     sub->add_option("--stats", args->stats,
-                    "Write per-connection and controller figures as JSON ('-' for stdout)");
+                    "Write per-connection, per-frame and controller figures as JSON ('-' for "
+                    "stdout; at most once a second, and at exit; the record grows with every "
+                    "connection)");
     sub->add_flag("--once", args->once,
                   "Serve one connection, then exit (0: stream complete, 2: cut)");
     sub->add_option("--max-clients", args->max_clients,

@@ -292,6 +292,8 @@ void Controller::close_frame(bool complete) {
     m_frame.controller_busy_us = m_frame_pipe.controller_busy_us();
     m_frame.end_us = m_frame_pipe.end_us();
     m_stats.frames_end_us += m_frame.end_us;
+    ++m_stats.frames_closed;
+    m_stats.frames_incomplete += complete ? 0 : 1;
     m_stats.frames.push_back(m_frame);
     m_in_frame = false;
 }

@@ -87,14 +87,11 @@ std::string grouped(uint64_t v) {
 
 nlohmann::json ControllerStats::to_json() const {
     json frames_json = json::array();
-    std::size_t incomplete = 0;
-    for (const FrameResult& f : frames) {
+    for (const FrameResult& f : frames)
         frames_json.push_back(frame_json(profile, f));
-        if (!f.complete) ++incomplete;
-    }
     return json{{"profile", profile.to_json()},
-                {"frames_closed", frames.size()},
-                {"frames_incomplete", incomplete},
+                {"frames_closed", frames_closed},
+                {"frames_incomplete", frames_incomplete},
                 {"totals", per_opcode_json(profile, totals)},
                 {"unframed", per_opcode_json(profile, unframed)},
                 {"bus_busy_us", bus_busy_us},
@@ -118,13 +115,10 @@ std::string ControllerStats::summary() const {
     const OpcodeCounters all = sum(totals);
     append_row(out, "total", all, modelled_us(profile, all.cycles) / 1e3, all_bus_ms);
 
-    std::size_t incomplete = 0;
-    for (const FrameResult& f : frames)
-        incomplete += f.complete ? 0 : 1;
     out += fmt::format(
         "frames: {} closed ({} incomplete); frame time {:.3f} ms (sum of frame end times), "
         "controller busy {:.3f} ms, bus busy {:.3f} ms\n",
-        frames.size(), incomplete, frames_end_us / 1e3, controller_busy_us / 1e3,
+        frames_closed, frames_incomplete, frames_end_us / 1e3, controller_busy_us / 1e3,
         bus_busy_us / 1e3);
     const OpcodeCounters loose = sum(unframed);
     if (loose.commands > 0)
