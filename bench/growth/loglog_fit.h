@@ -6,22 +6,18 @@
 #include <cmath>
 #include <vector>
 
+#include "bench/least_squares.h"
+
 namespace fb89::growth {
 
 inline double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
-    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    std::vector<double> lx, ly;
     for (size_t i = 0; i < x.size() && i < y.size(); ++i) {
         if (!(x[i] > 0 && y[i] > 0)) continue;
-        const double lx = std::log(x[i]), ly = std::log(y[i]);
-        n += 1;
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
+        lx.push_back(std::log(x[i]));
+        ly.push_back(std::log(y[i]));
     }
-    const double spread = n * sxx - sx * sx;
-    if (n < 2 || spread <= 0) return NAN;
-    return (n * sxy - sx * sy) / spread;
+    return bench::least_squares_slope(lx, ly);
 }
 
 }  // namespace fb89::growth
