@@ -17,10 +17,10 @@ struct SoakOptions {
     std::vector<std::string> methods;
     std::filesystem::path work;  // empty: a temporary folder of its own, removed at the end
     bool keep_work = false;
-    std::filesystem::path fb89;        // the executable (cli and controller modes)
+    std::filesystem::path fb89;       // the executable (cli and controller modes)
     double max_rss_growth_kib = 256;  // over the second half of the cycles; <= 0: unchecked
-    unsigned child_timeout_s = 120;    // one fb89 process
-    bool controller_stats = true;      // controller mode: run it with --stats and check them
+    unsigned child_timeout_s = 120;   // one fb89 process
+    bool controller_stats = true;     // controller mode: run it with --stats and check them
     bool progress = true;
 };
 
