@@ -87,7 +87,8 @@ GuestCounts parse_guest_counts(std::string_view text, const std::string& origin)
     };
     try {
         const nlohmann::json j = nlohmann::json::parse(text);
-        if (!j.is_object() || j.value("tool", "") != "fb89_count" || j.value("version", 0) != 1)
+        if (!j.is_object() || j.value("tool", "") != "fb89_count" || !j.contains("version") ||
+            !j["version"].is_number_unsigned() || j["version"].get<uint64_t>() != 1)
             throw std::runtime_error("not the output of the fb89_count plugin, version 1");
         out.instructions = count(j.at("guest_instructions"), "guest_instructions");
         for (const auto& p : j.at("phases")) {

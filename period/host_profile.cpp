@@ -31,9 +31,9 @@ std::vector<int> indices(const json& rule, const char* key, const std::string& o
     if (!rule.contains(key)) return out;
     if (!rule[key].is_array()) fail(origin, fmt::format("{}\"{}\" must be a list", at, key));
     for (const json& v : rule[key]) {
-        if (!v.is_number_integer() || v.get<int>() < 0 || v.get<int>() > 7)
+        if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<int64_t>() > 7)
             fail(origin, fmt::format("{}\"{}\" holds operand indices 0..7", at, key));
-        out.push_back(v.get<int>());
+        out.push_back(static_cast<int>(v.get<int64_t>()));
     }
     return out;
 }
