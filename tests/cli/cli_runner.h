@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -28,8 +29,20 @@ inline std::string slurp(const std::filesystem::path& p) {
 // A folder of this test's own.
 inline std::filesystem::path test_dir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / "fb89_cli_test" /
-                                (std::string(info->test_suite_name()) + "." + info->name());
+    // one folder per test and per process, so that suites of two checkouts (or two runs)
+    // on one machine never write into each other's files
+    static const std::filesystem::path root = [] {
+        std::filesystem::path r = std::filesystem::temp_directory_path() /
+                                  ("fb89_cli_test." + std::to_string(::getpid()));
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(std::filesystem::temp_directory_path() /
+                                            ("fb89_cli_test." + std::to_string(::getpid())),
+                                        ec);
+        });
+        return r;
+    }();
+    std::filesystem::path dir = root / (std::string(info->test_suite_name()) + "." + info->name());
     std::filesystem::create_directories(dir);
     return dir;
 }
