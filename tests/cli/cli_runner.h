@@ -3,14 +3,23 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <pty.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include "tests/scratch.h"
 
 namespace fb89::testing {
 
@@ -29,20 +38,8 @@ inline std::string slurp(const std::filesystem::path& p) {
 // A folder of this test's own.
 inline std::filesystem::path test_dir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    // one folder per test and per process, so that suites of two checkouts (or two runs)
-    // on one machine never write into each other's files
-    static const std::filesystem::path root = [] {
-        std::filesystem::path r = std::filesystem::temp_directory_path() /
-                                  ("fb89_cli_test." + std::to_string(::getpid()));
-        std::atexit([] {
-            std::error_code ec;
-            std::filesystem::remove_all(std::filesystem::temp_directory_path() /
-                                            ("fb89_cli_test." + std::to_string(::getpid())),
-                                        ec);
-        });
-        return r;
-    }();
-    std::filesystem::path dir = root / (std::string(info->test_suite_name()) + "." + info->name());
+    std::filesystem::path dir =
+        scratch_dir() / (std::string(info->test_suite_name()) + "." + info->name());
     std::filesystem::create_directories(dir);
     return dir;
 }
@@ -57,6 +54,58 @@ inline CliRun run_fb89(const std::string& args, const std::string& prefix = "") 
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = slurp(dir / "out");
     r.err = slurp(dir / "err");
+    return r;
+}
+
+// Runs `sh -c command` with a pseudo-terminal as its stdin, stdout and stderr, as a user
+// at a terminal would, and waits for it: `out` is everything the terminal was shown.
+// (`script` is no substitute: with its own stdin at end of file it returns at once and
+// leaves the command writing its log behind the test's back.) A command still running
+// after `limit` is killed and reported as exit code -1.
+inline CliRun run_in_terminal(const std::string& command,
+                              std::chrono::seconds limit = std::chrono::seconds(300)) {
+    CliRun r;
+    int master = -1;
+    winsize size{};
+    size.ws_row = 24;
+    size.ws_col = 200;
+    const pid_t pid = forkpty(&master, nullptr, nullptr, &size);
+    if (pid < 0) {
+        r.err = std::string("forkpty: ") + std::strerror(errno);
+        return r;
+    }
+    if (pid == 0) {
+        ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + limit;
+    bool killed = false;
+    char buf[4096];
+    for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) {
+            ::kill(-pid, SIGKILL);  // forkpty made it a session and group leader
+            killed = true;
+            break;
+        }
+        pollfd p{master, POLLIN, 0};
+        const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready <= 0) continue;
+        const ssize_t n = ::read(master, buf, sizeof buf);
+        if (n > 0)
+            r.out.append(buf, static_cast<size_t>(n));
+        else if (n < 0 && errno == EINTR)
+            continue;
+        else
+            break;  // EIO: every holder of the terminal's other side has closed it
+    }
+    ::close(master);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    r.exit_code = !killed && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }
 

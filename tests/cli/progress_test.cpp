@@ -1,8 +1,6 @@
 // Progress on long work: shown on stderr with the time left when stderr is a terminal
-// (`script` gives the command one), and nothing when it is not or with -q.
+// (run_in_terminal gives the command one), and nothing when it is not or with -q.
 #include <gtest/gtest.h>
-
-#include <cstdlib>
 
 #include "tests/cli/cli_runner.h"
 
@@ -10,57 +8,59 @@ namespace {
 
 using fb89::testing::CliRun;
 using fb89::testing::run_fb89;
-using fb89::testing::slurp;
-using fb89::testing::test_dir;
+using fb89::testing::run_in_terminal;
 
 const std::string kExperiment = std::string(FB89_CLI_PATH) + " experiment fig2.1 " +
                                 FB89_SCENES_DIR + "/A.json --size 64x48 --repeat 3";
 
 TEST(Progress, ATerminalSeesRoundsAndTheTimeLeft) {
-    const std::string log = (test_dir() / "tty.txt").string();
-    const std::string cmd =
-        "script -qec '" + kExperiment + " --csv /dev/null' " + log + " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
-    const std::string seen = slurp(log);
-    EXPECT_NE(seen.find("2/4 rounds"), std::string::npos) << seen;
-    EXPECT_NE(seen.find("s left"), std::string::npos) << seen;
+    const CliRun tty = run_in_terminal(kExperiment + " --csv /dev/null");
+    ASSERT_EQ(tty.exit_code, 0) << tty.out;
+    EXPECT_NE(tty.out.find("2/4 rounds"), std::string::npos) << tty.out;
+    EXPECT_NE(tty.out.find("s left"), std::string::npos) << tty.out;
+    // the table follows the progress, which has been wiped from its line
+    EXPECT_NE(tty.out.find("warnock-centres"), std::string::npos) << tty.out;
 }
 
 TEST(Progress, NothingWhenStderrIsNotATerminalOrWithQuiet) {
     CliRun piped = run_fb89(kExperiment.substr(kExperiment.find("experiment")) + " --csv -");
     ASSERT_EQ(piped.exit_code, 0) << piped.err;
     EXPECT_EQ(piped.err.find("rounds"), std::string::npos) << piped.err;
-    const std::string log = (test_dir() / "quiet.txt").string();
-    const std::string cmd =
-        "script -qec '" + kExperiment + " -q --csv /dev/null' " + log + " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
-    EXPECT_EQ(slurp(log).find("rounds"), std::string::npos) << slurp(log);
+    EXPECT_NE(piped.out.find("warnock-centres"), std::string::npos) << piped.out;
+    const CliRun quiet = run_in_terminal(kExperiment + " -q --csv /dev/null");
+    ASSERT_EQ(quiet.exit_code, 0) << quiet.out;
+    EXPECT_EQ(quiet.out, "");
+    // the same command without -q shows its rounds on this terminal
+    const CliRun shown = run_in_terminal(kExperiment + " --csv /dev/null");
+    ASSERT_EQ(shown.exit_code, 0) << shown.out;
+    EXPECT_NE(shown.out.find("rounds"), std::string::npos) << shown.out;
 }
 
 // The radiosity stages report how far they have got, with the time left.
 TEST(Progress, RadiosityShowsEachStageWithTheTimeLeft) {
-    const std::string log = (test_dir() / "radiosity.txt").string();
-    const std::string cmd = "script -qec '" + std::string(FB89_CLI_PATH) + " radiosity " +
-                            FB89_SCENES_DIR + "/garish_room.json --patches 1200 --ff exact' " +
-                            log + " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
-    const std::string seen = slurp(log);
-    EXPECT_NE(seen.find("radiosity: visibility (flux tracing): "), std::string::npos) << seen;
-    EXPECT_NE(seen.find("radiosity: form factors: "), std::string::npos) << seen;
-    EXPECT_NE(seen.find("%, about "), std::string::npos) << seen;
-    EXPECT_NE(seen.find("radiosity: rendering"), std::string::npos) << seen;
+    const CliRun tty =
+        run_in_terminal(std::string(FB89_CLI_PATH) + " radiosity " + FB89_SCENES_DIR +
+                        "/garish_room.json --patches 1200 --ff exact");
+    ASSERT_EQ(tty.exit_code, 0) << tty.out;
+    EXPECT_NE(tty.out.find("radiosity: visibility (flux tracing): "), std::string::npos) << tty.out;
+    EXPECT_NE(tty.out.find("radiosity: form factors: "), std::string::npos) << tty.out;
+    EXPECT_NE(tty.out.find("%, about "), std::string::npos) << tty.out;
+    EXPECT_NE(tty.out.find("radiosity: rendering"), std::string::npos) << tty.out;
 }
 
 // Fig. 2.4 counts the scenes it has done, its ideal scenes among them.
 TEST(Progress, Fig24CountsItsScenes) {
-    const std::string log = (test_dir() / "fig24.txt").string();
-    const std::string cmd = "script -qec '" + std::string(FB89_CLI_PATH) + " experiment fig2.4 " +
-                            FB89_SCENES_DIR + "/A.json --csv /dev/null' " + log +
-                            " >/dev/null 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0);
-    const std::string seen = slurp(log);
-    EXPECT_NE(seen.find("fig2.4: 1/22 scenes, about "), std::string::npos) << seen;
-    EXPECT_NE(seen.find("fig2.4: 21/22 scenes"), std::string::npos) << seen;
+    const CliRun tty = run_in_terminal(std::string(FB89_CLI_PATH) + " experiment fig2.4 " +
+                                       FB89_SCENES_DIR + "/A.json --csv /dev/null");
+    ASSERT_EQ(tty.exit_code, 0) << tty.out;
+    EXPECT_NE(tty.out.find("fig2.4: 1/22 scenes, about "), std::string::npos) << tty.out;
+    EXPECT_NE(tty.out.find("fig2.4: 21/22 scenes"), std::string::npos) << tty.out;
+}
+
+// A command that outlives its limit is killed, not waited for.
+TEST(Progress, TheTerminalRunnerStopsACommandPastItsLimit) {
+    const CliRun slow = run_in_terminal("sleep 30", std::chrono::seconds(1));
+    EXPECT_EQ(slow.exit_code, -1);
 }
 
 }  // namespace

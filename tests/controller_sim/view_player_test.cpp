@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "protocol/stream_writer.h"
+#include "tests/scratch.h"
 
 namespace fb89::controller {
 namespace {
@@ -18,7 +19,7 @@ using Clock = ViewPlayer::Clock;
 // Three frames numbered 10, 11, 12 of 8x6; frame k fills a rect of colour k. Commands 0-3
 // are frame 10, 4-7 frame 11, 8-11 frame 12.
 std::string write_stream(const std::string& name, bool with_index) {
-    const auto path = std::filesystem::temp_directory_path() / ("fb89_view_player_" + name);
+    const auto path = fb89::testing::scratch_path("view_player_" + name);
     protocol::StreamWriter w(path.string(), {{"scene", "test"}});
     for (uint32_t k = 0; k < 3; ++k) {
         const auto v = static_cast<uint8_t>(k + 1);

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/scratch.h"
+
 namespace fs = std::filesystem;
 using fb89::protocol::AtomicFile;
 using fb89::protocol::write_file_atomically;
@@ -27,8 +29,8 @@ namespace {
 // A fresh folder of this test's own.
 fs::path folder() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const fs::path dir = fs::temp_directory_path() / "fb89_atomic_test" /
-                         (std::string(info->test_suite_name()) + "." + info->name());
+    const fs::path dir =
+        fb89::testing::scratch_dir() / (std::string(info->test_suite_name()) + "." + info->name());
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;

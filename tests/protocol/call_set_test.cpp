@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/scratch.h"
+
 namespace {
 
 using fb89::protocol::CallSet;
@@ -118,7 +120,7 @@ TEST(CallSet, AllMatchesEverything) {
 }
 
 TEST(CallSet, FileItemReadsLinesAndSkipsComments) {
-    const auto path = std::filesystem::temp_directory_path() / "fb89_call_set_test.txt";
+    const auto path = fb89::testing::scratch_path("call_set_test.txt");
     std::ofstream(path) << "# calls to look at\n1\n\n5-7  # the span run\n/marker\n";
     const CallSet s = CallSet::parse("@" + path.string() + ",100");
     EXPECT_TRUE(s.contains(1, kFill));
@@ -130,7 +132,7 @@ TEST(CallSet, FileItemReadsLinesAndSkipsComments) {
 }
 
 TEST(CallSet, FileErrorsNameTheFileLineAndColumn) {
-    const auto path = std::filesystem::temp_directory_path() / "fb89_call_set_bad.txt";
+    const auto path = fb89::testing::scratch_path("call_set_bad.txt");
     std::ofstream(path) << "1\n2-x\n";
     const std::string e = error_of("@" + path.string());
     EXPECT_NE(e.find(path.string() + ":2:3:"), std::string::npos) << e;

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "host/scene/scene_error.h"
+#include "tests/scratch.h"
 
 namespace fb89::host {
 namespace {
@@ -197,7 +198,7 @@ TEST(SceneLoader, TriErrorsNameTheLine) {
 }
 
 TEST(SceneLoader, LoadsObjMeshesRelativeToTheSceneFile) {
-    auto dir = std::filesystem::temp_directory_path() / "fb89_obj_test";
+    auto dir = fb89::testing::scratch_path("obj_test");
     std::filesystem::create_directories(dir / "meshes");
     std::ofstream(dir / "meshes" / "quad.obj")
         << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 9\n";

@@ -1,0 +1,37 @@
+// A folder of this test process's own under the system's temporary folder, removed when
+// the process exits. ctest runs tests in parallel processes, and two checkouts' suites
+// may run on one machine at once: a fixed name there lets them read each other's files.
+#pragma once
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace fb89::testing {
+
+inline std::filesystem::path scratch_dir_of(pid_t pid) {
+    return std::filesystem::temp_directory_path() / ("fb89_test." + std::to_string(pid));
+}
+
+inline const std::filesystem::path& scratch_dir() {
+    static const std::filesystem::path dir = [] {
+        std::filesystem::path d = scratch_dir_of(::getpid());
+        std::filesystem::create_directories(d);
+        // names the folder afresh: `dir` itself is destroyed before this runs
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(scratch_dir_of(::getpid()), ec);
+        });
+        return d;
+    }();
+    return dir;
+}
+
+// `name` inside scratch_dir().
+inline std::filesystem::path scratch_path(const std::string& name) {
+    return scratch_dir() / name;
+}
+
+}  // namespace fb89::testing
