@@ -188,12 +188,9 @@ void BeamRayHybrid::rays_for_window(Frame& frame, const PixelRect& w,
             const RayTrace* t = nullptr;
             for (int i = 0; i < 4 && !t; ++i)
                 if (xs[i] == x && ys[i] == y) t = corners[i];
-            if (!t) {
-                m_trace.tracer->trace_pixel(x, y, path, frame.rays);
-                t = &path;
-            }
             m_pixels[static_cast<size_t>(y) * m_width + x] =
-                t->count > 0 ? packed_pixel(t->color) : 0;
+                t ? (t->count > 0 ? packed_pixel(t->color) : 0)
+                  : m_trace.tracer->pixel_color(x, y, path, frame.rays);
         }
     frame.pixels_by_rays += static_cast<uint64_t>(w.area());
     ++frame.windows_to_rays;

@@ -100,22 +100,14 @@ Split best_split(const std::vector<Item>& items, size_t first, size_t last) {
 void store_box(RayBvh::Node& node, const Box& b, double pad) {
     for (int a = 0; a < 3; ++a) {
         const auto lo = static_cast<float>(b.lo[a] - pad), hi = static_cast<float>(b.hi[a] + pad);
-        node.lo[a] = static_cast<double>(lo) > b.lo[a] - pad ? std::nextafter(lo, -INFINITY) : lo;
-        node.hi[a] = static_cast<double>(hi) < b.hi[a] + pad ? std::nextafter(hi, INFINITY) : hi;
+        node.bounds[a] =
+            static_cast<double>(lo) > b.lo[a] - pad ? std::nextafter(lo, -INFINITY) : lo;
+        node.bounds[3 + a] =
+            static_cast<double>(hi) < b.hi[a] + pad ? std::nextafter(hi, INFINITY) : hi;
     }
 }
 
 }  // namespace
-
-RayBvh::FloatRay::FloatRay(const Ray& ray) {
-    for (int a = 0; a < 3; ++a) {
-        origin[a] = static_cast<float>(ray.origin[a]);
-        double d = ray.dir[a];
-        if (std::abs(d) < 1e-30) d = std::signbit(d) ? -1e-30 : 1e-30;
-        inv[a] = static_cast<float>(1.0 / d);
-        negative[a] = d < 0;
-    }
-}
 
 RayBvh::RayBvh(const TraceScene& scene) {
     const auto& faces = scene.faces();

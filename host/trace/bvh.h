@@ -32,12 +32,14 @@ class RayBvh {
     explicit RayBvh(const TraceScene& scene);
 
     struct Node {
-        float lo[3], hi[3];
+        float bounds[6];  // the box: its low corner (x, y, z), then its high corner
         uint32_t index;  // a leaf's first entry in pieces(); an inner node's second child
         uint16_t count;  // pieces in a leaf; 0 for an inner node (its first child follows it)
         uint16_t axis;   // an inner node's split axis
     };
     static_assert(sizeof(Node) == 32);
+    static float lo(const Node& n, int axis) { return n.bounds[axis]; }
+    static float hi(const Node& n, int axis) { return n.bounds[3 + axis]; }
 
     const std::vector<Node>& nodes() const { return m_nodes; }
     const std::vector<uint32_t>& pieces() const { return m_pieces; }
@@ -47,11 +49,12 @@ class RayBvh {
     static constexpr size_t kMaxLeaf = 1;  // pieces in a leaf at most, unless they cannot split
     static constexpr double kPad = 1e-5;   // of the scene's extent, around every box
 
-    // A ray as the walk sees it: float origin and reciprocal direction (a zero component
-    // replaced by a tiny one of the same sign), and the direction's signs.
+    // A ray as the walk sees it: float origin and reciprocal direction (a component below
+    // 1e-30 replaced by 1e-30 of its sign), and per axis which of a box's bounds it meets
+    // first (`near`) and last (`far`), by the direction's sign.
     struct FloatRay {
         float origin[3], inv[3];
-        bool negative[3];
+        uint8_t near[3], far[3];
         explicit FloatRay(const Ray& ray);
     };
     // Where the ray enters a node's box within [t0, t1], or false if it misses it there.
@@ -91,13 +94,26 @@ inline bool RayBvh::enters(const Node& n, const FloatRay& r, float t0, float t1,
     // ulps for the rounding of the products (Ize 2013)
     constexpr float kWiden = 1.0f + 8.0f * 0x1p-24f;
     for (int a = 0; a < 3; ++a) {
-        const float near = ((r.negative[a] ? n.hi[a] : n.lo[a]) - r.origin[a]) * r.inv[a];
-        const float far = ((r.negative[a] ? n.lo[a] : n.hi[a]) - r.origin[a]) * r.inv[a] * kWiden;
+        const float near = (n.bounds[r.near[a]] - r.origin[a]) * r.inv[a];
+        const float far = (n.bounds[r.far[a]] - r.origin[a]) * r.inv[a] * kWiden;
         t0 = near > t0 ? near : t0;
         t1 = far < t1 ? far : t1;
     }
     t_enter = t0;
     return t0 <= t1;
+}
+
+// The reciprocal in float: its error, a float ulp or two, is far below the boxes' padding.
+inline RayBvh::FloatRay::FloatRay(const Ray& ray) {
+    for (int a = 0; a < 3; ++a) {
+        origin[a] = static_cast<float>(ray.origin[a]);
+        const bool negative = std::signbit(ray.dir[a]);
+        float d = static_cast<float>(ray.dir[a]);
+        if (!(std::abs(d) >= 1e-30f)) d = negative ? -1e-30f : 1e-30f;
+        inv[a] = 1.0f / d;
+        near[a] = static_cast<uint8_t>(negative ? 3 + a : a);
+        far[a] = static_cast<uint8_t>(negative ? a : 3 + a);
+    }
 }
 
 template <class Test, class Best>

@@ -44,16 +44,30 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
 }
 
 void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) const {
+    ++counts.rays;
+    follow(primary, closest_hit(primary, 0, kNoFace, counts, m_scene.primary_length()), out,
+           counts);
+}
+
+uint32_t RayTracer::pixel_color(int x, int y, RayTrace& scratch, TraceCounts& counts) const {
+    const Ray ray = m_scene.pixel_ray(x, y);
+    ++counts.rays;
+    const Hit hit = closest_hit(ray, 0, kNoFace, counts, m_scene.primary_length());
+    if (hit.piece == kNoFace) return 0;
+    const TraceFace& f = m_scene.faces()[hit.piece];
+    // the common path: a face that is no mirror (or no reflection followed) ends it
+    if (!(f.mirror > 0) || m_scene.max_reflections() == 0)
+        return packed_pixel(f.end_color[glm::dot(f.normal, ray.dir) > 0 ? 1 : 0]);
+    follow(ray, hit, scratch, counts);
+    return packed_pixel(scratch.color);
+}
+
+void RayTracer::follow(const Ray& primary, Hit hit, RayTrace& out, TraceCounts& counts) const {
     out.primary = primary;
     out.count = 0;
     out.escaped = false;
     Ray ray = primary;
-    double tmin = 0;
-    double tmax = m_scene.primary_length();  // the primary ray ends at the far plane
-    uint32_t skip = kNoFace;
     for (int depth = 0;; ++depth) {
-        ++counts.rays;
-        const Hit hit = closest_hit(ray, tmin, skip, counts, tmax);
         if (hit.piece == kNoFace) {
             out.escaped = true;
             out.last = ray;
@@ -67,10 +81,10 @@ void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) co
         ++out.count;
         if (!(f.mirror > 0) || depth == m_scene.max_reflections()) break;
         // reflect: the next ray starts on the mirror and never sees it again
+        const uint32_t mirror = hit.piece;
         ray = {p, ray.dir - 2.0 * facing * f.normal};
-        skip = hit.piece;
-        tmin = m_scene.tolerance() / glm::length(ray.dir);
-        tmax = INFINITY;
+        ++counts.rays;
+        hit = closest_hit(ray, m_scene.tolerance() / glm::length(ray.dir), mirror, counts);
     }
     if (out.count == 1)  // the common path, its colour worked out in advance
         out.color = m_scene.faces()[out.hits[0].piece].end_color[out.hits[0].back ? 1 : 0];
@@ -117,8 +131,7 @@ void RayTraceRenderer::render(const ScreenScene& scene, protocol::CommandSink& s
     RayTrace path;
     for (int y = 0; y < scene.height; ++y) {
         for (int x = 0; x < scene.width; ++x) {
-            m_trace.tracer->trace_pixel(x, y, path, counts);
-            m_row[x] = path.count > 0 ? packed_pixel(path.color) : 0;
+            m_row[x] = m_trace.tracer->pixel_color(x, y, path, counts);
         }
         spans += emit_packed_row(m_row.data(), y, 0, scene.width, sink);
     }

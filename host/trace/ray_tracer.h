@@ -55,11 +55,17 @@ class RayTracer {
     void trace_pixel(int x, int y, RayTrace& out, TraceCounts& counts) const {
         trace(m_scene.pixel_ray(x, y), out, counts);
     }
+    // Pixel (x, y)'s colour packed (packed_pixel; 0 for background), as trace_pixel gives
+    // it, without keeping the path unless it meets a mirror (then in `scratch`).
+    uint32_t pixel_color(int x, int y, RayTrace& scratch, TraceCounts& counts) const;
 
     const TraceScene& scene() const { return m_scene; }
     const RayBvh& bvh() const { return m_bvh; }
 
   private:
+    // The path on from the primary ray's hit.
+    void follow(const Ray& primary, Hit hit, RayTrace& out, TraceCounts& counts) const;
+
     const TraceScene& m_scene;
     RayBvh m_bvh;
 };

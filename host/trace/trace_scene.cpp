@@ -77,6 +77,12 @@ TraceScene::TraceScene(const Scene& scene, bool id_colors, int max_reflections)
         m_up = up * half_h;
         m_near = cam.near;
         m_primary_length = cam.far - cam.near;
+        m_column_dir.resize(static_cast<size_t>(std::max(m_width, 0)));
+        for (int x = 0; x < m_width; ++x)
+            m_column_dir[x] = m_forward + column_ndc(x) * m_right;
+        m_row_ndc.resize(static_cast<size_t>(std::max(m_height, 0)));
+        for (int y = 0; y < m_height; ++y)
+            m_row_ndc[y] = row_ndc(y);
         lo = glm::min(lo, m_eye);
         hi = glm::max(hi, m_eye);
     }

@@ -105,6 +105,12 @@ class TraceScene {
     bool m_orthographic = false;
     glm::dvec3 m_eye{0}, m_forward{0}, m_right{0}, m_up{0};  // pixel ray frame
     double m_near = 0;
+    // pixel_ray's terms worked out once: column_ndc(x) and forward + column_ndc(x) * right
+    // per column, row_ndc(y) per row (the same sums in the same order, so the same rays)
+    std::vector<glm::dvec3> m_column_dir;
+    std::vector<double> m_row_ndc;
+    double column_ndc(int x) const { return 2.0 * (x + 0.5) / m_width - 1.0; }
+    double row_ndc(int y) const { return 1.0 - 2.0 * (y + 0.5) / m_height; }
     double m_primary_length = INFINITY;
     double m_tolerance = 0;
 };
@@ -132,11 +138,10 @@ inline RaySpace::RaySpace(const glm::dvec3& d) {
 }
 
 inline Ray TraceScene::pixel_ray(int x, int y) const {
-    const double cx = x + 0.5, cy = y + 0.5;
-    if (m_orthographic) return {{cx, cy, -1.0}, {0, 0, 1}};
-    const double ndc_x = 2.0 * cx / m_width - 1.0;
-    const double ndc_y = 1.0 - 2.0 * cy / m_height;
-    const glm::dvec3 dir = m_forward + ndc_x * m_right + ndc_y * m_up;
+    if (m_orthographic) return {{x + 0.5, y + 0.5, -1.0}, {0, 0, 1}};
+    const bool inside = x >= 0 && x < m_width && y >= 0 && y < m_height;
+    const glm::dvec3 column = inside ? m_column_dir[x] : m_forward + column_ndc(x) * m_right;
+    const glm::dvec3 dir = column + (inside ? m_row_ndc[y] : row_ndc(y)) * m_up;
     return {m_eye + m_near * dir, dir};  // dir's depth component is 1: t is depth
 }
 

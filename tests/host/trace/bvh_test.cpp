@@ -45,8 +45,8 @@ TEST(RayBvh, EveryPieceSitsInOneLeafWhoseBoxHoldsIt) {
             const TraceFace& f = trace.faces()[piece];
             for (uint32_t k = 0; k < f.vertex_count; ++k)
                 for (int a = 0; a < 3; ++a) {
-                    EXPECT_LT(n.lo[a], trace.vertices_of(f)[k][a]);
-                    EXPECT_GT(n.hi[a], trace.vertices_of(f)[k][a]);
+                    EXPECT_LT(RayBvh::lo(n, a), trace.vertices_of(f)[k][a]);
+                    EXPECT_GT(RayBvh::hi(n, a), trace.vertices_of(f)[k][a]);
                 }
         }
     }
