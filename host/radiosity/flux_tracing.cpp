@@ -50,7 +50,7 @@ bool FluxTracer::blocked(const glm::dvec3& from, const glm::dvec3& to, uint32_t 
     const Ray ray{from, to - from};
     const double eps = kEndTolerances * m_scene.tolerance() / glm::length(ray.dir);
     const double tmin = eps, tmax = 1 - eps;
-    const RaySpace space(ray.dir);
+    const RaySpace space(ray);
 
     // any hit in (tmin, tmax) by a piece other than the two ends' blocks the ray
     bool hit = false;

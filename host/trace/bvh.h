@@ -33,9 +33,9 @@ class RayBvh {
 
     struct Node {
         float bounds[6];  // the box: its low corner (x, y, z), then its high corner
-        uint32_t index;  // a leaf's first entry in pieces(); an inner node's second child
-        uint16_t count;  // pieces in a leaf; 0 for an inner node (its first child follows it)
-        uint16_t axis;   // an inner node's split axis
+        uint32_t index;   // a leaf's first entry in pieces(); an inner node's second child
+        uint16_t count;   // pieces in a leaf; 0 for an inner node (its first child follows it)
+        uint16_t axis;    // an inner node's split axis
     };
     static_assert(sizeof(Node) == 32);
     static float lo(const Node& n, int axis) { return n.bounds[axis]; }

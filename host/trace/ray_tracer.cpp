@@ -18,7 +18,7 @@ RayTracer::RayTracer(const TraceScene& scene) : m_scene(scene), m_bvh(scene) {}
 
 Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
                            double tmax) const {
-    const RaySpace space(ray.dir);
+    const RaySpace space(ray);
     Hit best{INFINITY, kNoFace};
     uint64_t tests = 0, ties = 0;
     const uint64_t nodes = m_bvh.walk(

@@ -55,11 +55,12 @@ struct Hit {
 };
 
 // A ray prepared for the watertight test: the axis it runs along most (kz), the other two,
-// and the shear that makes it the +z axis.
+// the shear that makes it the +z axis, and its origin's coordinates in that order.
 struct RaySpace {
     int kx = 0, ky = 1, kz = 2;
     double sx = 0, sy = 0;
-    explicit RaySpace(const glm::dvec3& dir);
+    double ox = 0, oy = 0, oz = 0;
+    explicit RaySpace(const Ray& ray);
 };
 
 class TraceScene {
@@ -127,7 +128,8 @@ struct PathHit {
 protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count);
 
 // Inline, as the ray tracer calls them once per ray or test.
-inline RaySpace::RaySpace(const glm::dvec3& d) {
+inline RaySpace::RaySpace(const Ray& ray) {
+    const glm::dvec3& d = ray.dir;
     const glm::dvec3 a = glm::abs(d);
     kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     kx = (kz + 1) % 3;
@@ -135,6 +137,9 @@ inline RaySpace::RaySpace(const glm::dvec3& d) {
     if (d[kz] < 0) std::swap(kx, ky);  // keep the winding
     sx = d[kx] / d[kz];
     sy = d[ky] / d[kz];
+    ox = ray.origin[kx];
+    oy = ray.origin[ky];
+    oz = ray.origin[kz];
 }
 
 inline Ray TraceScene::pixel_ray(int x, int y) const {
@@ -162,9 +167,10 @@ inline bool TraceScene::intersect(const Ray& ray, const RaySpace& s, uint32_t pi
     // watertight inside test in ray space
     const glm::dvec3* v = vertices_of(f);
     auto sheared = [&](const glm::dvec3& p, double& x, double& y) {
-        const glm::dvec3 r = p - ray.origin;
-        x = r[s.kx] - s.sx * r[s.kz];
-        y = r[s.ky] - s.sy * r[s.kz];
+        const double* c = &p.x;  // x, y, z side by side, as glm::value_ptr has them
+        const double z = c[s.kz] - s.oz;
+        x = (c[s.kx] - s.ox) - s.sx * z;
+        y = (c[s.ky] - s.oy) - s.sy * z;
     };
     double x0, y0, px, py;
     sheared(v[0], x0, y0);

@@ -59,7 +59,7 @@ Delta brute_force(const World& w, uint32_t p, uint32_t q) {
     const Patch& b = w.mesh.patches[q];
     const Ray ray{a.centre, b.centre - a.centre};
     const double eps = 4 * w.trace.tolerance() / glm::length(ray.dir);
-    const RaySpace space(ray.dir);
+    const RaySpace space(ray);
     for (uint32_t piece = 0; piece < w.trace.faces().size(); ++piece) {
         if (piece == w.mesh.elements[a.element].piece || piece == w.mesh.elements[b.element].piece)
             continue;

@@ -72,7 +72,7 @@ TEST(RayBvh, FloatBoxesLoseNoHitFarFromTheOrigin) {
                                                : (v[0] + v[1] + v[2]) / 3.0;
             const glm::dvec3 eye = far_away + glm::dvec3(10, 9, -8);
             const Ray ray{eye, target - eye};
-            const RaySpace space(ray.dir);
+            const RaySpace space(ray);
             Hit brute{INFINITY, kNoFace};
             for (uint32_t q = 0; q < trace.faces().size(); ++q) {
                 double t;

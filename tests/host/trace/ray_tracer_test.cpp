@@ -67,7 +67,7 @@ TEST(RayTracer, ClosestHitEqualsEveryPieceTriedInTurn) {
                       {next() - 0.5, next() - 0.5, next() - 0.5}};
         const Hit hit = tracer.closest_hit(ray, 0, kNoFace, counts);
         Hit brute{INFINITY, kNoFace};
-        const RaySpace space(ray.dir);
+        const RaySpace space(ray);
         for (uint32_t p = 0; p < trace.faces().size(); ++p) {
             double t;
             if (trace.intersect(ray, space, p, 0, t) && t < brute.t) brute = {t, p};
