@@ -25,6 +25,9 @@ using nlohmann::json;
 // Cycle figures above this are rejected: they are typos, and they keep every per-command
 // cycle count of a 16384x16384 frame far inside 64 bits.
 constexpr uint64_t kMaxCycleFigure = 1'000'000;
+// The clock and bus rates a profile may give, per second: from one to a million million.
+constexpr double kMinRate = 1, kMaxRate = 1e12;
+
 // The value of B_bus_bytes_per_s for a bus that takes no time.
 constexpr const char* kUnlimited = "unlimited";
 
@@ -75,6 +78,15 @@ class FieldReader {
         if (value == 0 && !allow_zero) fail(field, "must be greater than zero");
         return value;
     }
+    // A number in [lo, hi]: rates far outside any machine's would make every modelled time
+    // infinite or zero.
+    double number_in(std::string_view field, bool allow_zero, double lo, double hi) const {
+        const double value = number(field, allow_zero);
+        if ((value != 0 || !allow_zero) && (value < lo || value > hi))
+            fail(field, fmt::format("must be {}between {:g} and {:g}, got {}",
+                                    allow_zero ? "0 or " : "", lo, hi, require(field).dump()));
+        return value;
+    }
 
     // A positive number, or "unlimited": a bus that takes no time (+infinity).
     double bandwidth(std::string_view field) const {
@@ -83,7 +95,7 @@ class FieldReader {
             return std::numeric_limits<double>::infinity();
         if (!v.is_number())
             fail(field, fmt::format("expected a number or \"{}\", got {}", kUnlimited, v.dump()));
-        return number(field, false);
+        return number_in(field, false, kMinRate, kMaxRate);
     }
 
     std::string text(std::string_view field, std::string fallback) const {
@@ -161,7 +173,7 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     p.name = r.text("name", std::string(default_name));
     if (p.name.empty()) r.fail("name", "missing");
     p.description = r.text("description", "");
-    p.f_cyc_hz = r.number("f_cyc_hz", false);
+    p.f_cyc_hz = r.number_in("f_cyc_hz", false, kMinRate, kMaxRate);
     p.bpp = r.count(r.require("bpp"), "bpp", 16);
     if (p.bpp == 0 || 16 % p.bpp != 0 || (p.bpp & (p.bpp - 1)) != 0)
         r.fail("bpp", fmt::format("must be 1, 2, 4, 8 or 16, got {}", p.bpp));
@@ -179,7 +191,7 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     p.c_line_setup = r.cycles("C_line_setup");
     p.c_line_pix = r.cycles("C_line_pix");
     p.b_bus_bytes_per_s = r.bandwidth("B_bus_bytes_per_s");
-    p.t_handshake_s = r.number("t_handshake_s", true);
+    p.t_handshake_s = r.number_in("t_handshake_s", true, 1e-15, 1.0);
     read_bytes(r, p);
     read_sources(r, j, p);
     return p;

@@ -140,6 +140,33 @@ TEST(Profile, NegativeValueErrorNamesField) {
               std::string::npos);
 }
 
+// Rates no machine has would make every modelled time infinite (or zero): refused, named.
+TEST(Profile, RatesOutsideAnyMachinesAreRefused) {
+    for (const char* field : {"f_cyc_hz", "B_bus_bytes_per_s"})
+        for (double value : {1e-300, 0.5, 2e12, 1e300}) {
+            json j = default_profile_json();
+            j[field] = value;
+            EXPECT_NE(
+                load_error(j).find(std::string("\"") + field + "\": must be between 1 and 1e+12"),
+                std::string::npos)
+                << field << " " << value;
+        }
+    json j = default_profile_json();
+    j["t_handshake_s"] = 1e-300;
+    EXPECT_NE(load_error(j).find("\"t_handshake_s\": must be 0 or between 1e-15 and 1"),
+              std::string::npos);
+    j["t_handshake_s"] = 2;
+    EXPECT_NE(load_error(j).find("\"t_handshake_s\": must be 0 or between"), std::string::npos);
+    for (double fine : {0.0, 1e-9, 1.0}) {
+        j["t_handshake_s"] = fine;
+        EXPECT_NO_THROW(parse_profile(j.dump(), "test")) << fine;
+    }
+    j["f_cyc_hz"] = 1;
+    j["B_bus_bytes_per_s"] = 1e12;
+    const CostProfile p = parse_profile(j.dump(), "test");
+    EXPECT_TRUE(std::isfinite(bus_seconds(p, 1'000'000)));
+}
+
 TEST(Profile, UnlimitedBusTakesNoTimeAndRoundTrips) {
     json j = default_profile_json();
     j["B_bus_bytes_per_s"] = "unlimited";
