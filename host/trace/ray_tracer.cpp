@@ -43,16 +43,18 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
     return best;
 }
 
-void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) const {
+Hit RayTracer::primary_hit(const Ray& primary, TraceCounts& counts) const {
     ++counts.rays;
-    follow(primary, closest_hit(primary, 0, kNoFace, counts, m_scene.primary_length()), out,
-           counts);
+    return closest_hit(primary, 0, kNoFace, counts, m_scene.primary_length());
+}
+
+void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) const {
+    follow(primary, primary_hit(primary, counts), out, counts);
 }
 
 uint32_t RayTracer::pixel_color(int x, int y, RayTrace& scratch, TraceCounts& counts) const {
     const Ray ray = m_scene.pixel_ray(x, y);
-    ++counts.rays;
-    const Hit hit = closest_hit(ray, 0, kNoFace, counts, m_scene.primary_length());
+    const Hit hit = primary_hit(ray, counts);
     if (hit.piece == kNoFace) return 0;
     const TraceFace& f = m_scene.faces()[hit.piece];
     // the common path: a face that is no mirror (or no reflection followed) ends it

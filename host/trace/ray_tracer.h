@@ -63,6 +63,8 @@ class RayTracer {
     const RayBvh& bvh() const { return m_bvh; }
 
   private:
+    // A primary ray's nearest hit: from its start on the near plane to the far plane.
+    Hit primary_hit(const Ray& primary, TraceCounts& counts) const;
     // The path on from the primary ray's hit.
     void follow(const Ray& primary, Hit hit, RayTrace& out, TraceCounts& counts) const;
 

@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 #include <png.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "controller_sim/framebuffer.h"
+#include "tests/scratch.h"
 
 namespace fb89::controller {
 namespace {
@@ -23,8 +23,7 @@ namespace fs = std::filesystem;
 class TempPath {
   public:
     explicit TempPath(const std::string& name)
-        : m_path(fs::temp_directory_path() /
-                 ("fb89_png_test_" + std::to_string(::getpid()) + "_" + name)) {}
+        : m_path(fb89::testing::scratch_path("png_test_" + name)) {}
     ~TempPath() { fs::remove(m_path); }
     const fs::path& path() const { return m_path; }
 

@@ -3,7 +3,6 @@
 #include "controller_sim/profile.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -14,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "controller_sim/cost_model.h"
+#include "tests/scratch.h"
 
 namespace fb89::controller {
 namespace {
@@ -94,8 +94,7 @@ TEST(Profile, LoadsUserFileByPathWithCommentsAndNameFromStem) {
     json j = default_profile_json();
     j.erase("name");
     j["C_cmd"] = 40;
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("fb89_profile_test_" + std::to_string(::getpid()) + "_mine.json");
+    const auto path = fb89::testing::scratch_path("profile_test_mine.json");
     std::ofstream(path) << "// a user profile\n" << j.dump(2) << "\n/* trailing comment */\n";
     const CostProfile p = load_profile(path.string());
     std::filesystem::remove(path);

@@ -3,7 +3,6 @@
 // the general path and next() give, from memory and from a file whose records straddle
 // the read buffer's ends.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -14,6 +13,7 @@
 #include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
 #include "sample_streams.h"
+#include "tests/scratch.h"
 
 namespace fb89::protocol {
 namespace {
@@ -125,8 +125,7 @@ TEST(StreamReader, BatchesOfEverySizeGiveWhatNextGives) {
 }
 
 TEST(StreamReader, BatchesFromAFileGiveWhatABufferGives) {
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("fb89_batch_test_" + std::to_string(::getpid()) + ".fb89");
+    const auto path = fb89::testing::scratch_path("batch_test.fb89");
     const std::vector<Command> commands = many_commands();  // 170 KB: many read buffers
     {
         StreamWriter writer(path.string(), testing::sample_properties());

@@ -16,6 +16,7 @@
 
 #include "protocol/stream_writer.h"
 #include "sample_streams.h"
+#include "tests/scratch.h"
 
 namespace fb89::protocol {
 namespace {
@@ -243,8 +244,7 @@ TEST(StreamReader, RandomCorruptionGivesCommandsOrStreamErrorsOnly) {
 }
 
 std::filesystem::path temp_path(const std::string& name) {
-    return std::filesystem::temp_directory_path() /
-           ("fb89_reader_test_" + std::to_string(::getpid()) + "_" + name);
+    return fb89::testing::scratch_path("reader_test_" + name);
 }
 
 // Many frames with markers of varying lengths, so records straddle the read buffer's ends.

@@ -13,6 +13,7 @@
 #include "protocol/memory_buffer.h"
 #include "protocol/stream_reader.h"
 #include "sample_streams.h"
+#include "tests/scratch.h"
 
 namespace fb89::protocol {
 namespace {
@@ -32,8 +33,7 @@ Bytes read_file(const std::filesystem::path& path) {
 }
 
 std::filesystem::path temp_path(const std::string& name) {
-    return std::filesystem::temp_directory_path() /
-           ("fb89_writer_test_" + std::to_string(::getpid()) + "_" + name);
+    return fb89::testing::scratch_path("writer_test_" + name);
 }
 
 TEST(StreamWriter, RoundTripIsByteForByte) {
