@@ -69,7 +69,7 @@ int run_calibrate_beam(const CalibrateArgs& a) {
             c.reference_ms, c.chosen, c.total.at(c.chosen), s.scenes.size(),
             a.dry_run ? " (not saved: --dry-run)" : " (saved to " + calibration_path() + ")");
     }
-    std::cout << fmt::format("{:.6g}\n", c.chosen);
+    if (!claims_stdout({{"--csv", a.csv}})) std::cout << fmt::format("{:.6g}\n", c.chosen);
     return kSuccess;
 }
 
@@ -122,7 +122,7 @@ int run_calibrate(const CalibrateArgs& a) {
             zbuffer, paper, c.chosen, chosen_ms, s.scenes.size(),
             a.dry_run ? " (not saved: --dry-run)" : " (saved to " + calibration_path() + ")");
     }
-    std::cout << fmt::format("{:.6g}\n", c.chosen);
+    if (!claims_stdout({{"--csv", a.csv}})) std::cout << fmt::format("{:.6g}\n", c.chosen);
     return kSuccess;
 }
 

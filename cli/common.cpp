@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "controller_sim/profile.h"
-#include "protocol/atomic_file.h"
+#include "protocol/output_file.h"
 
 namespace fb89::cli {
 
@@ -25,23 +25,32 @@ ImageSize parse_size(const std::string& text) {
 }
 
 void make_parent_dirs(const std::string& path) {
-    if (path == "-") return;
+    if (path == "-" || protocol::output_kind(path) != protocol::OutputKind::Replace) return;
     std::filesystem::path parent = std::filesystem::path(path).parent_path();
     std::error_code ec;
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);
 }
 
-void write_json(const std::string& path, const nlohmann::json& value) {
-    write_text(path, value.dump(2) + "\n");
+void write_json(const std::string& path, const nlohmann::json& value, protocol::Publish publish) {
+    write_text(path, value.dump(2) + "\n", publish);
 }
 
-void write_text(const std::string& path, const std::string& text) {
-    if (path == "-") {
-        std::cout << text << std::flush;
-        return;
-    }
+void write_text(const std::string& path, const std::string& text, protocol::Publish publish) {
     make_parent_dirs(path);
-    protocol::write_file_atomically(path, text);
+    protocol::write_output(path, text, publish);
+}
+
+bool claims_stdout(std::initializer_list<std::pair<std::string_view, std::string_view>> outputs) {
+    std::string_view first;
+    for (const auto& [option, value] : outputs) {
+        if (value != "-") continue;
+        if (!first.empty())
+            throw UsageError(fmt::format(
+                "{} and {} both write to standard output ('-'); give one of them a file", first,
+                option));
+        first = option;
+    }
+    return !first.empty();
 }
 
 void Console::note(const std::string& text) const {

@@ -2,14 +2,18 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
 
 #include "experiments/settings.h"
+#include "protocol/output_file.h"
 
 namespace fb89::cli {
 
@@ -26,15 +30,21 @@ using experiments::ImageSize;
 // "WxH", e.g. "1024x780"; throws UsageError.
 ImageSize parse_size(const std::string& text);
 
-// Writes JSON (indented) to a path, or to stdout for "-". A file is written whole or not at
-// all (protocol/atomic_file.h). Throws std::runtime_error naming the path on failure.
-void write_json(const std::string& path, const nlohmann::json& value);
-// Writes text to a path (whole or not at all), or to stdout for "-". Throws
-// std::runtime_error naming the path.
-void write_text(const std::string& path, const std::string& text);
+// Writes JSON (indented) to an output: "-" is stdout, a regular file is written whole or not
+// at all, a device or pipe in place (protocol/output_file.h). Throws std::runtime_error
+// naming the path on failure.
+void write_json(const std::string& path, const nlohmann::json& value,
+                protocol::Publish publish = protocol::Publish::WithCommand);
+// Writes text to an output, as write_json. Throws std::runtime_error naming the path.
+void write_text(const std::string& path, const std::string& text,
+                protocol::Publish publish = protocol::Publish::WithCommand);
 
-// Creates the parent folder of an output path if needed.
+// Creates the parent folder of an output path if needed (not for "-", a device or a pipe).
 void make_parent_dirs(const std::string& path);
+
+// True when one of the (option, value) outputs is "-" (standard output), so the command
+// must print nothing else there; a UsageError when two of them are.
+bool claims_stdout(std::initializer_list<std::pair<std::string_view, std::string_view>> outputs);
 
 // "; did you mean 'render'?" when a known name is near `word` (edit distance), else "".
 std::string nearest_hint(const std::string& word, const std::vector<std::string>& known);

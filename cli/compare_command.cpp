@@ -83,6 +83,8 @@ int run_compare(const CompareArgs& a) {
     s.progress = !a.quiet && isatty(STDERR_FILENO);
     if (!a.size.empty()) s.size = parse_size(a.size);
     s.period = make_period_runs(a.host);
+    const bool stdout_taken =
+        claims_stdout({{"--sheet", a.sheet}, {"--csv", a.csv}, {"--json", a.json}});
     const Comparison c = compare_methods(a.scene, settings, s);
     if (report_emitted(s, a.host)) return kSuccess;
     make_parent_dirs(a.sheet);
@@ -90,7 +92,7 @@ int run_compare(const CompareArgs& a) {
     const Table table = comparison_table(c);
     if (!a.csv.empty()) write_text(a.csv, table.csv());
     if (!a.json.empty()) write_json(a.json, rows_json(c));
-    if (!a.quiet && a.csv != "-" && a.json != "-") std::cout << table.text();
+    if (!a.quiet && !stdout_taken) std::cout << table.text();
     Console{a.quiet}.note(
         fmt::format("contact sheet: {} ({}x{})", a.sheet, c.sheet.width(), c.sheet.height()));
     return kSuccess;

@@ -335,14 +335,14 @@ void Server::report_frame(const controller::FrameResult& f) {
 void Server::write_outputs() {
     if (!m_args.png.empty() && m_last) {
         make_parent_dirs(m_args.png);
-        controller::write_png(m_args.png, *m_last);
+        controller::write_png(m_args.png, *m_last, protocol::Publish::Now);
     }
     if (!m_args.stats.empty()) {
         nlohmann::json j = {{"tool", std::string("fb89 ") + FB89_VERSION},
                             {"socket", m_args.listen},
                             {"connections", m_connections},
                             {"controller", m_all.to_json()}};
-        write_json(m_args.stats, j);
+        write_json(m_args.stats, j, protocol::Publish::Now);
     }
 }
 

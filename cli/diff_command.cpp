@@ -118,7 +118,9 @@ std::string size_of(const controller::Framebuffer& fb) {
     return fmt::format("{}x{}", fb.width(), fb.height());
 }
 
-int run_diff(const DiffArgs& args) {
+int run_diff(const DiffArgs& args_in) {
+    DiffArgs args = args_in;
+    if (claims_stdout({{"--image", args.image}})) args.quiet = true;  // stdout carries the PNG
     FrameSource a(args.a), b(args.b);
     if (!args.quiet) {
         fmt::print("A: {}\nB: {}\n", header_line(a.reader()), header_line(b.reader()));

@@ -10,6 +10,7 @@
 #include "cli/data_dir.h"
 #include "controller_sim/profile.h"
 #include "host/scene/scene_error.h"
+#include "protocol/output_file.h"
 #include "protocol/stream_reader.h"
 
 int main(int argc, char** argv) {
@@ -59,8 +60,12 @@ int main(int argc, char** argv) {
         }
     }
 
+    // every output file the command writes is put in place when it succeeds (or finds a
+    // difference: exit 1), and none when it fails (protocol/output_file.h)
+    fb89::protocol::OutputBatch outputs;
     try {
         app.parse(argc, argv);
+        if (exit_code == kSuccess || exit_code == kCheckFailed) outputs.publish();
     } catch (const CLI::Success& e) {
         return app.exit(e);  // --help, --version
     } catch (const CLI::ParseError& e) {

@@ -237,6 +237,11 @@ void write_stream(const RadiosityArgs& args, const RadiosityRun& run) {
 
 int run_radiosity_command(const RadiosityArgs& args) {
     Console console{args.quiet};
+    const bool stdout_taken = claims_stdout({{"--png", args.png},
+                                             {"--ids", args.ids},
+                                             {"--ids-view", args.ids_view},
+                                             {"--stream", args.stream},
+                                             {"--stats", args.stats}});
     controller::CostProfile profile = controller::load_profile(args.profile);
     RadiosityRun run = run_radiosity(args);
     for (const auto& note : run.result.notes)
@@ -262,7 +267,6 @@ int run_radiosity_command(const RadiosityArgs& args) {
     if (!args.stream.empty()) write_stream(args, run);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, run, ctl));
 
-    const bool stdout_taken = args.stats == "-" || args.stream == "-";
     if (!args.quiet && !stdout_taken) {
         fmt::print("{}", summary(args, run));
         fmt::print("controller ({}):\n{}", profile.name, ctl.stats().summary());

@@ -247,6 +247,12 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
 
 int run_render(const RenderArgs& args) {
     Console console{args.quiet};
+    const bool stdout_taken = claims_stdout({{"--png", args.png},
+                                             {"--mask", args.mask},
+                                             {"--ids", args.ids},
+                                             {"--ids-view", args.ids_view},
+                                             {"--stream", args.stream},
+                                             {"--stats", args.stats}});
     host::MethodOptions options;
     std::string threshold_source, beam_source;
     std::unique_ptr<host::Renderer> renderer;
@@ -295,6 +301,11 @@ int run_render(const RenderArgs& args) {
         });
     }
 
+    // a controller process that goes away fails the command before any output is written
+    if (!args.connect.empty()) {
+        std::fflush(stdout);
+        if (const int code = send_to_controller(args, run, console); code != kSuccess) return code;
+    }
     if (!args.png.empty()) {
         make_parent_dirs(args.png);
         controller::write_png(args.png, ctl.framebuffer());
@@ -305,11 +316,11 @@ int run_render(const RenderArgs& args) {
     if (!args.stats.empty())
         write_json(args.stats, stats_json(args, run, ctl, period ? &*period : nullptr));
 
-    const bool stdout_taken = args.stats == "-" || args.stream == "-";
     if (!args.quiet && !stdout_taken) {
-        fmt::print("scene {}: {} faces ({} pieces on screen), {}x{}, method {}\n", args.scene,
-                   run.scene.face_count, run.screen.faces.size(), run.screen.width,
-                   run.screen.height, args.method);
+        fmt::print("scene {}: {} faces ({}{} pieces on screen), {}x{}, method {}\n", args.scene,
+                   run.scene.face_count,
+                   run.scene.dropped ? fmt::format("{} dropped, ", run.scene.dropped) : "",
+                   run.screen.faces.size(), run.screen.width, run.screen.height, args.method);
         fmt::print("{}", run.stats.summary());
         fmt::print("controller ({}):\n{}", profile.name, ctl.stats().summary());
         const double controller_ms = ctl.frames().empty() ? 0 : ctl.frames().back().end_us / 1e3;
@@ -325,10 +336,6 @@ int run_render(const RenderArgs& args) {
                                         run.stats.setup.wall_ms + run.stats.hidden_surface.wall_ms,
                                         profile.name, controller_ms));
         }
-    }
-    if (!args.connect.empty()) {
-        std::fflush(stdout);
-        return send_to_controller(args, run, console);
     }
     return kSuccess;
 }

@@ -10,8 +10,11 @@
 //   --stats F.json        {"stream": ..., "controller": <controller stats>, "benchmark": ...}
 //   --benchmark           wall time of the replay (reading + executing), commands/s, Mpixels/s
 //
-// A truncated or corrupt stream: every complete frame is reported (and the last complete
-// one written with --png), then the StreamError on stderr, and exit 2.
+// A truncated or corrupt stream: every complete frame is reported, then the StreamError on
+// stderr, and exit 2 with no output file written or changed (the snapshots already taken
+// wait beside their targets and are removed: protocol::OutputBatch). With --salvage
+// the damage is a warning: the last complete frame is written with --png, the snapshots
+// taken before the damage are kept, --stats carries an "error" entry, and the exit is 0.
 #include <chrono>
 #include <iostream>
 
@@ -32,6 +35,7 @@ struct ReplayArgs {
     std::string profile = std::string(controller::kDefaultProfile);
     std::string png, snapshot, stats;
     bool benchmark = false;
+    bool salvage = false;
     bool quiet = false;
 };
 
@@ -63,9 +67,8 @@ void replay_snapshots(const ReplayArgs& args, const protocol::CallSet& snapshots
 
 // The replay loop: read a batch, execute it (Controller::execute's batch path). A batch
 // ends at a FRAME_END, where --png keeps the framebuffer. Timed as a whole for --benchmark.
-ReplayRun replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
-                 protocol::StreamReader& reader, controller::Controller& ctl) {
-    ReplayRun run;
+void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
+            protocol::StreamReader& reader, controller::Controller& ctl, ReplayRun& run) {
     const bool keep_last = !args.png.empty() && snapshots.empty();
     std::vector<protocol::Command> batch(kBatch);
     const auto start = std::chrono::steady_clock::now();
@@ -83,7 +86,6 @@ ReplayRun replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
         run.error = e;
     }
     run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return run;
 }
 
 nlohmann::json benchmark_json(const ReplayRun& run, const controller::OpcodeCounters& all) {
@@ -116,8 +118,9 @@ nlohmann::json stats_json(const ReplayArgs& args, const protocol::StreamReader& 
 int run_replay(const ReplayArgs& args) {
     Console console{args.quiet};
     protocol::CallSet snapshots;
+    const bool stdout_taken = claims_stdout({{"--png", args.png}, {"--stats", args.stats}});
     if (!args.snapshot.empty()) {
-        if (args.png.empty())
+        if (args.png.empty() || args.png == "-")
             throw UsageError("--snapshot needs --png F: snapshots are written as F-<call>.png");
         snapshots = parse_call_set_option("--snapshot", args.snapshot);
     }
@@ -125,9 +128,11 @@ int run_replay(const ReplayArgs& args) {
     protocol::StreamReader reader(args.stream);
     controller::Controller ctl(profile);
 
-    const ReplayRun run = replay(args, snapshots, reader, ctl);
+    ReplayRun run;
+    replay(args, snapshots, reader, ctl, run);
+    const bool write = !run.error || args.salvage;  // a failed replay leaves nothing
 
-    if (!args.png.empty() && snapshots.empty()) {
+    if (write && !args.png.empty() && snapshots.empty()) {
         if (run.last_frame) {
             make_parent_dirs(args.png);
             controller::write_png(args.png, *run.last_frame);
@@ -136,12 +141,12 @@ int run_replay(const ReplayArgs& args) {
                 fmt::format("{}: no complete frame; {} not written", args.stream, args.png));
         }
     }
-    if (!snapshots.empty())
+    if (write && !snapshots.empty())
         console.note(fmt::format("{} snapshot(s) written{}", run.snapshots,
                                  run.snapshots ? ", the last " + run.last_snapshot : ""));
-    if (!args.stats.empty()) write_json(args.stats, stats_json(args, reader, ctl, run));
+    if (write && !args.stats.empty()) write_json(args.stats, stats_json(args, reader, ctl, run));
 
-    if (!args.quiet && args.stats != "-") {
+    if (!args.quiet && !stdout_taken) {
         fmt::print("{}\nprofile {}\n", header_line(reader), profile.name);
         fmt::print("{}", frame_table(ctl));
         fmt::print("{}", ctl.stats().summary());
@@ -155,10 +160,20 @@ int run_replay(const ReplayArgs& args) {
                 b["commands_per_s"].get<double>() / 1e6, b["mpixels_per_s"].get<double>());
         }
     }
+    if (run.error && args.salvage) {
+        std::cerr << fmt::format(
+            "fb89: warning: {}; --salvage: kept the {} complete frame(s) before it\n",
+            run.error->what(), ctl.frames().size());
+        return kSuccess;
+    }
     if (run.error) {
         report_stream_error(*run.error);
-        std::cerr << fmt::format("fb89: {}: replayed {} complete frame(s) before the error\n",
-                                 args.stream, ctl.frames().size());
+        const bool has_outputs = !args.png.empty() || !args.stats.empty();
+        std::cerr << fmt::format("fb89: {}: replayed {} complete frame(s) before the error{}\n",
+                                 args.stream, ctl.frames().size(),
+                                 has_outputs ? "; no output written (--salvage writes what "
+                                               "was read before the error)"
+                                             : "");
         return kBadInput;
     }
     return kSuccess;
@@ -181,6 +196,10 @@ void register_replay(CLI::App& app, int& exit_code) {
                     "Write the controller's stats as JSON ('-' for stdout)");
     sub->add_flag("--benchmark", args->benchmark,
                   "Time the replay (wall) and report commands/s and Mpixels/s");
+    sub->add_flag("--salvage", args->salvage,
+                  "A truncated or corrupt stream is a warning, not an error: write what was "
+                  "read before the damage (the last complete frame, earlier snapshots, stats "
+                  "with an \"error\" entry) and exit 0");
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_replay(*args); });
 }

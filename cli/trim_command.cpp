@@ -12,9 +12,11 @@
 // The output copies the header properties, adds `trimmed_from`, `trim_calls` and
 // `trim_frames`, and gets a fresh frame index. Commands are streamed, never held.
 //
-// A truncated or corrupt input: the output keeps what was read, closes an open frame
-// after a MARKER saying where the input ended, is closed with its index (so it replays),
-// the error goes to stderr, and trim exits 2.
+// A failed trim leaves nothing: when the selection matches no command, or the input is
+// truncated or corrupt, the output is removed (a regular file; what went to stdout or a
+// pipe cannot be taken back) and trim exits 2. With --salvage a damaged input is a
+// warning instead: the output keeps what was read, closes an open frame after a MARKER
+// saying where the input ended, is closed with its index (so it replays), and trim exits 0.
 #include <filesystem>
 #include <iostream>
 
@@ -30,6 +32,7 @@ namespace {
 
 struct TrimArgs {
     std::string stream, calls, frames, out;
+    bool salvage = false;
     bool quiet = false;
 };
 
@@ -158,18 +161,31 @@ int run_trim(const TrimArgs& args) {
     } catch (const protocol::StreamError& e) {
         error = e;
     }
-    trimmer.finish(error ? fmt::format("fb89 trim: input ended here: {}", error->what()) : "");
-
-    console.note(fmt::format("{}: kept {} command(s) in {} frame(s) of {}", writer.path(),
-                             grouped(writer.command_count()), trimmer.frames_kept(), args.stream));
-    if (writer.command_count() == 0) console.note("trim: the selection matched no command");
-    if (error) {
+    if (writer.command_count() == 0) {
+        writer.discard();
+        std::cerr << fmt::format(
+            "fb89: error: trim: the selection matched no command of {}; "
+            "{} not written\n",
+            args.stream, writer.path());
+        if (error) report_stream_error(*error);
+        return kBadInput;
+    }
+    if (error && !args.salvage) {
+        writer.discard();
         report_stream_error(*error);
         std::cerr << fmt::format(
-            "fb89: {}: holds what was read before the error, closed so "
-            "that it replays\n",
+            "fb89: {}: not written (--salvage keeps what was read before the error)\n",
             writer.path());
         return kBadInput;
+    }
+    trimmer.finish(error ? fmt::format("fb89 trim: input ended here: {}", error->what()) : "");
+    console.note(fmt::format("{}: kept {} command(s) in {} frame(s) of {}", writer.path(),
+                             grouped(writer.command_count()), trimmer.frames_kept(), args.stream));
+    if (error) {
+        std::cerr << fmt::format(
+            "fb89: warning: {}; --salvage: {} holds what was read before it, closed so that "
+            "it replays\n",
+            error->what(), writer.path());
     }
     return kSuccess;
 }
@@ -186,6 +202,9 @@ void register_trim(CLI::App& app, int& exit_code) {
     sub->add_option("--frames", args->frames,
                     "Frames to keep, by position in the stream from 0, e.g. '0-3,7'");
     sub->add_option("-o,--output", args->out, "Output stream file ('-' for stdout)")->required();
+    sub->add_flag("--salvage", args->salvage,
+                  "A truncated or corrupt input is a warning, not an error: keep what was read "
+                  "before the damage, closed so that it replays, and exit 0");
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_trim(*args); });
 }

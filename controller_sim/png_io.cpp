@@ -17,7 +17,7 @@
 #include <fmt/format.h>
 
 #include "controller_sim/framebuffer.h"
-#include "protocol/atomic_file.h"
+#include "protocol/output_file.h"
 
 namespace fb89::controller {
 
@@ -120,29 +120,33 @@ std::vector<png_bytep> row_pointers(Bytes* data, uint32_t height, std::size_t st
 }  // namespace
 
 void write_png(const std::filesystem::path& path, uint32_t width, uint32_t height,
-               std::span<const uint8_t> rgb) {
+               std::span<const uint8_t> rgb, protocol::Publish publish) {
     if (width == 0 || height == 0)
         fail(path, fmt::format("cannot write a {}x{} image", width, height));
     if (rgb.size() != std::size_t{width} * height * 3)
         fail(path, fmt::format("{} bytes given for a {}x{} RGB image", rgb.size(), width, height));
     std::vector<png_bytep> rows = row_pointers(rgb.data(), height, std::size_t{width} * 3);
     // whole or not at all: a failed write leaves the old file as it was
-    protocol::write_file_atomically(path, [&](std::FILE* f) {
-        char message[kMessageSize] = "";
-        WriteStructs s;
-        s.png =
-            png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
-        s.info = s.png ? png_create_info_struct(s.png) : nullptr;
-        if (!s.info) fail(path, "out of memory in libpng");
-        if (write_rows(s.png, s.info, f, width, height, rows.data())) return;
-        // a failed fwrite (a full disk, a file size limit) left its cause in errno
-        if (std::ferror(f) && errno != 0) fail(path, std::strerror(errno));
-        fail(path, fmt::format("PNG write error: {}", message));
-    });
+    protocol::write_output(
+        path,
+        [&](std::FILE* f) {
+            char message[kMessageSize] = "";
+            WriteStructs s;
+            s.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error,
+                                            on_png_warning);
+            s.info = s.png ? png_create_info_struct(s.png) : nullptr;
+            if (!s.info) fail(path, "out of memory in libpng");
+            if (write_rows(s.png, s.info, f, width, height, rows.data())) return;
+            // a failed fwrite (a full disk, a file size limit) left its cause in errno
+            if (std::ferror(f) && errno != 0) fail(path, std::strerror(errno));
+            fail(path, fmt::format("PNG write error: {}", message));
+        },
+        publish);
 }
 
-void write_png(const std::filesystem::path& path, const Framebuffer& fb) {
-    write_png(path, fb.width(), fb.height(), fb.pixels());
+void write_png(const std::filesystem::path& path, const Framebuffer& fb,
+               protocol::Publish publish) {
+    write_png(path, fb.width(), fb.height(), fb.pixels(), publish);
 }
 
 PngImage read_png(const std::filesystem::path& path) {

@@ -15,7 +15,7 @@
 #include <fmt/format.h>
 
 #include "experiments/progress.h"
-#include "protocol/atomic_file.h"
+#include "protocol/output_file.h"
 
 namespace fb89::experiments {
 
@@ -52,8 +52,11 @@ std::string shell_quoted(const std::string& s) {
 }
 
 // Written beside the target and renamed when whole, so a folder never holds half a result.
-void write_whole(const fs::path& path, const std::string& text) {
-    protocol::write_file_atomically(path, text);
+// A results file is put in place at once: it is a cache that later runs resume from, kept
+// even when the command that made it fails later.
+void write_whole(const fs::path& path, const std::string& text,
+                 protocol::Publish publish = protocol::Publish::WithCommand) {
+    protocol::write_output(path, text, publish);
 }
 
 std::string fingerprint(const std::string& guest) {
@@ -121,7 +124,7 @@ std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
         return "";
     }
     const period::GuestRun run = period::run_guest(m_parts, job.scene, job.options);
-    if (!m_results.empty()) write_whole(cached, run.counts_json);
+    if (!m_results.empty()) write_whole(cached, run.counts_json, protocol::Publish::Now);
     std::lock_guard lock(m_mutex);
     ++m_emulated;
     return run.counts_json;
@@ -178,7 +181,7 @@ void run_one_job(const GuestJob& job, const std::string& results_dir) {
     const std::string key = job_key(fingerprint(parts.guest), job);
     const period::GuestRun run = period::run_guest(parts, job.scene, job.options);
     fs::create_directories(results_dir);
-    write_whole(fs::path(results_dir) / (key + ".json"), run.counts_json);
+    write_whole(fs::path(results_dir) / (key + ".json"), run.counts_json, protocol::Publish::Now);
 }
 
 }  // namespace fb89::experiments

@@ -12,6 +12,9 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+
+#include "protocol/output_file.h"
 
 namespace fb89::protocol {
 
@@ -24,17 +27,39 @@ StreamWriter::StreamWriter(const std::string& path, const Properties& properties
     // encode the header first: bad properties must not leave an empty file behind
     encode_header(m_buffer, properties);
     m_byte_count = m_buffer.size();
-    if (path == "-") {
-        m_path = "<stdout>";
-        m_fd = STDOUT_FILENO;
-    } else {
-        m_fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-        if (m_fd < 0) {
-            throw std::runtime_error(
-                fmt::format("cannot open stream {} for writing: {}", path, std::strerror(errno)));
-        }
-        m_owns_fd = true;
+    OutputKind kind;
+    try {
+        kind = output_kind(path);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(fmt::format("cannot open stream {}", e.what()));
     }
+    switch (kind) {
+        case OutputKind::Descriptor:  // "-", /dev/stdout: the descriptor, left open
+            m_path = output_name(path);
+            m_fd = named_descriptor(path);
+            break;
+        case OutputKind::InPlace:  // a device, FIFO or socket: written where it is
+            try {
+                m_fd = open_in_place(path);
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error(fmt::format("cannot open stream {}", e.what()));
+            }
+            m_owns_fd = true;
+            break;
+        case OutputKind::Replace:  // a regular file, replaced at once: live, cut if killed
+            m_fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+            if (m_fd < 0) {
+                throw std::runtime_error(fmt::format("cannot open stream {} for writing: {}", path,
+                                                     std::strerror(errno)));
+            }
+            m_owns_fd = true;
+            m_file = std::filesystem::weakly_canonical(path);
+            // a command that fails after this leaves no stream (protocol/output_file.h)
+            if (OutputBatch* batch = OutputBatch::current()) batch->add_stream(m_file);
+            break;
+    }
+    struct stat st {};
+    m_is_socket = ::fstat(m_fd, &st) == 0 && S_ISSOCK(st.st_mode);
 }
 
 StreamWriter::StreamWriter(int fd, std::string name, const Properties& properties)
@@ -60,6 +85,13 @@ StreamWriter::~StreamWriter() {
         }
     }
     close_file();
+}
+
+void StreamWriter::discard() noexcept {
+    close_file();
+    m_closed = true;
+    if (!m_file.empty()) ::unlink(m_file.c_str());
+    m_file.clear();
 }
 
 void StreamWriter::frame_begin(const FrameBegin& c) {
@@ -117,6 +149,7 @@ void StreamWriter::close() {
         m_fd = -1;
         if (::close(fd) != 0) fail("close failed");
     }
+    m_file.clear();  // whole: discard() no longer removes it
 }
 
 void StreamWriter::flush_buffer() {

@@ -2,13 +2,21 @@
 // (version 1, docs/PROTOCOL.md) into a file, stdout ("-") or memory.
 //
 // The header (with its properties) is written on construction, each command as it
-// arrives. close() appends the trailing frame index and footer and flushes; a writer
-// destroyed without close() flushes what it has but writes no index, so the stream reads
-// as one cut after its last command. Bytes reach the file at least at every FRAME_END,
-// so a reader on the other end of a pipe sees whole frames as they are finished.
+// arrives. close() appends the trailing frame index and footer and flushes. Bytes reach
+// the file at least at every FRAME_END, so a reader on the other end of a pipe, or a
+// viewer following a file, sees whole frames as they are finished.
+//
+// A writer destroyed without close() flushes what it has but writes no index, so the
+// stream reads as one cut after its last command; so does a file whose writer was killed.
+// protocol/output_file.h decides how the target is opened: a regular file is replaced at
+// once and written in place (live, for a viewer or a reader that follows it); a device,
+// FIFO, socket or stdout (`-`, /dev/stdout) is written where it is, never replaced. A
+// regular file opened while an OutputBatch exists (every fb89 command) is removed if the
+// command fails: a failed command leaves no stream (docs/RELIABILITY.md, "Outputs").
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,9 +27,9 @@ namespace fb89::protocol {
 
 class StreamWriter final : public CommandSink {
   public:
-    // Writes to path ("-" is stdout), replacing the file. Throws std::runtime_error naming
-    // the path if it cannot be opened or written, std::invalid_argument for properties
-    // version 1 cannot carry.
+    // Writes to path ("-" is stdout; a regular file is replaced, a device, FIFO or socket
+    // written in place). Throws std::runtime_error naming the path if it cannot be opened
+    // or written, std::invalid_argument for properties version 1 cannot carry.
     StreamWriter(const std::string& path, const Properties& properties);
     // Encodes into memory; read the bytes with bytes() or take_bytes().
     explicit StreamWriter(const Properties& properties);
@@ -46,6 +54,11 @@ class StreamWriter final : public CommandSink {
     // already closed. Throws std::runtime_error naming the path on a write error.
     void close();
 
+    // Abandons the stream before close(): a regular file of its own is closed and removed;
+    // a descriptor, device or pipe is closed as it stands (bytes already sent cannot be
+    // taken back). What a command calls when it decides it has failed.
+    void discard() noexcept;
+
     // The path, "<stdout>" for "-", "<memory>" in memory: the name used in messages.
     const std::string& path() const { return m_path; }
     uint64_t command_count() const { return m_command_count; }
@@ -65,7 +78,8 @@ class StreamWriter final : public CommandSink {
     [[noreturn]] void fail(const std::string& what);
 
     std::string m_path;
-    int m_fd = -1;  // -1: in memory
+    int m_fd = -1;                 // -1: in memory
+    std::filesystem::path m_file;  // a regular file of its own until close(): discard() removes it
     bool m_owns_fd = false;
     bool m_is_socket = false;  // write with send(MSG_NOSIGNAL)
     bool m_closed = false;

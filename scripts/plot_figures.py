@@ -15,7 +15,7 @@ import matplotlib.ticker  # noqa: E402
 
 sys.dont_write_bytecode = True  # nothing written beside the scripts
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from atomic_chart import save  # noqa: E402
+from output_file import save  # noqa: E402
 
 
 def read(path):

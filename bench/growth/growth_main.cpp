@@ -14,7 +14,7 @@
 #include "bench/growth/child_process.h"
 #include "bench/growth/growth_run.h"
 #include "bench/growth/report.h"
-#include "protocol/atomic_file.h"
+#include "protocol/output_file.h"
 
 namespace {
 
@@ -24,7 +24,7 @@ using namespace fb89;
 constexpr uint64_t kMaxRungFaces = uint64_t{1} << 22;
 
 void write_text(const std::filesystem::path& file, const std::string& text) {
-    protocol::write_file_atomically(file, text);
+    protocol::write_output(file, text);
 }
 
 int run(const std::filesystem::path& out, const growth::GrowthOptions& options) {

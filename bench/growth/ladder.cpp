@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "protocol/atomic_file.h"
+#include "protocol/output_file.h"
 
 namespace fb89::growth {
 
@@ -86,7 +86,7 @@ std::filesystem::path write_scene(const Rung& rung, const std::filesystem::path&
     }
     const auto file =
         dir / fmt::format("terrain_{}{}.json", rung.faces(), obj.empty() ? "" : "_obj");
-    protocol::write_file_atomically(file, scene.dump(2) + "\n");
+    protocol::write_output(file, scene.dump(2) + "\n");
     return file;
 }
 
@@ -113,7 +113,7 @@ uint64_t write_obj(const Rung& rung, const std::filesystem::path& file) {
     const std::string text =
         obj_text(host::generate_terrain(rung.terrain()),
                  fmt::format("bench/growth terrain, {} faces, seed {}", rung.faces(), kLadderSeed));
-    protocol::write_file_atomically(file, text);
+    protocol::write_output(file, text);
     return text.size();
 }
 

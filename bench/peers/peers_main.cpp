@@ -13,7 +13,7 @@
 #include "bench/peers/ray_side_by_side.h"
 #include "bench/peers/side_by_side.h"
 #include "host/trace/beam_ray_hybrid.h"
-#include "protocol/atomic_file.h"
+#include "protocol/output_file.h"
 
 namespace {
 
@@ -62,7 +62,7 @@ int run_rays(const Args& args) {
         std::string text = ray_csv_header() + "\n";
         for (const RayRow& r : rows)
             text += ray_csv_row(r) + "\n";
-        fb89::protocol::write_file_atomically(args.csv, text);
+        fb89::protocol::write_output(args.csv, text);
     }
     // exit 1 when our ray tracer and Embree's robust mode disagree inside a face, or when
     // the beam hybrid's ids differ from the ray tracer's
@@ -122,7 +122,7 @@ int run_llvmpipe(const Args& args) {
         std::string text = csv_header() + "\n";
         for (const SideBySideRow& r : rows)
             text += csv_row(r) + "\n";
-        fb89::protocol::write_file_atomically(csv, text);
+        fb89::protocol::write_output(csv, text);
     }
     // exit 1 when a check failed: coverage, or an id mismatch that is neither a depth tie
     // nor within llvmpipe's float error, or the hybrid differing from the Z-buffer

@@ -15,15 +15,44 @@ namespace fb89::host {
 
 namespace {
 
-// tinyobjloader reads a coordinate it cannot parse ("nan", "abc", a missing one) as 0 and
-// an overflowing one as inf: check every vertex line first, so that is an error naming it.
-void check_vertex_lines(const std::filesystem::path& file) {
+// Elements of an OBJ that are not faces and that fb89 does not draw.
+struct SkippedElements {
+    size_t lines = 0, points = 0;
+};
+
+// The number of vertex references on an `f` line ("f 1/1 2/2 3/3" has 3).
+size_t face_vertex_count(std::istringstream& words) {
+    size_t n = 0;
+    std::string word;
+    while (words >> word) {
+        if (word[0] == '#') break;
+        ++n;
+    }
+    return n;
+}
+
+// Checks what tinyobjloader would read wrongly or drop without a word, line by line:
+// a coordinate it cannot parse ("nan", "abc", a missing one) it reads as 0 and an
+// overflowing one as inf; a face of fewer than 3 vertices it drops, which would move every
+// later face's id. Both are errors naming the line. Lines and points are counted.
+SkippedElements check_lines(const std::filesystem::path& file) {
     std::ifstream in(file);
     std::string line;
+    SkippedElements skipped;
     for (size_t number = 1; std::getline(in, line); ++number) {
         std::istringstream words(line);
         std::string tag;
-        if (!(words >> tag) || tag != "v") continue;
+        if (!(words >> tag)) continue;
+        if (tag == "l") ++skipped.lines;
+        if (tag == "p") ++skipped.points;
+        if (tag == "f") {
+            const size_t n = face_vertex_count(words);
+            if (n < 3)
+                throw SceneError(fmt::format("{}: line {}: a face of {} {}; a face needs 3 or more",
+                                             file.string(), number, n,
+                                             n == 1 ? "vertex" : "vertices"));
+        }
+        if (tag != "v") continue;
         for (int k = 0; k < 3; ++k) {
             std::string word;
             words >> word;
@@ -35,11 +64,12 @@ void check_vertex_lines(const std::filesystem::path& file) {
                     file.string(), number, k + 1, word));
         }
     }
+    return skipped;
 }
 
 }  // namespace
 
-GeneratedPolygons load_obj(const std::filesystem::path& file) {
+GeneratedPolygons load_obj(const std::filesystem::path& file, std::vector<std::string>* notes) {
     std::error_code ec;
     if (std::filesystem::is_directory(file, ec))
         throw SceneError(fmt::format("{}: is a directory, not an OBJ file", file.string()));
@@ -50,7 +80,12 @@ GeneratedPolygons load_obj(const std::filesystem::path& file) {
                         file.string()));
     if (!std::ifstream(file).good())
         throw SceneError(fmt::format("{}: cannot open the OBJ file", file.string()));
-    check_vertex_lines(file);
+    const SkippedElements skipped = check_lines(file);
+    if (notes && (skipped.lines || skipped.points))
+        notes->push_back(
+            fmt::format("{}: {} line and {} point element(s) skipped: fb89 draws "
+                        "faces only",
+                        file.string(), skipped.lines, skipped.points));
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // faces stay whole convex polygons
     config.vertex_color = false;

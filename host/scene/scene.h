@@ -2,8 +2,10 @@
 //
 // A camera, an image size, a background, one directional light plus ambient, and faces.
 // A face is a planar convex polygon with a colour, an optional mirror reflectance and an
-// optional emission. Faces are numbered from 0 in load order; the pieces of a polygon that
-// had to be triangulated on load keep its id, so several Face entries may share an id.
+// optional emission. A face's id is its index in the input (objects in file order, faces in
+// each object's order, from 0): the pieces of a polygon that had to be triangulated on load
+// keep its id, so several Face entries may share an id, and a face dropped on load (zero
+// area) leaves its id unused, so no later face's id moves (docs/PROTOCOL.md, "Face ids").
 #pragma once
 
 #include <cstdint>
@@ -56,7 +58,9 @@ struct Scene {
     glm::dvec3 background{0, 0, 0};
     Light light;
     std::vector<Face> faces;
-    uint32_t face_count = 0;  // distinct ids (faces before triangulation)
+    // faces in the input, dropped ones included: every id is below it (for a .tri file,
+    // whose ids are given, the distinct ids)
+    uint32_t face_count = 0;
 
     // What loading changed and why: triangulated polygons, dropped degenerate faces.
     std::vector<std::string> notes;

@@ -144,7 +144,7 @@ glm::dmat4 read_transform(const JsonFields& o) {
            glm::scale(glm::dmat4(1.0), scale);
 }
 
-GeneratedPolygons read_geometry(const JsonFields& o, const Scene& scene,
+GeneratedPolygons read_geometry(const JsonFields& o, Scene& scene,
                                 const std::filesystem::path& base_dir) {
     if (o.has("polygon") || o.has("polygons")) {
         o.only_keys({"polygon", "polygons", "material", "transform"});
@@ -167,7 +167,7 @@ GeneratedPolygons read_geometry(const JsonFields& o, const Scene& scene,
     if (o.has("obj")) {
         o.only_keys({"obj", "material", "transform"});
         try {
-            return load_obj(base_dir / o.string("obj"));
+            return load_obj(base_dir / o.string("obj"), &scene.notes);
         } catch (const SceneError& e) {
             throw SceneError(fmt::format("{}: {}", o.where("obj"), e.what()));
         }
@@ -177,6 +177,9 @@ GeneratedPolygons read_geometry(const JsonFields& o, const Scene& scene,
 }
 
 // Appends an object's polygons as faces: transform, check, triangulate if needed, number.
+// A face's id is its index in the input (objects in file order, faces in each object's
+// order), whatever is dropped or split: a dropped face leaves its id unused, the pieces of
+// a triangulated one share its id.
 void add_object(Scene& scene, const JsonFields& o, uint32_t object_index,
                 const std::filesystem::path& base_dir) {
     std::vector<size_t> mirror_faces;
@@ -199,8 +202,11 @@ void add_object(Scene& scene, const JsonFields& o, uint32_t object_index,
         if (prepared.verdict == PolygonVerdict::NotFinite)
             throw SceneError(fmt::format("{}: {}", where, prepared.reason));
         if (prepared.verdict == PolygonVerdict::Degenerate) {
+            // dropped, its id left unused: every later face keeps its index in the input
             ++scene.dropped;
-            scene.notes.push_back(fmt::format("{}: dropped ({})", where, prepared.reason));
+            scene.notes.push_back(fmt::format("{}: dropped ({}); id {} unused", where,
+                                              prepared.reason, scene.face_count));
+            ++scene.face_count;
             continue;
         }
         if (prepared.verdict == PolygonVerdict::Triangulated) {

@@ -100,6 +100,7 @@ Scene parse_tri(std::string_view text, const std::string& name) {
         in.expect_end();
         PolygonResult prepared = prepare_polygon(v);
         if (prepared.verdict == PolygonVerdict::NotFinite) in.fail(prepared.reason);
+        ids.insert(static_cast<uint32_t>(id));  // a dropped triangle's id stays its own
         if (prepared.verdict == PolygonVerdict::Degenerate) {
             ++scene.dropped;
             scene.notes.push_back(
@@ -109,7 +110,6 @@ Scene parse_tri(std::string_view text, const std::string& name) {
         Material m;
         m.color = id_color(static_cast<uint32_t>(id));
         scene.faces.push_back({std::move(v), m, static_cast<uint32_t>(id), 0});
-        ids.insert(static_cast<uint32_t>(id));
     }
     scene.face_count = static_cast<uint32_t>(ids.size());
     return scene;

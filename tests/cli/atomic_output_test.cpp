@@ -5,6 +5,7 @@
 #include <sys/mount.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -107,16 +108,36 @@ TEST(AtomicOutput, ASuccessfulRenderReplacesEveryOutputAndLeavesNoTemporary) {
 
 // A stream is written in place, by design: it replaces the old file when opened, and a cut
 // stream is readable up to its last whole record. The cut is an error naming the stream.
-TEST(AtomicOutput, AStreamUnderAFileSizeLimitIsAnErrorAndACutStreamNotTheOldFile) {
+TEST(AtomicOutput, AStreamUnderAFileSizeLimitIsAnErrorAndLeavesNothing) {
     const fs::path dir = outputs(), target = dir / "out.fb89";
     put(target, kOld);
     const CliRun r = run_fb89("render " + kScenes + "/demo.json -q --stream " + target.string(),
                               "bash -c 'ulimit -f 1; exec \"$0\" \"$@\"' ");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(r.err, "fb89: error: cannot write stream " + target.string() + ": File too large\n");
-    EXPECT_EQ(slurp(target).substr(0, 4), "FB89");
-    const CliRun info = run_fb89("info " + target.string());
-    EXPECT_NE(info.err.find("truncated"), std::string::npos) << info.err;
+    // the command failed: no stream is left, neither the cut one nor the old file
+    EXPECT_FALSE(fs::exists(target));
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(AtomicOutput, AFailureAfterTheStreamIsWrittenLeavesNoStreamAndNoOtherOutput) {
+    // --stats into a folder that is not there fails after --png and --stream were written
+    const fs::path dir = outputs();
+    put(dir / "out.png", kOld);
+    const std::string blocked = (dir / "file" / "stats.json").string();
+    put(dir / "file", kOld);  // a file where the stats' folder would have to be
+    const CliRun r =
+        run_fb89("render " + kScenes + "/demo.json -q --png " + (dir / "out.png").string() +
+                 " --stream " + (dir / "out.fb89").string() + " --stats " + blocked);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("stats.json"), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(dir / "out.png"), kOld);
+    EXPECT_FALSE(fs::exists(dir / "out.fb89"));
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir))
+        names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"file", "out.png"}));
 }
 
 // True when `png` is the old file or a whole 4096x3120 image.

@@ -194,8 +194,9 @@ TEST(BadInputScene, DegenerateFacesAreDroppedAndReportedNeverDrawn) {
         const auto image = fb89::controller::read_png(ids);
         for (size_t p = 0; p < image.pixels.size() / 3; ++p) {
             const uint8_t id = image.pixels[3 * p + 2];
-            ASSERT_TRUE(id == 0 || id == 1) << "only the whole triangle (id 0) is drawn, pixel "
-                                            << p << " holds id + 1 = " << int(id);
+            ASSERT_TRUE(id == 0 || id == 5)
+                << "only the whole triangle (id 4, its index in the file) is drawn, pixel " << p
+                << " holds id + 1 = " << int(id);
         }
     }
 }
@@ -239,12 +240,63 @@ TEST(BadInputScene, BrokenObjFilesNameTheFile) {
          "line 3: vertex coordinate 2: expected a finite number, got 'abc'"},
         {"missing coordinate", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n",
          "line 2: vertex coordinate 3: expected a finite number, got ''"},
+        {"two-vertex face", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n",
+         "mesh.obj: line 5: a face of 2 vertices; a face needs 3 or more"},
+        {"one-vertex face", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 3 # one\nf 1 2 3\n",
+         "mesh.obj: line 4: a face of 1 vertex; a face needs 3 or more"},
     };
     std::vector<SceneCase> cases;
     for (const Obj& o : objs) {
         write_file("mesh.obj", o.text);
         cases = {{o.name, scene_with(R"("objects": [{"obj": "mesh.obj"}])"), o.says}};
         expect_scenes_refused(cases, "zbuffer");
+    }
+}
+
+// Zero-area OBJ faces at the start, in the middle and at the end are dropped and reported,
+// and every other face keeps its index in the file as its id, in the id buffer of every
+// method: a dropped face leaves its id unused. Lines and points are counted, not drawn.
+TEST(BadInputScene, DroppedObjFacesLeaveTheirIdsUnusedAndTheRestKeepTheirIndex) {
+    // four quads side by side across the view, with a flat face before, between and after
+    write_file("strip.obj",
+               "v -2 -0.5 0\nv -1 -0.5 0\nv -1 0.5 0\nv -2 0.5 0\n"  // 1-4: quad A
+               "v -1 -0.5 0\nv 0 -0.5 0\nv 0 0.5 0\nv -1 0.5 0\n"    // 5-8: quad B
+               "v 0 -0.5 0\nv 1 -0.5 0\nv 1 0.5 0\nv 0 0.5 0\n"      // 9-12: quad C
+               "v 1 -0.5 0\nv 2 -0.5 0\nv 2 0.5 0\nv 1 0.5 0\n"      // 13-16: quad D
+               "f 1 2 1\n"                                           // 0: flat (start)
+               "f 1 2 3 4\nf 5 6 7 8\n"                              // 1, 2
+               "f 5 5 5\n"                                           // 3: flat (middle)
+               "f 9 10 11 12\nf 13 14 15 16\n"                       // 4, 5
+               "l 1 2\np 3\n"                                        // not faces
+               "f 16 15 16\n");                                      // 6: flat (end)
+    const std::string scene = write_file(
+        "strip.json",
+        R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 60, "near": 0.1, "far": 100},
+            "image": {"width": 64, "height": 16},
+            "objects": [{"polygon": [[-9, -9, -5], [9, -9, -5], [9, 9, -5]]},
+                        {"obj": "strip.obj"}]})");
+    for (const char* method : {"zbuffer", "warnock", "scanline", "hybrid", "raytrace", "beam"}) {
+        SCOPED_TRACE(method);
+        const std::string ids = scratch("strip_ids.png");
+        CliRun r = fb89("render " + scene + " -m " + method + " --ids " + ids);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        // ids count across objects: the big triangle is 0, the OBJ's faces 1 to 7
+        for (const char* note :
+             {"objects[1]: face 0: dropped (fewer than 3 distinct vertices); id 1 unused",
+              "objects[1]: face 3: dropped (fewer than 3 distinct vertices); id 4 unused",
+              "objects[1]: face 6: dropped (fewer than 3 distinct vertices); id 7 unused",
+              "1 line and 1 point element(s) skipped"})
+            EXPECT_NE(r.err.find(note), std::string::npos) << note << "\n" << r.err;
+        const auto image = fb89::controller::read_png(ids);
+        // along the middle row, left to right: quads A, B, C, D have ids 2, 3, 5, 6
+        std::vector<int> seen;
+        const size_t row = 8;
+        for (size_t x = 0; x < image.width; ++x) {
+            const int id_plus_1 = image.pixels[3 * (row * image.width + x) + 2];
+            if (id_plus_1 >= 2 && (seen.empty() || seen.back() != id_plus_1 - 1))
+                seen.push_back(id_plus_1 - 1);
+        }
+        EXPECT_EQ(seen, (std::vector<int>{2, 3, 5, 6}));
     }
 }
 

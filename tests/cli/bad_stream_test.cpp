@@ -67,7 +67,7 @@ TEST(BadInputStream, NewerVersionsAreRefusedNamingBothVersions) {
     }
 }
 
-TEST(BadInputStream, TruncationKeepsCompleteFramesAndWritesNoPngWithoutOne) {
+TEST(BadInputStream, TruncationWritesNothingAndSalvageKeepsCompleteFrames) {
     struct Cut {
         size_t size;
         const char* says;  // in the message
@@ -88,6 +88,15 @@ TEST(BadInputStream, TruncationKeepsCompleteFramesAndWritesNoPngWithoutOne) {
         EXPECT_EQ(r.exit_code, 2) << r.err;
         EXPECT_NE(r.err.find("fb89: error: " + path + ": " + cut.says), std::string::npos) << r.err;
         EXPECT_NE(r.err.find("at byte"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(png)) << "a failed replay writes nothing";
+        // a cut header leaves nothing to salvage: still an error
+        const bool header_cut = r.err.find("truncated header") != std::string::npos;
+        r = fb89("replay --salvage " + path + " --png " + png);
+        EXPECT_EQ(r.exit_code, header_cut ? 2 : 0) << r.err;
+        EXPECT_NE(r.err.find(std::string(header_cut ? "fb89: error: " : "fb89: warning: ") + path +
+                             ": " + cut.says),
+                  std::string::npos)
+            << r.err;
         if (cut.frames == 0) {
             EXPECT_FALSE(fs::exists(png)) << "no complete frame: nothing to write";
         } else {
@@ -112,7 +121,10 @@ TEST(BadInputStream, CorruptOpcodesNameTheOffsetAndCommand) {
         const std::string path = write_bytes("bad.fb89", b), png = scratch("bad.png");
         expect_refused(fb89("replay " + path + " --png " + png), "bad.fb89",
                        {"at byte 49", "command 3"});
-        EXPECT_TRUE(fs::exists(png)) << "frame 0 stays usable";
+        EXPECT_FALSE(fs::exists(png)) << "a failed replay writes nothing";
+        EXPECT_EQ(fb89("replay --salvage " + path + " --png " + png).exit_code, 0);
+        EXPECT_TRUE(fs::exists(png)) << "frame 0 stays usable with --salvage";
+        fs::remove(png);
     }
     // garbage from the first byte: not a stream at all
     const std::string text = write_file("text.fb89", "this is not an fb89 stream\n");

@@ -13,8 +13,13 @@ using fb89::testing::run_in_terminal;
 const std::string kExperiment = std::string(FB89_CLI_PATH) + " experiment fig2.1 " +
                                 FB89_SCENES_DIR + "/A.json --size 64x48 --repeat 3";
 
+// The CSV goes to the test's own folder (never a system path such as /dev/null).
+std::string csv_option() {
+    return " --csv " + (fb89::testing::test_dir() / "out.csv").string();
+}
+
 TEST(Progress, ATerminalSeesRoundsAndTheTimeLeft) {
-    const CliRun tty = run_in_terminal(kExperiment + " --csv /dev/null");
+    const CliRun tty = run_in_terminal(kExperiment + csv_option());
     ASSERT_EQ(tty.exit_code, 0) << tty.out;
     EXPECT_NE(tty.out.find("2/4 rounds"), std::string::npos) << tty.out;
     EXPECT_NE(tty.out.find("s left"), std::string::npos) << tty.out;
@@ -27,11 +32,11 @@ TEST(Progress, NothingWhenStderrIsNotATerminalOrWithQuiet) {
     ASSERT_EQ(piped.exit_code, 0) << piped.err;
     EXPECT_EQ(piped.err.find("rounds"), std::string::npos) << piped.err;
     EXPECT_NE(piped.out.find("warnock-centres"), std::string::npos) << piped.out;
-    const CliRun quiet = run_in_terminal(kExperiment + " -q --csv /dev/null");
+    const CliRun quiet = run_in_terminal(kExperiment + " -q" + csv_option());
     ASSERT_EQ(quiet.exit_code, 0) << quiet.out;
     EXPECT_EQ(quiet.out, "");
     // the same command without -q shows its rounds on this terminal
-    const CliRun shown = run_in_terminal(kExperiment + " --csv /dev/null");
+    const CliRun shown = run_in_terminal(kExperiment + csv_option());
     ASSERT_EQ(shown.exit_code, 0) << shown.out;
     EXPECT_NE(shown.out.find("rounds"), std::string::npos) << shown.out;
 }
@@ -51,7 +56,7 @@ TEST(Progress, RadiosityShowsEachStageWithTheTimeLeft) {
 // Fig. 2.4 counts the scenes it has done, its ideal scenes among them.
 TEST(Progress, Fig24CountsItsScenes) {
     const CliRun tty = run_in_terminal(std::string(FB89_CLI_PATH) + " experiment fig2.4 " +
-                                       FB89_SCENES_DIR + "/A.json --csv /dev/null");
+                                       FB89_SCENES_DIR + "/A.json" + csv_option());
     ASSERT_EQ(tty.exit_code, 0) << tty.out;
     EXPECT_NE(tty.out.find("fig2.4: 1/22 scenes, about "), std::string::npos) << tty.out;
     EXPECT_NE(tty.out.find("fig2.4: 21/22 scenes"), std::string::npos) << tty.out;

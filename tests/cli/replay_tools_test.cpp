@@ -147,7 +147,7 @@ TEST(ReplayCommand, BenchmarkReportsThroughput) {
     EXPECT_GT(j["benchmark"]["commands"].get<uint64_t>(), 100u);
 }
 
-TEST(ReplayCommand, TruncatedStreamKeepsCompleteFramesAndExitsTwo) {
+TEST(ReplayCommand, TruncatedStreamExitsTwoWritingNothingAndSalvageKeepsCompleteFrames) {
     const auto full = pr::encode_stream(three_frames(), {{"scene", "built"}});
     const std::string stream = write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2);
     const std::string png = scratch("last.png"), stats = scratch("cut.json");
@@ -156,6 +156,14 @@ TEST(ReplayCommand, TruncatedStreamKeepsCompleteFramesAndExitsTwo) {
     EXPECT_NE(r.err.find("cut.fb89: truncated"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("at byte"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("(command "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("no output written (--salvage"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(png));
+    EXPECT_FALSE(std::filesystem::exists(stats));
+    // with --salvage: exit 0, a warning, and what the complete frames give
+    r = fb89("replay --salvage " + stream + " --png " + png + " --stats " + stats);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("fb89: warning: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("kept the 2 complete frame(s)"), std::string::npos) << r.err;
     const auto j = nlohmann::json::parse(slurp(stats));
     EXPECT_EQ(j["controller"]["frames_closed"], 2);
     EXPECT_TRUE(j.contains("error"));
@@ -306,15 +314,30 @@ TEST(TrimCommand, AKeptCommandBringsItsFramesBeginAndEnd) {
     EXPECT_EQ(fb89("trim " + a + " --frames 0 -o " + a).exit_code, 2);
 }
 
-TEST(TrimCommand, TruncatedInputStillGivesAStreamThatReplays) {
+TEST(TrimCommand, TruncatedInputLeavesNothingAndSalvageGivesAStreamThatReplays) {
     const auto full = pr::encode_stream(three_frames(), {{"scene", "built"}});
     const std::string stream = write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2);
     const std::string out = scratch("from_cut.fb89");
     CliRun r = fb89("trim " + stream + " --calls 0- -o " + out);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("cut.fb89: truncated"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(out + ": not written (--salvage"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    r = fb89("trim --salvage " + stream + " --calls 0- -o " + out);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("fb89: warning: "), std::string::npos) << r.err;
     CliRun replay = fb89("replay -q " + out);
     EXPECT_EQ(replay.exit_code, 0) << replay.err;
+}
+
+TEST(TrimCommand, ASelectionMatchingNothingLeavesNoFile) {
+    const std::string stream = write_stream("one.fb89", three_frames());
+    const std::string out = scratch("f7.fb89");
+    CliRun r = fb89("trim " + stream + " --frames 7 -o " + out);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("the selection matched no command"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("not written"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(DiffCommand, SameFramesExitZeroAcrossMethods) {

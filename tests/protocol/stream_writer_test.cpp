@@ -11,9 +11,11 @@
 #include <iterator>
 
 #include "protocol/memory_buffer.h"
+#include "protocol/output_file.h"
 #include "protocol/stream_reader.h"
 #include "sample_streams.h"
 #include "tests/scratch.h"
+#include "tests/special_files.h"
 
 namespace fb89::protocol {
 namespace {
@@ -110,6 +112,58 @@ TEST(StreamWriter, LargeStreamIsWrittenInFull) {
     std::filesystem::remove(path);
 }
 
+TEST(StreamWriter, DiscardRemovesAFileOfItsOwnAndCloseKeepsIt) {
+    const auto path = temp_path("discarded.fb89");
+    {
+        StreamWriter writer(path.string(), {});
+        writer.frame_begin(FrameBegin{0, 4, 4, Rgb{}});
+        writer.discard();
+    }
+    EXPECT_FALSE(std::filesystem::exists(path));
+    StreamWriter writer(path.string(), {});
+    writer.close();
+    writer.discard();  // after close(): kept
+    EXPECT_TRUE(std::filesystem::exists(path));
+    std::filesystem::remove(path);
+}
+
+// Under an OutputBatch (as in every fb89 command), a stream is written live at its path and
+// removed with the batch unless the batch is published.
+TEST(StreamWriter, AnUnpublishedOutputBatchRemovesTheStreamAPublishedOneKeepsIt) {
+    const auto path = temp_path("batched.fb89");
+    for (const bool publish : {false, true}) {
+        {
+            OutputBatch batch;
+            StreamWriter writer(path.string(), {});
+            for (const Command& c : testing::two_frames())
+                writer.submit(c);
+            writer.close();
+            EXPECT_TRUE(std::filesystem::exists(path)) << "written live, at its path";
+            if (publish) batch.publish();
+        }
+        EXPECT_EQ(std::filesystem::exists(path), publish);
+    }
+    std::filesystem::remove(path);
+}
+
+TEST(StreamWriter, AFifoIsWrittenInPlaceAndStaysAFifo) {
+    const auto fifo = temp_path("fifo");
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fb89::testing::FifoReader reader(fifo);
+    {
+        StreamWriter writer(fifo.string(), {});
+        for (const Command& c : testing::two_frames())
+            writer.submit(c);
+        writer.close();
+    }
+    const std::string got = reader.stop();
+    const Bytes expected = encode_stream(testing::two_frames(), {});
+    EXPECT_EQ(Bytes(got.begin(), got.end()), expected);
+    EXPECT_EQ(fb89::testing::identity_of(fifo).type, static_cast<mode_t>(S_IFIFO));
+    std::filesystem::remove(fifo);
+}
+
 TEST(StreamWriter, DestroyedWithoutCloseLeavesAStreamWithoutIndex) {
     const auto path = temp_path("abandoned.fb89");
     {
@@ -132,16 +186,21 @@ TEST(StreamWriter, BadPathThrowsNamingThePath) {
     }
 }
 
-TEST(StreamWriter, DiskFullThrowsNamingThePath) {
-    if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
-    StreamWriter writer("/dev/full", {});
+// A full device of the test's own (mknod, as root), never the system's /dev/full.
+TEST(StreamWriter, DiskFullThrowsNamingThePathAndLeavesTheDeviceADevice) {
+    const auto full = temp_path("full");
+    if (const auto why = fb89::testing::make_char_device(full, 7)) GTEST_SKIP() << *why;
+    const auto before = fb89::testing::identity_of(full);
+    StreamWriter writer(full.string(), {});
     writer.frame_begin(FrameBegin{0, 4, 4, Rgb{}});
     try {
         writer.frame_end(FrameEnd{});  // FRAME_END flushes
-        FAIL() << "write to /dev/full succeeded";
+        FAIL() << "write to a full device succeeded";
     } catch (const std::runtime_error& e) {
-        EXPECT_EQ(std::string(e.what()), "cannot write stream /dev/full: No space left on device");
+        EXPECT_EQ(std::string(e.what()),
+                  "cannot write stream " + full.string() + ": No space left on device");
     }
+    EXPECT_EQ(fb89::testing::identity_of(full), before);
     EXPECT_THROW(writer.frame_begin(FrameBegin{1, 4, 4, Rgb{}}), std::runtime_error);
     EXPECT_THROW(writer.close(), std::runtime_error);
 }

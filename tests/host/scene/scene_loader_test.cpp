@@ -72,13 +72,15 @@ TEST(SceneLoader, TriangulatesAndReportsNonPlanarPolygons) {
     EXPECT_NE(s.notes.at(0).find("not planar"), std::string::npos);
 }
 
-TEST(SceneLoader, DropsAndReportsZeroAreaFaces) {
+TEST(SceneLoader, DropsAndReportsZeroAreaFacesLeavingTheirIdsUnused) {
     Scene s = parse(R"("objects": [{"polygon": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]},
                                    {"polygon": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}])");
     EXPECT_EQ(s.dropped, 1u);
     ASSERT_EQ(s.faces.size(), 1u);
-    EXPECT_EQ(s.faces[0].id, 0u);
-    EXPECT_NE(s.notes.at(0).find("objects[0]: face 0: dropped (zero area)"), std::string::npos)
+    EXPECT_EQ(s.faces[0].id, 1u);  // its index in the input, not moved by the drop
+    EXPECT_EQ(s.face_count, 2u);
+    EXPECT_NE(s.notes.at(0).find("objects[0]: face 0: dropped (zero area); id 0 unused"),
+              std::string::npos)
         << s.notes[0];
 }
 
