@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 
+#include "period/isa.h"
+
 namespace fb89::cli {
 
 namespace fs = std::filesystem;
@@ -28,10 +30,15 @@ std::string bundled_scene(const std::string& name) {
 
 void use_installed_period_parts() {
     const fs::path libexec = executable_dir().parent_path() / "libexec" / "fb89";
-    if (!fs::exists(libexec / "fb89_guest")) return;
-    ::setenv("FB89_GUEST", (libexec / "fb89_guest").c_str(), 0);
+    if (!fs::exists(libexec / "libfb89_count.so")) return;
     ::setenv("FB89_COUNT_PLUGIN", (libexec / "libfb89_count.so").c_str(), 0);
-    ::setenv("FB89_KERNELS_DIR", libexec.c_str(), 0);
+    for (const period::InstructionSet& isa : period::instruction_sets()) {
+        const fs::path dir = libexec / std::string(isa.name);
+        if (!fs::exists(dir / "fb89_guest")) continue;
+        const std::string prefix = "FB89_" + std::string(isa.env) + "_";
+        ::setenv((prefix + "GUEST").c_str(), (dir / "fb89_guest").c_str(), 0);
+        ::setenv((prefix + "KERNELS_DIR").c_str(), dir.c_str(), 0);
+    }
 }
 
 }  // namespace fb89::cli

@@ -1,9 +1,10 @@
-// fb89 host-validate: the modelled 1989 host against published figures (docs/HOST_COST_MODEL.md,
-// "Validation"). Each validation kernel (period/kernels) runs once on the emulated MC68020 +
-// MC68881 (its counts do not depend on the profile), each host profile prices its timed phase, and
-// the modelled speed is printed beside the published figures of period/validation.json with the
-// error (modelled / published - 1). --check exits 1 when a figure's check fails (|error| over
-// 30% for a figure of the profiled machine itself).
+// fb89 host-validate: the modelled 1989 hosts against published figures
+// (docs/HOST_COST_MODEL.md, "Validation"). Each validation kernel (period/kernels) runs once
+// on each emulated instruction set a profile needs (its counts do not depend on the
+// profile), each host profile prices its timed phase, and the modelled speed is printed
+// beside the published figures of period/validation.json with the error (modelled /
+// published - 1). --check exits 1 when a figure's check fails (|error| over 30% for a figure
+// of the profiled machine itself).
 #include <algorithm>
 #include <iostream>
 #include <map>
@@ -12,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "cli/common.h"
+#include "period/isa.h"
 #include "period/validation.h"
 
 namespace fb89::cli {
@@ -104,24 +106,11 @@ int run_host_validate(const HostValidateArgs& a) {
         }
     }
 
-    // Each kernel that a compared figure needs, run once.
-    std::map<std::string, period::KernelRun> runs;
-    const period::EmulatorParts parts = period::find_emulator_parts();
-    for (const auto& f : data.figures) {
-        if (f.profiles.empty() || runs.contains(f.kernel)) continue;
-        const period::ValidationKernel& k = data.kernel(f.kernel);
-        console.note(fmt::format("running {} on the emulated MC68020 + MC68881", k.program));
-        runs.emplace(f.kernel, period::run_validation_kernel(parts, k));
-        const period::KernelRun& run = runs.at(f.kernel);
-        const auto* timed = run.counts.phase(static_cast<int>(period::Phase::HiddenSurface));
-        console.note(fmt::format("  {} timed instructions; it says: {}", timed->instructions,
-                                 run.output.substr(0, run.output.find('\n'))));
-    }
-
-    std::vector<Row> rows;
+    // The figures each profile is set beside: those naming it, by the name asked for or its
+    // own; a profile that no figure names (a candidate table in a file) is set beside every
+    // compared figure.
+    std::vector<std::vector<const period::PublishedFigure*>> figures_of;
     for (const auto& [asked, profile] : profiles) {
-        // Figures naming the profile, by the name asked for or its own; a profile that no
-        // figure names (a candidate table in a file) is set beside every compared figure.
         std::vector<const period::PublishedFigure*> figures;
         for (const auto& f : data.figures)
             for (const auto& p : f.profiles)
@@ -134,9 +123,32 @@ int run_host_validate(const HostValidateArgs& a) {
             for (const auto& f : data.figures)
                 if (!f.profiles.empty()) figures.push_back(&f);
         }
-        for (const period::PublishedFigure* f : figures) {
+        figures_of.push_back(std::move(figures));
+    }
+
+    // Each kernel a compared figure needs, run once on each instruction set that needs it.
+    std::map<std::pair<std::string, std::string>, period::KernelRun> runs;  // (isa, kernel)
+    for (size_t i = 0; i < profiles.size(); ++i) {
+        const period::InstructionSet& isa = period::instruction_set(profiles[i].second.isa);
+        for (const period::PublishedFigure* f : figures_of[i]) {
+            const std::pair key{std::string(isa.name), f->kernel};
+            if (runs.contains(key)) continue;
             const period::ValidationKernel& k = data.kernel(f->kernel);
-            const period::KernelRun& run = runs.at(f->kernel);
+            console.note(fmt::format("running {} on the emulated {}", k.program, isa.description));
+            runs.emplace(key, period::run_validation_kernel(period::find_emulator_parts(isa), k));
+            const period::KernelRun& run = runs.at(key);
+            const auto* timed = run.counts.phase(static_cast<int>(period::Phase::HiddenSurface));
+            console.note(fmt::format("  {} timed instructions; it says: {}", timed->instructions,
+                                     run.output.substr(0, run.output.find('\n'))));
+        }
+    }
+
+    std::vector<Row> rows;
+    for (size_t i = 0; i < profiles.size(); ++i) {
+        const auto& [asked, profile] = profiles[i];
+        for (const period::PublishedFigure* f : figures_of[i]) {
+            const period::ValidationKernel& k = data.kernel(f->kernel);
+            const period::KernelRun& run = runs.at({profile.isa, f->kernel});
             Row r;
             r.figure = f;
             r.profile = asked;
@@ -169,7 +181,9 @@ int run_host_validate(const HostValidateArgs& a) {
     table += "modelled at the profiles' own clocks:\n";
     for (const auto& [asked, profile] : profiles) {
         std::string line;
-        for (const auto& [kernel, run] : runs) {
+        for (const auto& [isa_kernel, run] : runs) {
+            const auto& [isa, kernel] = isa_kernel;
+            if (isa != profile.isa) continue;
             const period::ValidationKernel& k = data.kernel(kernel);
             const double value =
                 period::modelled_value(k, k.unit, period::timed_seconds(run.counts, profile));
@@ -212,8 +226,10 @@ int run_host_validate(const HostValidateArgs& a) {
     }
     if (a.classes > 0)
         for (const auto& [asked, profile] : profiles)
-            for (const auto& [kernel, run] : runs)
-                table += class_breakdown(kernel, asked, run.counts, profile, a.classes);
+            for (const auto& [isa_kernel, run] : runs)
+                if (isa_kernel.first == profile.isa)
+                    table +=
+                        class_breakdown(isa_kernel.second, asked, run.counts, profile, a.classes);
     if (!a.quiet && a.csv != "-") std::cout << table << sources;
     return a.check && !all_pass ? kCheckFailed : kSuccess;
 }
@@ -222,10 +238,10 @@ int run_host_validate(const HostValidateArgs& a) {
 
 void register_host_validate(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<HostValidateArgs>();
-    CLI::App* sub = app.add_subcommand(
-        "host-validate",
-        "Set the modelled 1989 host (kernels on the emulated MC68020 + MC68881, priced by host "
-        "profiles) beside published figures of the period");
+    CLI::App* sub = app.add_subcommand("host-validate",
+                                       "Set the modelled 1989 hosts (kernels on the emulated "
+                                       "MC68020 + MC68881 or SPARC, priced by host "
+                                       "profiles) beside published figures of the period");
     sub->add_option("--profile", a->profiles,
                     "Host profile (a built-in name or a .json file); default: every profile a "
                     "figure names");

@@ -46,7 +46,8 @@ PeriodHostRun run_on_period_host(const std::string& host, const std::string& sce
     } catch (const std::runtime_error& e) {
         throw UsageError(std::string("--host: ") + e.what());
     }
-    const period::GuestRun guest = period::run_guest(period::find_emulator_parts(), scene, options);
+    const period::GuestRun guest = period::run_guest(
+        period::find_emulator_parts(period::instruction_set(profile.isa)), scene, options);
     PeriodHostRun run;
     run.cost = period::price(guest.counts, profile);
     run.guest_instructions = guest.counts.instructions;

@@ -1,5 +1,6 @@
 # The guest build: fb89's host library and protocol encoding, and the small guest program
-# of period/guest, cross-compiled for the MC68020 + MC68881 (cmake/m68k-linux-gnu.cmake).
+# of period/guest, cross-compiled for one period host's instruction set
+# (period/<isa>/toolchain.cmake: the MC68020 + MC68881, SPARC V7).
 # Nothing of SDL, libpng or the controller. The header-only libraries come from the same
 # Debian packages as the native build's (glm, nlohmann-json, fmt in header-only mode, CLI11,
 # tinyobjloader's single header), staged in a folder of their own so that the cross

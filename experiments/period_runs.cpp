@@ -100,7 +100,7 @@ PeriodRuns::PeriodRuns(const std::string& host, int jobs, std::string results_di
       m_results(std::move(results_dir)),
       m_emit(std::move(emit_jobs)),
       m_fb89(std::move(fb89_path)),
-      m_parts(period::find_emulator_parts()),
+      m_parts(period::find_emulator_parts(period::instruction_set(m_profile.isa))),
       m_guest_fingerprint(fingerprint(m_parts.guest)) {
     if (!m_emit.empty() && m_results.empty())
         throw std::runtime_error("--emit-jobs needs --results DIR, where the jobs write");
@@ -113,7 +113,8 @@ std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
     if (!m_results.empty() && fs::exists(cached)) return slurp(cached.string());
     if (!m_emit.empty()) {
         std::string line = shell_quoted(m_fb89) + " host-run " + shell_quoted(job.scene) +
-                           " --results " + shell_quoted(m_results) + " --";
+                           " --isa " + m_profile.isa + " --results " + shell_quoted(m_results) +
+                           " --";
         for (const std::string& o : job.options) {
             line.push_back(' ');
             line.append(shell_quoted(o));
@@ -176,8 +177,8 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
     return out;
 }
 
-void run_one_job(const GuestJob& job, const std::string& results_dir) {
-    const period::EmulatorParts parts = period::find_emulator_parts();
+void run_one_job(const GuestJob& job, const std::string& isa, const std::string& results_dir) {
+    const period::EmulatorParts parts = period::find_emulator_parts(period::instruction_set(isa));
     const std::string key = job_key(fingerprint(parts.guest), job);
     const period::GuestRun run = period::run_guest(parts, job.scene, job.options);
     fs::create_directories(results_dir);

@@ -1,8 +1,8 @@
-// The experiments on a 1989 host: every (scene, setting) runs once on the emulated MC68020
-// + MC68881 (period/emulator.h) -- its counts are exact, so there is nothing to repeat and
-// no noise to take a median of -- and is priced by the host profile. Runs are independent:
-// they fan out over `jobs` emulator processes here, or, with `emit_jobs`, are written out
-// as one command each (`fb89 host-run ...`) for GNU parallel or a Slurm job array on other
+// The experiments on a 1989 host: every (scene, setting) runs once on the emulated period
+// host of the profile's instruction set (period/emulator.h) -- its counts are exact, so there is
+// nothing to repeat and no noise to take a median of -- and is priced by the host profile. Runs are
+// independent: they fan out over `jobs` emulator processes here, or, with `emit_jobs`, are written
+// out as one command each (`fb89 host-run ...`) for GNU parallel or a Slurm job array on other
 // machines; their outputs land in a results folder, and running the experiment again with
 // that folder joins them into the same table a single run writes.
 #pragma once
@@ -69,7 +69,8 @@ class PeriodRuns {
 // bytes and the options, so a changed scene or guest is never answered from an old run.
 std::string job_key(const std::string& guest_fingerprint, const GuestJob& job);
 
-// `fb89 host-run`: one job, its counts written (whole or not at all) into `results_dir`.
-void run_one_job(const GuestJob& job, const std::string& results_dir);
+// `fb89 host-run`: one job on the guest of instruction set `isa` (period/isa.h), its counts
+// written (whole or not at all) into `results_dir`.
+void run_one_job(const GuestJob& job, const std::string& isa, const std::string& results_dir);
 
 }  // namespace fb89::experiments

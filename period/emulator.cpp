@@ -34,17 +34,35 @@ std::string on_path(const std::string& name) {
     return "";
 }
 
-std::string part(const char* variable, const char* built, const char* what) {
-    if (const char* given = std::getenv(variable); given && *given) {
-        if (::access(given, R_OK) != 0)
-            throw EmulatorError(fmt::format("{} ({}={}) cannot be read", what, variable, given));
-        return given;
+// $FB89_<env>_<what>, for m68k also $FB89_<what>; "" when neither is set.
+std::string given(const InstructionSet& isa, const std::string& what, std::string* name) {
+    const std::string variable = "FB89_" + std::string(isa.env) + "_" + what;
+    if (const char* v = std::getenv(variable.c_str()); v && *v) {
+        *name = variable;
+        return v;
     }
-    if (::access(built, R_OK) != 0)
+    if (isa.name == "m68k")
+        if (const char* v = std::getenv(("FB89_" + what).c_str()); v && *v) {
+            *name = "FB89_" + what;
+            return v;
+        }
+    *name = variable;
+    return "";
+}
+
+std::string part(const char* variable, const std::string& set, const std::string& built,
+                 const std::string& what, const InstructionSet& isa) {
+    if (!set.empty()) {
+        if (::access(set.c_str(), R_OK) != 0)
+            throw EmulatorError(fmt::format("{} ({}={}) cannot be read", what, variable, set));
+        return set;
+    }
+    if (built.empty() || ::access(built.c_str(), R_OK) != 0)
         throw EmulatorError(fmt::format(
-            "{} is not built ({} is missing): build fb89 with Debian's g++-m68k-linux-gnu "
-            "installed (scripts/bootstrap installs it), or set {}",
-            what, built, variable));
+            "{} is not built ({}): build fb89 with Debian's {} installed (scripts/bootstrap "
+            "installs them), or set {}",
+            what, built.empty() ? "the cross build was off" : built + " is missing", isa.packages,
+            variable));
     return built;
 }
 
@@ -139,25 +157,31 @@ Drained drain(pid_t child, int out_fd, int err_fd, std::vector<uint8_t>& out, st
 
 }  // namespace
 
-EmulatorParts find_emulator_parts() {
+EmulatorParts find_emulator_parts(const InstructionSet& isa) {
     EmulatorParts parts;
-    if (const char* given = std::getenv("FB89_QEMU"); given && *given)
-        parts.qemu = given;
-    else
-        parts.qemu = on_path("qemu-m68k");
+    parts.isa = &isa;
+    std::string variable;
+    parts.qemu = given(isa, "QEMU", &variable);
+    if (parts.qemu.empty()) parts.qemu = on_path(std::string(isa.qemu));
     if (parts.qemu.empty() || ::access(parts.qemu.c_str(), X_OK) != 0)
         throw EmulatorError(
-            "qemu-m68k not found (on PATH or as $FB89_QEMU): install Debian's qemu-user "
-            "(scripts/bootstrap installs it)");
-    parts.plugin = part("FB89_COUNT_PLUGIN", FB89_COUNT_PLUGIN_PATH, "the counting plugin");
-    parts.guest = part("FB89_GUEST", FB89_GUEST_PATH, "the guest program for the MC68020");
+            fmt::format("{} not found (on PATH or as ${}): install Debian's qemu-user "
+                        "(scripts/bootstrap installs it)",
+                        isa.qemu, variable));
+    const char* plugin = std::getenv("FB89_COUNT_PLUGIN");
+    parts.plugin = part("FB89_COUNT_PLUGIN", plugin ? plugin : "", FB89_COUNT_PLUGIN_PATH,
+                        "the counting plugin", isa);
+    const std::string guest = given(isa, "GUEST", &variable);
+    parts.guest = part(variable.c_str(), guest, std::string(isa.guest_path),
+                       fmt::format("the guest program for {}", isa.name), isa);
     return parts;
 }
 
 namespace {
 
-// Runs `program` (an m68k executable, given relative to `folder`) under qemu-m68k with the
-// counting plugin, in `folder`, with an empty environment; `what` names the run in errors.
+// Runs `program` (an executable of the parts' instruction set, given relative to `folder`)
+// under its emulator with the counting plugin, in `folder`, with an empty environment;
+// `what` names the run in errors.
 GuestRun run_program(const EmulatorParts& parts, const std::string& program,
                      const std::filesystem::path& folder, const std::vector<std::string>& args,
                      const std::string& what, double time_limit_s) {
@@ -169,13 +193,13 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
         ::close(fd);
     }
     const GuestLimits limits = guest_limits(time_limit_s);
-    std::vector<std::string> argv_text{
-        parts.qemu,
-        "-cpu",
-        "m68020",
-        "-plugin",
-        parts.plugin + ",out=" + counts_path + ",phase=" + phase_path,
-        program};
+    std::string plugin = parts.plugin + ",out=" + counts_path + ",phase=" + phase_path;
+    for (const std::string_view option : parts.isa->plugin_options)
+        plugin += "," + std::string(option);
+    std::vector<std::string> argv_text{parts.qemu};
+    for (const std::string_view option : parts.isa->qemu_options)
+        argv_text.emplace_back(option);
+    argv_text.insert(argv_text.end(), {"-plugin", plugin, program});
     argv_text.insert(argv_text.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (auto& a : argv_text)
@@ -262,16 +286,17 @@ GuestRun run_guest(const EmulatorParts& parts, const std::filesystem::path& scen
                        time_limit_s);
 }
 
-std::filesystem::path find_kernel(const std::string& name) {
-    std::filesystem::path dir = FB89_KERNELS_DIR;
-    if (const char* given = std::getenv("FB89_KERNELS_DIR"); given && *given) dir = given;
+std::filesystem::path find_kernel(const InstructionSet& isa, const std::string& name) {
+    std::string variable;
+    const std::string set = given(isa, "KERNELS_DIR", &variable);
+    const std::filesystem::path dir =
+        set.empty() ? std::filesystem::path(isa.kernels_dir) : std::filesystem::path(set);
     const std::filesystem::path path = dir / name;
     if (dir.empty() || ::access(path.c_str(), R_OK) != 0)
         throw EmulatorError(fmt::format(
-            "the validation kernel {} is not built ({} is missing): build fb89 with Debian's "
-            "g++-m68k-linux-gnu installed (scripts/bootstrap installs it), or set "
-            "FB89_KERNELS_DIR",
-            name, path.string()));
+            "the validation kernel {} for {} is not built ({} is missing): build fb89 with "
+            "Debian's {} installed (scripts/bootstrap installs them), or set {}",
+            name, isa.name, path.string(), isa.packages, variable));
     return path;
 }
 

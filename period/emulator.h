@@ -1,7 +1,8 @@
-// Running fb89's host code on the emulated MC68020 + MC68881: the guest program
-// (period/guest) under qemu-m68k with the counting plugin (period/plugin). The guest runs
-// in the scene's folder with an empty environment and writes its command stream to a pipe,
-// so that its counts do not depend on where the checkout or the output lives.
+// Running fb89's host code on an emulated period host: the guest program (period/guest),
+// cross-built for the host's instruction set (period/isa.h), under its QEMU user-mode
+// emulator with the counting plugin (period/plugin). The guest runs in the scene's folder
+// with an empty environment and writes its command stream to a pipe, so that its counts do
+// not depend on where the checkout or the output lives.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "period/host_cost.h"
+#include "period/isa.h"
 
 namespace fb89::period {
 
@@ -21,13 +23,18 @@ class EmulatorError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// For instruction set X (period/isa.h: M68K, SPARC), each part is $FB89_X_QEMU,
+// $FB89_X_GUEST, $FB89_X_KERNELS_DIR when set (for m68k also the older $FB89_QEMU,
+// $FB89_GUEST, $FB89_KERNELS_DIR), else the emulator found on PATH and what the cross
+// build made.
 struct EmulatorParts {
-    std::string qemu;    // qemu-m68k: $FB89_QEMU, else found on PATH
+    const InstructionSet* isa = nullptr;
+    std::string qemu;    // e.g. qemu-m68k, found on PATH
     std::string plugin;  // $FB89_COUNT_PLUGIN, else the one built beside fb89
-    std::string guest;   // $FB89_GUEST, else the one the cross build made
+    std::string guest;   // the guest program the cross build made
 };
-// Throws EmulatorError when a part cannot be found.
-EmulatorParts find_emulator_parts();
+// Throws EmulatorError when a part cannot be found, naming the Debian packages to install.
+EmulatorParts find_emulator_parts(const InstructionSet& isa);
 
 struct GuestRun {
     GuestCounts counts;
@@ -48,10 +55,10 @@ inline constexpr long kGuestMemoryMiB = 2048;
 GuestRun run_guest(const EmulatorParts& parts, const std::filesystem::path& scene,
                    const std::vector<std::string>& options, double time_limit_s = 3600);
 
-// The validation kernels (period/kernels, docs/HOST_COST_MODEL.md, "Validation"): small MC68020
-// programs that take no input file. `name` is e.g. "fb89_kernel_linpack"; the folder is
-// $FB89_KERNELS_DIR, else the one the cross build made. Throws EmulatorError when missing.
-std::filesystem::path find_kernel(const std::string& name);
+// The validation kernels (period/kernels, docs/HOST_COST_MODEL.md, "Validation"): small
+// programs of the instruction set that take no input file. `name` is e.g.
+// "fb89_kernel_linpack". Throws EmulatorError when missing.
+std::filesystem::path find_kernel(const InstructionSet& isa, const std::string& name);
 
 // Runs a kernel program under the emulator with the counting plugin, in the kernel's folder
 // with an empty environment, like run_guest but with no scene and no stream options.

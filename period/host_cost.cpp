@@ -134,17 +134,21 @@ HostCost price(const GuestCounts& counts, const HostProfile& profile) {
         if (c.phase < 0 || c.phase >= kPhases) continue;
         PhaseCost& out = cost.phases[c.phase];
         out.instructions += c.instructions;
+        const double cpu_khz = profile.cpu_clock_mhz * 1e3, fpu_khz = profile.fpu_clock_mhz * 1e3;
         for (const auto& [key, n] : c.classes) {
             const KeyPrice k = price_key(profile, key);
-            out.cpu_cycles += k.cpu * static_cast<double>(n);
-            out.fpu_cycles += k.fpu * static_cast<double>(n);
+            const double cpu = k.cpu * static_cast<double>(n), fpu = k.fpu * static_cast<double>(n);
+            out.cpu_cycles += cpu;
+            out.fpu_cycles += fpu;
             if (!k.rule) {
                 out.unpriced += n;
                 cost.unpriced_keys[key] += n;
+            } else if (k.rule->stand_in) {
+                out.stand_in_ms += cpu / cpu_khz + fpu / fpu_khz;
+                out.stand_ins += n;
             }
         }
-        out.ms = out.cpu_cycles / (profile.cpu_clock_mhz * 1e3) +
-                 out.fpu_cycles / (profile.fpu_clock_mhz * 1e3);
+        out.ms = out.cpu_cycles / cpu_khz + out.fpu_cycles / fpu_khz;
     }
     return cost;
 }

@@ -41,6 +41,10 @@ struct PhaseCost {
     uint64_t unpriced = 0;  // executions no rule matched (priced by the default)
     double cpu_cycles = 0, fpu_cycles = 0;
     double ms = 0;  // cpu_cycles / cpu clock + fpu_cycles / fpu clock
+    // what of `ms` came from instructions the machine does not have, priced as the
+    // sequences that would stand in for them (CostRule::stand_in), and how many there were
+    double stand_in_ms = 0;
+    uint64_t stand_ins = 0;
 };
 
 struct HostCost {

@@ -1,5 +1,7 @@
 #include "period/host_profile.h"
 
+#include "period/isa.h"
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -93,6 +95,10 @@ CostRule rule_of(const json& r, const std::string& origin, const std::string& at
             fail(origin, at + "\"accesses\" must be an integer from 0 to 64");
         rule.accesses = static_cast<int>(a.get<int64_t>());
     }
+    if (r.contains("stand_in")) {
+        if (!r["stand_in"].is_boolean()) fail(origin, at + "\"stand_in\" must be true or false");
+        rule.stand_in = r["stand_in"].get<bool>();
+    }
     if (r.contains("source") && r["source"].is_string()) rule.source = r["source"];
     return rule;
 }
@@ -124,9 +130,18 @@ HostProfile parse_host_profile(std::string_view text, const std::string& origin)
     HostProfile p;
     if (!j.contains("name") || !j["name"].is_string()) fail(origin, "\"name\" must be a string");
     p.name = j["name"];
-    if (j.contains("description")) {
-        if (!j["description"].is_string()) fail(origin, "\"description\" must be a string");
-        p.description = j["description"];
+    for (auto [key, field] : {std::pair{"description", &p.description},
+                              {"cpu", &p.cpu},
+                              {"fpu", &p.fpu},
+                              {"isa", &p.isa}}) {
+        if (!j.contains(key)) continue;
+        if (!j[key].is_string()) fail(origin, fmt::format("\"{}\" must be a string", key));
+        *field = j[key].get<std::string>();
+    }
+    try {
+        instruction_set(p.isa);
+    } catch (const std::runtime_error& e) {
+        fail(origin, fmt::format("\"isa\": {}", e.what()));
     }
     p.cpu_clock_mhz = number(j, "cpu_clock_mhz", origin, "");
     p.fpu_clock_mhz = number(j, "fpu_clock_mhz", origin, "");

@@ -1,6 +1,7 @@
-// A 1989 host as data: the clocks, memory wait states and cycle tables that price the
-// instructions the counting plugin saw (docs/HOST_COST_MODEL.md). period/profiles/*.json
-// are embedded at build time, beside the controller's profiles.
+// A 1989 host as data: the instruction set it runs, the clocks, memory wait states and
+// cycle tables that price the instructions the counting plugin saw
+// (docs/HOST_COST_MODEL.md). period/<isa>/profiles/*.json are embedded at build time,
+// beside the controller's profiles.
 #pragma once
 
 #include <filesystem>
@@ -24,11 +25,16 @@ struct CostRule {
     double cpu = 0, fpu = 0;
     std::vector<int> fetch, calc;  // operands whose fetch-EA / calculate-EA time is added
     int accesses = -1;             // data bus accesses; -1: one per memory operand
+    // an instruction the machine does not have (a V8/V9 form in Debian's SPARC libraries),
+    // priced as the sequence of its own that would stand in for it; reported apart
+    bool stand_in = false;
     std::string source;
 };
 
 struct HostProfile {
     std::string name, description;
+    std::string isa = "m68k";  // the instruction set whose guest it prices (period/isa.h)
+    std::string cpu, fpu;      // the chips, for `fb89 list hosts` ("" if not given)
     double cpu_clock_mhz = 0, fpu_clock_mhz = 0;
     double memory_wait_states = 0;
     std::map<std::string, double> ea_fetch, ea_calc;

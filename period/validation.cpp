@@ -139,7 +139,7 @@ double modelled_value(const ValidationKernel& kernel, const std::string& unit, d
 }
 
 KernelRun run_validation_kernel(const EmulatorParts& parts, const ValidationKernel& kernel) {
-    GuestRun run = run_kernel(parts, find_kernel(kernel.program), {});
+    GuestRun run = run_kernel(parts, find_kernel(*parts.isa, kernel.program), {});
     KernelRun out;
     out.counts = std::move(run.counts);
     out.output.assign(run.stream.begin(), run.stream.end());

@@ -1,5 +1,6 @@
 // fb89_kernel_intloop: the register-add loop of Appel & Li's VM-PUP benchmark (vmpup.c,
-// 1990), for the emulated MC68020 (docs/HOST_COST_MODEL.md, "Validation"). vmpup.c times
+// 1990), for every period host's instruction set (docs/HOST_COST_MODEL.md, "Validation").
+// vmpup.c times
 //
 //     register int i, j, k;
 //     i = ADDS/20; j = 0;
@@ -9,19 +10,26 @@
 // Sun-3/60 under SunOS 4.0). The same loop runs here inside Phase::HiddenSurface, so the
 // modelled time of phase 3 divided by 1000000 is the figure vmpup.c prints.
 //
-// The compilers of 1990 emitted one `add.l Dk,Dj` per `j+=k`; GCC would fold eighteen of
-// them into one multiply, so each add is written as that instruction. The loop control is
-// the compiler's.
+// The compilers of 1990 emitted one register add per `j+=k`; GCC would fold eighteen of
+// them into one multiply, so each add is written as that instruction, in the instruction
+// set's folder (period/<isa>/register_add.h). The loop control is the compiler's.
 #include <cstdio>
 
 #include "period/guest/phase_marker.h"
+#if defined(__m68k__)
+#include "period/m68k/register_add.h"
+#elif defined(__sparc__)
+#include "period/sparc/register_add.h"
+#else
+#error "no register add for this instruction set: add period/<isa>/register_add.h"
+#endif
 
 namespace {
 
 constexpr int kAdds = 1000000;  // vmpup.c's ADDS
 
 [[gnu::always_inline]] inline void add(int& j, int k) {
-    asm volatile("addl %1,%0" : "+d"(j) : "d"(k));
+    register_add(j, k);
 }
 
 }  // namespace

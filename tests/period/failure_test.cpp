@@ -17,7 +17,8 @@ namespace {
 // The message of the EmulatorError the fault kernel's `mode` raises.
 std::string failure(const std::string& mode) {
     try {
-        run_kernel(find_emulator_parts(), find_kernel("fb89_kernel_fault"), {mode});
+        const InstructionSet& m68k = instruction_set("m68k");
+        run_kernel(find_emulator_parts(m68k), find_kernel(m68k, "fb89_kernel_fault"), {mode});
     } catch (const EmulatorError& e) {
         return e.what();
     }
@@ -62,12 +63,12 @@ TEST(PeriodFailure, ANonZeroExitIsReportedWithItsPhase) {
 // one line naming the phase, and no --png, --stats or --stream written.
 TEST(PeriodFailure, RenderWritesNothingWhenTheGuestCrashes) {
     const std::filesystem::path dir = fb89::testing::test_dir();
-    const std::string kernel = find_kernel("fb89_kernel_fault").string();
+    const std::string kernel = find_kernel(instruction_set("m68k"), "fb89_kernel_fault").string();
     const fb89::testing::CliRun r = fb89::testing::run_fb89(
         "render " + std::string(FB89_SCENES_DIR) + "/A.json --size 64x48 --host sun3-60 --png " +
             (dir / "a.png").string() + " --stats " + (dir / "a.json").string() + " --stream " +
             (dir / "a.fb89").string(),
-        "FB89_GUEST=" + kernel + " ");
+        "FB89_M68K_GUEST=" + kernel + " ");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("crashed (signal 11) in phase hidden_surface"), std::string::npos)
         << r.err;

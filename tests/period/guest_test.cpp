@@ -1,7 +1,8 @@
-// The cross build against the native one: fb89's host code on the emulated MC68020 +
-// MC68881 sends exactly the native commands, for every raster method and both ray methods;
-// its counts are the same run after run; a missing emulator or a failing guest is a clear
-// error. (ctest label `period`: these run the emulator.)
+// The cross builds against the native one: fb89's host code on every period host's
+// instruction set (the MC68020 + MC68881, SPARC V7) sends exactly the native commands, for
+// every raster method and both ray methods, and counts the native rays and queries of the
+// radiosity table; its counts are the same run after run; a missing emulator or a failing
+// guest is a clear error. (ctest label `period`: these run the emulator.)
 #include "period/emulator.h"
 
 #include <gtest/gtest.h>
@@ -46,16 +47,24 @@ std::vector<protocol::Command> decoded(const std::vector<uint8_t>& stream) {
     return commands.commands();
 }
 
-GuestRun guest(const std::string& file, host::Method method, int w, int h) {
+// Each test runs on each instruction set.
+class PeriodGuest : public ::testing::TestWithParam<std::string> {
+  protected:
+    const InstructionSet& isa() const { return instruction_set(GetParam()); }
+    EmulatorParts parts() const { return find_emulator_parts(isa()); }
+};
+
+GuestRun guest(const EmulatorParts& parts, const std::string& file, host::Method method, int w,
+               int h) {
     const host::MethodOptions defaults(method);
-    return run_guest(find_emulator_parts(), kScenes + "/" + file,
+    return run_guest(parts, kScenes + "/" + file,
                      {"--method", std::string(host::method_info(method).name), "--size",
                       std::to_string(w) + "x" + std::to_string(h), "--threshold",
                       std::to_string(defaults.hybrid.threshold), "--beam-threshold",
                       std::to_string(defaults.beam.threshold)});
 }
 
-TEST(PeriodGuest, SendsTheNativeCommandsForEveryMethod) {
+TEST_P(PeriodGuest, SendsTheNativeCommandsForEveryMethod) {
     struct Case {
         const char* scene;
         int w, h;
@@ -64,7 +73,7 @@ TEST(PeriodGuest, SendsTheNativeCommandsForEveryMethod) {
          {Case{"A.json", 256, 195}, Case{"G.json", 96, 73}, Case{"cornell_mirror.json", 96, 73}}) {
         for (const host::MethodInfo& m : host::methods()) {
             SCOPED_TRACE(std::string(c.scene) + " " + std::string(m.name));
-            const GuestRun run = guest(c.scene, m.method, c.w, c.h);
+            const GuestRun run = guest(parts(), c.scene, m.method, c.w, c.h);
             EXPECT_EQ(decoded(run.stream), native_commands(c.scene, m.method, c.w, c.h).commands());
             const PhaseCounts* hs = run.counts.phase(static_cast<int>(Phase::HiddenSurface));
             ASSERT_NE(hs, nullptr);
@@ -74,7 +83,7 @@ TEST(PeriodGuest, SendsTheNativeCommandsForEveryMethod) {
     }
 }
 
-TEST(PeriodGuest, CountsTheNativeRaysAndQueriesOfTheRadiosityTable) {
+TEST_P(PeriodGuest, CountsTheNativeRaysAndQueriesOfTheRadiosityTable) {
     const std::string room = kScenes + "/garish_room.json";
     const host::Scene scene = host::load_scene(room);
     const host::Mesh mesh = host::mesh_scene(scene, {host::patch_size_for(scene, 120), 64});
@@ -86,8 +95,7 @@ TEST(PeriodGuest, CountsTheNativeRaysAndQueriesOfTheRadiosityTable) {
             host::decahedral_hybrid(mesh, {trace, grid}, {}, native);
         else
             host::flux_tracing(mesh, {trace, grid}, native);
-        const GuestRun run =
-            run_guest(find_emulator_parts(), room, {"--radiosity", method, "--patches", "120"});
+        const GuestRun run = run_guest(parts(), room, {"--radiosity", method, "--patches", "120"});
         const std::string said(run.stream.begin(), run.stream.end());
         EXPECT_EQ(said, "patches " + std::to_string(mesh.patches.size()) + " rays " +
                             std::to_string(native.rays) + " queries " +
@@ -97,42 +105,47 @@ TEST(PeriodGuest, CountsTheNativeRaysAndQueriesOfTheRadiosityTable) {
     }
 }
 
-TEST(PeriodGuest, TheSameRunTwiceGivesByteIdenticalCounts) {
-    const GuestRun a = guest("B.json", host::Method::Hybrid, 128, 98);
-    const GuestRun b = guest("B.json", host::Method::Hybrid, 128, 98);
+TEST_P(PeriodGuest, TheSameRunTwiceGivesByteIdenticalCounts) {
+    const GuestRun a = guest(parts(), "B.json", host::Method::Hybrid, 128, 98);
+    const GuestRun b = guest(parts(), "B.json", host::Method::Hybrid, 128, 98);
     EXPECT_EQ(a.counts_json, b.counts_json);
     EXPECT_EQ(a.stream, b.stream);
 }
 
-TEST(PeriodGuest, AMissingEmulatorNamesItsPackage) {
-    ::setenv("FB89_QEMU", "/nonexistent/qemu-m68k", 1);
+TEST_P(PeriodGuest, AMissingEmulatorNamesItsPackage) {
+    const std::string variable = "FB89_" + std::string(isa().env) + "_QEMU";
+    ::setenv(variable.c_str(), "/nonexistent/qemu", 1);
     try {
-        find_emulator_parts();
+        parts();
         ADD_FAILURE() << "found a missing emulator";
     } catch (const EmulatorError& e) {
         EXPECT_NE(std::string(e.what()).find("qemu-user"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(variable), std::string::npos) << e.what();
     }
-    ::unsetenv("FB89_QEMU");
+    ::unsetenv(variable.c_str());
 }
 
-TEST(PeriodGuest, AGuestThatFailsIsAClearErrorNotACrash) {
-    EmulatorParts parts = find_emulator_parts();
-    parts.guest = "/bin/true";  // not an m68k program: the emulator refuses it
+TEST_P(PeriodGuest, AGuestThatFailsIsAClearErrorNotACrash) {
+    EmulatorParts broken = parts();
+    broken.guest = "/bin/true";  // not a program of the instruction set: the emulator refuses it
     try {
-        run_guest(parts, kScenes + "/A.json", {"--method", "zbuffer"});
+        run_guest(broken, kScenes + "/A.json", {"--method", "zbuffer"});
         ADD_FAILURE() << "ran";
     } catch (const EmulatorError& e) {
         EXPECT_NE(std::string(e.what()).find("A.json"), std::string::npos) << e.what();
     }
-    parts = find_emulator_parts();
     try {
-        run_guest(parts, kScenes + "/no_such_scene.json", {"--method", "zbuffer"});
+        run_guest(parts(), kScenes + "/no_such_scene.json", {"--method", "zbuffer"});
         ADD_FAILURE() << "ran";
     } catch (const EmulatorError& e) {
         EXPECT_NE(std::string(e.what()).find("failed (exit 2)"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("no_such_scene.json"), std::string::npos) << e.what();
     }
 }
+
+// "PeriodIsa/": the names start with Period, the ctest label `period` (tests/CMakeLists.txt)
+INSTANTIATE_TEST_SUITE_P(PeriodIsa, PeriodGuest, ::testing::Values("m68k", "sparc"),
+                         [](const auto& info) { return info.param; });
 
 }  // namespace
 }  // namespace fb89::period

@@ -1,6 +1,7 @@
-# Toolchain for the 1989 host: Debian's m68k-linux-gnu cross compiler (g++-m68k-linux-gnu),
-# code for an MC68020 with an MC68881 floating-point coprocessor, static, -O2. Used by the
-# guest build (cmake/guest.cmake), which the native build drives as an external project.
+# Toolchain for the Sun-3 period hosts: Debian's m68k-linux-gnu cross compiler
+# (g++-m68k-linux-gnu), code for an MC68020 with an MC68881 floating-point coprocessor,
+# static, -O2. Used by the guest build (cmake/guest.cmake), which the native build drives
+# as an external project (period/CMakeLists.txt).
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR m68k)
 set(CMAKE_C_COMPILER m68k-linux-gnu-gcc)
@@ -15,4 +16,4 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
-set(FB89_GUEST ON CACHE BOOL "Build the guest (host code for the emulated MC68020)" FORCE)
+set(FB89_GUEST ON CACHE BOOL "Build the guest (host code for an emulated period host)" FORCE)

@@ -1,11 +1,15 @@
 /*
- * fb89_count.c - QEMU 7.2 TCG plugin (API version 1) that counts the
- * instructions a single-threaded m68k linux-user guest executes, grouped
- * by an "instruction class" key derived from the disassembly text, and
- * split into phases chosen by the guest with syscall(0xfb89, phase).
+ * count.c - QEMU 7.2 TCG plugin (API version 1) that counts the instructions a
+ * single-threaded linux-user guest executes, grouped by an "instruction class" key,
+ * and split into phases chosen by the guest with syscall(0xfb89, phase). The common
+ * core of the period hosts' plugin: what differs by instruction set -- the class key
+ * of an instruction, pseudo-classes such as register-window traps -- is in
+ * period/<isa>/classify.c behind period/plugin/isa.h, chosen by QEMU's target name.
  *
- * Build:  gcc -O2 -shared -fPIC -Wall -Wextra -o libfb89_count.so fb89_count.c
+ * Build:  gcc -O2 -shared -fPIC -Wall -Wextra -I. -o libfb89_count.so \
+ *             period/plugin/count.c period/m68k/classify.c period/sparc/classify.c
  * Run:    qemu-m68k -cpu m68020 -plugin ./libfb89_count.so,out=FILE prog args
+ *         qemu-sparc32plus -plugin ./libfb89_count.so,out=FILE prog args
  *
  * Counting uses inline per-block counters only: every translated block gets
  * a record (class histogram of its instructions) and one inline ADD_U64 on
@@ -17,10 +21,10 @@
  * written out below (they match include/qemu/qemu-plugin.h of QEMU v7.2.0,
  * QEMU_PLUGIN_VERSION 1).
  *
- * Why one file of ~780 lines: QEMU loads a plugin as one shared object, and
- * this one is built with a single compiler call outside fb89's libraries
- * (README.md); its parts -- API declarations, the operand classifier, the
- * block records, the JSON writer -- are marked by section comments below.
+ * Why one file of ~600 lines: QEMU loads a plugin as one shared object, built with a
+ * single compiler call outside fb89's libraries (README.md); its parts -- API
+ * declarations, the class table, the block records, the JSON writer -- are marked by
+ * section comments below.
  */
 #define _POSIX_C_SOURCE 200809L /* getpid, pid_t under -std=c11 */
 #include <inttypes.h>
@@ -31,6 +35,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "period/plugin/isa.h"
 
 /* ---- QEMU 7.2 plugin API (version 1): only what this file uses ---------- */
 
@@ -60,7 +66,14 @@ enum qemu_plugin_op {
     QEMU_PLUGIN_INLINE_ADD_U64 = 0,
 };
 
+enum qemu_plugin_cb_flags {
+    QEMU_PLUGIN_CB_NO_REGS,
+    QEMU_PLUGIN_CB_R_REGS,
+    QEMU_PLUGIN_CB_RW_REGS,
+};
+
 typedef void (*qemu_plugin_udata_cb_t)(qemu_plugin_id_t id, void *userdata);
+typedef void (*qemu_plugin_vcpu_udata_cb_t)(unsigned int vcpu_index, void *userdata);
 typedef void (*qemu_plugin_vcpu_tb_trans_cb_t)(qemu_plugin_id_t id,
                                                struct qemu_plugin_tb *tb);
 typedef void (*qemu_plugin_vcpu_syscall_cb_t)(qemu_plugin_id_t id,
@@ -80,6 +93,11 @@ size_t qemu_plugin_tb_n_insns(const struct qemu_plugin_tb *tb);
 struct qemu_plugin_insn *qemu_plugin_tb_get_insn(const struct qemu_plugin_tb *tb,
                                                  size_t idx);
 size_t qemu_plugin_insn_size(const struct qemu_plugin_insn *insn);
+const void *qemu_plugin_insn_data(const struct qemu_plugin_insn *insn);
+void qemu_plugin_register_vcpu_insn_exec_cb(struct qemu_plugin_insn *insn,
+                                            qemu_plugin_vcpu_udata_cb_t cb,
+                                            enum qemu_plugin_cb_flags flags,
+                                            void *userdata);
 uint64_t qemu_plugin_insn_vaddr(const struct qemu_plugin_insn *insn);
 char *qemu_plugin_insn_disas(const struct qemu_plugin_insn *insn);
 void qemu_plugin_register_vcpu_syscall_cb(qemu_plugin_id_t id,
@@ -94,7 +112,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_version = 1;
 
 #define FB89_MARKER_SYSCALL 0xfb89
 #define FB89_NPHASES 16
-#define KEY_MAX 192
+#define KEY_MAX FB89_KEY_MAX
 
 /* ---- small utilities ----------------------------------------------------- */
 
@@ -213,291 +231,6 @@ static uint32_t cls_intern(const char *key)
     return id;
 }
 
-/* ---- operand classification (MIT syntax from QEMU's m68k disassembler) -- */
-
-static bool str_in(const char *s, const char *const *list)
-{
-    for (; *list; list++) {
-        if (strcmp(s, *list) == 0) {
-            return true;
-        }
-    }
-    return false;
-}
-
-/* Bcc/BRA/BSR with optional size suffix (s, w, l, b). */
-static bool is_int_branch(const char *m)
-{
-    static const char *const cc[] = {
-        "ra", "sr", "hi", "ls", "cc", "cs", "ne", "eq", "vc", "vs",
-        "pl", "mi", "ge", "lt", "gt", "le", "hs", "lo", NULL
-    };
-    char buf[8];
-    size_t n = strlen(m);
-    if (m[0] != 'b' || n < 3 || n > 4) {
-        return false;
-    }
-    memcpy(buf, m + 1, 2);
-    buf[2] = '\0';
-    if (!str_in(buf, cc)) {
-        return false;
-    }
-    return n == 3 || strchr("swlb", m[3]) != NULL;
-}
-
-/* Mnemonics whose bare-number operands are branch targets. */
-static bool is_branch_mnemonic(const char *m)
-{
-    return is_int_branch(m) ||
-           strncmp(m, "db", 2) == 0 ||   /* DBcc */
-           strncmp(m, "fb", 2) == 0 ||   /* FBcc */
-           strncmp(m, "fdb", 3) == 0;    /* FDBcc */
-}
-
-static bool is_movem_mnemonic(const char *m)
-{
-    return strncmp(m, "movem", 5) == 0 || strncmp(m, "fmovem", 6) == 0;
-}
-
-/* Classify a bare register name (no '@'), e.g. "%d0", "%fp", "%fp3". */
-static const char *classify_reg(const char *r, size_t n)
-{
-    if (n == 3 && r[0] == '%' && r[1] == 'd' && r[2] >= '0' && r[2] <= '7') {
-        return "dreg";
-    }
-    if (n == 3 && r[0] == '%' && r[1] == 'a' && r[2] >= '0' && r[2] <= '7') {
-        return "areg";
-    }
-    if ((n == 3 && strncmp(r, "%sp", 3) == 0) ||
-        (n == 3 && strncmp(r, "%fp", 3) == 0)) {   /* %fp alone is a6 */
-        return "areg";
-    }
-    if (n == 4 && strncmp(r, "%fp", 3) == 0 && r[3] >= '0' && r[3] <= '7') {
-        return "fpreg";
-    }
-    if ((n == 5 && strncmp(r, "%fpcr", 5) == 0) ||
-        (n == 5 && strncmp(r, "%fpsr", 5) == 0) ||
-        (n == 6 && strncmp(r, "%fpiar", 6) == 0)) {
-        return "fpcr";
-    }
-    return NULL;
-}
-
-static bool all_fpcr_list(const char *s, size_t n)
-{
-    size_t i = 0;
-    while (i < n) {
-        size_t j = i;
-        while (j < n && s[j] != '/') {
-            j++;
-        }
-        const char *c = classify_reg(s + i, j - i);
-        if (!c || strcmp(c, "fpcr") != 0) {
-            return false;
-        }
-        i = j + 1;
-    }
-    return true;
-}
-
-static bool is_number(const char *s, size_t n)
-{
-    size_t i = 0;
-    if (i < n && s[i] == '-') {
-        i++;
-    }
-    if (i >= n || s[i] < '0' || s[i] > '9') {
-        return false;
-    }
-    for (; i < n; i++) {
-        char c = s[i];
-        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') ||
-              (c >= 'A' && c <= 'F') || c == 'x' || c == 'X')) {
-            return false;
-        }
-    }
-    return true;
-}
-
-/*
- * Classify one operand string s[0..n).  `branch`: mnemonic is a
- * Bcc/DBcc/FBcc/FDBcc; `movem`: mnemonic is movem/fmovem; `bitfield`:
- * mnemonic is bf* (offset/width print as bare numbers: "bftst %d0,29,3").
- */
-static const char *classify_operand(const char *s, size_t n, bool branch,
-                                    bool movem, bool bitfield)
-{
-    while (n && (s[0] == ' ' || s[0] == '\t')) {
-        s++, n--;
-    }
-    while (n && (s[n - 1] == ' ' || s[n - 1] == '\t')) {
-        n--;
-    }
-    if (n == 0) {
-        /* address elided by the plugin disassembler (see make_key) */
-        return branch ? "target" : "abs";
-    }
-    /* Bit-field suffix "{off:width}" (bfextu etc.): classify the base. */
-    if (s[n - 1] == '}') {
-        const char *b = memchr(s, '{', n);
-        if (b && b > s) {
-            n = (size_t)(b - s);
-        }
-    }
-    if (s[0] == '#') {
-        return "imm";
-    }
-    const char *at = memchr(s, '@', n);
-    if (at) {
-        size_t base = (size_t)(at - s);
-        size_t rest = n - base - 1;       /* chars after '@' */
-        const char *r = at + 1;
-        bool pc = (base == 3 && strncmp(s, "%pc", 3) == 0) ||
-                  (base == 4 && strncmp(s, "%zpc", 4) == 0);
-        if (rest == 0) {
-            return pc ? "pcrel" : "ind";
-        }
-        if (rest == 1 && r[0] == '+') {
-            return "postinc";
-        }
-        if (rest == 1 && r[0] == '-') {
-            return "predec";
-        }
-        if (r[0] == '(') {
-            /* find matching ')' */
-            size_t depth = 0, i;
-            bool inner_sep = false;
-            for (i = 0; i < rest; i++) {
-                char c = r[i];
-                if (c == '(') {
-                    depth++;
-                } else if (c == ')') {
-                    if (--depth == 0) {
-                        break;
-                    }
-                } else if (c == ',' || c == ':') {
-                    inner_sep = true;
-                }
-            }
-            bool more = i + 1 < rest;            /* e.g. ...)@(...) */
-            if (base == 0 || (base > 1 && s[1] == 'z') || inner_sep || more) {
-                return "index";                  /* indexed / mem-indirect */
-            }
-            return pc ? "pcrel" : "disp";
-        }
-        return "other";
-    }
-    if (s[0] == '%') {
-        const char *c = classify_reg(s, n);
-        if (c) {
-            if (movem && strcmp(c, "fpcr") != 0) {
-                return "reglist";
-            }
-            return c;
-        }
-        if (memchr(s, '/', n) || memchr(s, '-', n)) {
-            return all_fpcr_list(s, n) ? "fpcr" : "reglist";
-        }
-        return "other";
-    }
-    /* Bare numbers: branch targets, or absolute memory addresses
-       (possibly with a ":w" / ":l" size suffix). */
-    {
-        size_t m = n;
-        if (m > 2 && s[m - 2] == ':' && (s[m - 1] == 'w' || s[m - 1] == 'l')) {
-            m -= 2;
-        }
-        if (is_number(s, m)) {
-            if (bitfield && m == n) {
-                return "imm";
-            }
-            return (branch && m == n) ? "target" : "abs";
-        }
-    }
-    return "other";
-}
-
-/* Build the class key for one disassembly string into out[KEY_MAX]. */
-static void make_key(const char *dis, char *out)
-{
-    size_t o = 0;
-    char mn[32];
-    size_t mlen = 0;
-
-    if (!dis) {
-        strcpy(out, "(nodisas)");
-        return;
-    }
-    while (*dis == ' ' || *dis == '\t') {
-        dis++;
-    }
-    while (dis[mlen] && dis[mlen] != ' ' && dis[mlen] != '\t') {
-        mlen++;
-    }
-    if (mlen == 0) {
-        strcpy(out, "(empty)");
-        return;
-    }
-    if (mlen >= sizeof(mn)) {
-        mlen = sizeof(mn) - 1;
-    }
-    memcpy(mn, dis, mlen);
-    mn[mlen] = '\0';
-    /* Data directives (undecodable words): no operand classes. */
-    if (mn[0] == '.') {
-        snprintf(out, KEY_MAX, "%s", mn);
-        return;
-    }
-    memcpy(out, mn, mlen);
-    o = mlen;
-
-    /*
-     * Operands follow the first blank.  QEMU's plugin disassembly prints
-     * nothing for addresses it would hand to print_address_func (branch
-     * targets, absolute addresses, "%pc@()" displacements), so an operand
-     * field may be empty: "bnes ", "dbf %d6,", "pea ", "lea ,%a0".  A
-     * mnemonic followed by a blank therefore always has >= 1 operand, and
-     * a trailing comma means a trailing empty operand.
-     */
-    const char *p = dis + mlen;
-    if (*p != ' ' && *p != '\t') {
-        out[o] = '\0';             /* no operands, e.g. "rts" */
-        return;
-    }
-    p++;
-    bool branch = is_branch_mnemonic(mn);
-    bool movem = is_movem_mnemonic(mn);
-    bool bitfield = strncmp(mn, "bf", 2) == 0;
-    bool first = true;
-    for (;;) {
-        /* split at top-level commas */
-        const char *start = p;
-        int depth = 0;
-        while (*p && !(*p == ',' && depth == 0)) {
-            if (*p == '(' || *p == '{') {
-                depth++;
-            } else if ((*p == ')' || *p == '}') && depth > 0) {
-                depth--;
-            }
-            p++;
-        }
-        const char *c = classify_operand(start, (size_t)(p - start), branch,
-                                         movem, bitfield);
-        size_t cl = strlen(c);
-        if (o + cl + 2 < KEY_MAX) {
-            out[o++] = first ? ' ' : ',';
-            memcpy(out + o, c, cl);
-            o += cl;
-        }
-        first = false;
-        if (*p != ',') {
-            break;
-        }
-        p++;
-    }
-    out[o] = '\0';
-}
-
 /* ---- per-block records ---------------------------------------------------- */
 
 struct pair {
@@ -505,12 +238,32 @@ struct pair {
     uint32_t cnt;
 };
 
+/* What each instruction of a block adds, for blocks with watched instructions: QEMU may
+   stop such a block at a watched instruction and restart there (see vcpu_insn_event). */
+struct insn_record {
+    uint32_t cls;   /* its class */
+    uint32_t extra; /* a pseudo-class counted at it (block_extras), or UINT32_MAX */
+    uint32_t bytes;
+};
+
 struct block {
     uint64_t exec;      /* incremented inline by the generated code */
+    uint64_t vaddr;     /* of its first instruction */
+    uint64_t annul;     /* address of the annulling branch ending it, else 0 */
+    uint64_t cut;       /* times it was stopped short (before its branch) by a QEMU trap */
+    struct insn_record *insns; /* per instruction, or NULL when nothing in it is watched */
     uint32_t ninsns;
     uint32_t bytes;
     uint32_t npairs;
     struct pair p[];
+};
+
+/* A watched instruction: the block it is in and its place there. */
+struct watch {
+    struct block *b;
+    uint64_t vaddr;
+    uint32_t index;
+    int event;
 };
 
 static struct block **blocks;
@@ -523,52 +276,176 @@ static bool multi_vcpu;
 static pid_t install_pid;     /* a forked guest child must not write */
 static uint64_t bad_markers;
 static FILE *phase_fp; /* phase=PATH: the current phase, rewritten at each marker */
+static const struct fb89_isa *isa; /* chosen at install by QEMU's target name */
+static uint32_t annulled_cls;      /* class id of "@annulled_slot" */
+
+/* A block's pairs while it is translated: one entry per class, with its count. */
+struct pairs {
+    struct pair *p;
+    uint32_t n;
+};
+
+static void pairs_add(struct pairs *ps, uint32_t c, uint32_t k)
+{
+    for (uint32_t j = 0; j < ps->n; j++) {
+        if (ps->p[j].cls == c) {
+            ps->p[j].cnt += k;
+            return;
+        }
+    }
+    ps->p[ps->n].cls = c;
+    ps->p[ps->n].cnt = k;
+    ps->n++;
+}
+
+static struct pairs *extras_target; /* the block_extras callback's destination */
+static uint32_t *extras_at;         /* and the class each instruction gets, or UINT32_MAX */
+
+static void add_extra(const char *key, size_t at)
+{
+    const uint32_t c = cls_intern(key);
+    pairs_add(extras_target, c, 1);
+    extras_at[at] = c;
+}
+
+/* Restarts QEMU still owes the watched instruction (at this address) that asked for them.
+   A restart may run in another block than the first try (one that starts at the
+   instruction: a restore in a delay slot), so it is known by its address. */
+static uint64_t pending_vaddr;
+static unsigned pending_restarts;
+static uint64_t restart_mismatches;
+
+/*
+ * A watched instruction runs. When QEMU will stop here for a trap of its own and then
+ * restart at this instruction, the block counted (when it was entered) the instructions
+ * from here to its end, which do not run now: they run in the block QEMU starts at this
+ * instruction after the trap. Take them back, once per restart, from the current phase
+ * (the counts are unsigned: the block's executions, added at the next flush, make it up).
+ * The restarts themselves run this callback again; they are not new executions.
+ */
+static void vcpu_insn_event(unsigned int vcpu_index, void *userdata)
+{
+    (void)vcpu_index;
+    const struct watch *w = userdata;
+    if (pending_restarts) {
+        if (pending_vaddr == w->vaddr) {
+            pending_restarts--;
+            return;
+        }
+        /* the window model and QEMU disagree: count it, and start afresh */
+        if (restart_mismatches++ == 0) {
+            report("fb89_count: warning: a restart QEMU was expected to make did not come "
+                   "(the window model is out of step with QEMU)\n");
+        }
+        pending_restarts = 0;
+    }
+    const unsigned restarts = isa->on_event(w->event);
+    if (!restarts) {
+        return;
+    }
+    const struct block *b = w->b;
+    uint64_t *tot = phase_cls[cur_phase];
+    for (uint32_t k = w->index; k < b->ninsns; k++) {
+        tot[b->insns[k].cls] -= restarts;
+        if (k > w->index && b->insns[k].extra != UINT32_MAX) {
+            tot[b->insns[k].extra] -= restarts;
+        }
+        phase_insns[cur_phase] -= restarts;
+        phase_bytes[cur_phase] -= (uint64_t)restarts * b->insns[k].bytes;
+    }
+    ((struct block *)b)->cut += restarts;
+    pending_vaddr = w->vaddr;
+    pending_restarts = restarts;
+}
 
 static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
 {
     (void)id;
     size_t n = qemu_plugin_tb_n_insns(tb);
-    struct pair tmp_small[64];
-    struct pair *tmp = n <= 64 ? tmp_small : xmalloc(sizeof(struct pair) * n);
-    uint32_t npairs = 0;
+    if (n > 4096) { /* QEMU's blocks hold at most 512 instructions */
+        report("fb89_count: a translated block of more than 4096 instructions\n");
+        abort();
+    }
+    /* room for every instruction's class and a pseudo-class at each */
+    struct pairs ps = {xmalloc(sizeof(struct pair) * (2 * n + 1)), 0};
+    struct fb89_insn *insns = xmalloc(sizeof(struct fb89_insn) * (n + 1));
+    struct insn_record *records = xmalloc(sizeof(struct insn_record) * (n + 1));
+    struct watch **watches = xmalloc(sizeof(struct watch *) * (n + 1));
+    size_t nwatches = 0;
     uint64_t bytes = 0;
     char key[KEY_MAX];
 
     for (size_t i = 0; i < n; i++) {
-        struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, i);
-        char *dis = qemu_plugin_insn_disas(insn);
-        make_key(dis, key);
+        struct qemu_plugin_insn *qi = qemu_plugin_tb_get_insn(tb, i);
+        struct fb89_insn *in = &insns[i];
+        in->bytes = qemu_plugin_insn_data(qi);
+        in->size = qemu_plugin_insn_size(qi);
+        in->vaddr = qemu_plugin_insn_vaddr(qi);
+        in->disas = qemu_plugin_insn_disas(qi);
+        isa->make_key(in, key);
         if (dump_fp) {
-            fprintf(dump_fp, "%08" PRIx64 "\t%s\t%s\n",
-                    qemu_plugin_insn_vaddr(insn), key, dis ? dis : "");
+            fprintf(dump_fp, "%08" PRIx64 "\t%s\t%s\n", in->vaddr, key,
+                    in->disas ? in->disas : "");
         }
-        free(dis);
-        bytes += qemu_plugin_insn_size(insn);
-        uint32_t c = cls_intern(key);
-        uint32_t j;
-        for (j = 0; j < npairs; j++) {
-            if (tmp[j].cls == c) {
-                tmp[j].cnt++;
-                break;
+        bytes += in->size;
+        records[i].cls = cls_intern(key);
+        records[i].extra = UINT32_MAX;
+        records[i].bytes = (uint32_t)in->size;
+        pairs_add(&ps, records[i].cls, 1);
+        if (isa->exec_event) {
+            int event = isa->exec_event(in);
+            if (event) {
+                struct watch *w = xmalloc(sizeof(struct watch));
+                w->b = NULL;
+                w->vaddr = in->vaddr;
+                w->index = (uint32_t)i;
+                w->event = event;
+                watches[nwatches++] = w;
+                qemu_plugin_register_vcpu_insn_exec_cb(qi, vcpu_insn_event,
+                                                       QEMU_PLUGIN_CB_NO_REGS, w);
             }
         }
-        if (j == npairs) {
-            tmp[npairs].cls = c;
-            tmp[npairs].cnt = 1;
-            npairs++;
+    }
+    if (isa->block_extras) {
+        uint32_t *at = xmalloc(sizeof(uint32_t) * (n + 1));
+        for (size_t i = 0; i < n; i++) {
+            at[i] = UINT32_MAX;
         }
+        extras_target = &ps;
+        extras_at = at;
+        isa->block_extras(insns, n, add_extra);
+        for (size_t i = 0; i < n; i++) {
+            records[i].extra = at[i];
+        }
+        free(at);
+    }
+    uint64_t annul = n && isa->annulling_branch ? isa->annulling_branch(&insns[n - 1]) : 0;
+    for (size_t i = 0; i < n; i++) {
+        free((void *)insns[i].disas);
     }
 
     struct block *b = xmalloc(sizeof(struct block) +
-                              sizeof(struct pair) * npairs);
+                              sizeof(struct pair) * ps.n);
     b->exec = 0;
+    b->vaddr = n ? insns[0].vaddr : 0;
+    b->annul = annul;
+    b->cut = 0;
+    b->insns = NULL;
     b->ninsns = (uint32_t)n;
     b->bytes = (uint32_t)bytes;
-    b->npairs = npairs;
-    memcpy(b->p, tmp, sizeof(struct pair) * npairs);
-    if (tmp != tmp_small) {
-        free(tmp);
+    b->npairs = ps.n;
+    memcpy(b->p, ps.p, sizeof(struct pair) * ps.n);
+    if (nwatches) {
+        b->insns = records;
+        records = NULL;
+        for (size_t k = 0; k < nwatches; k++) {
+            watches[k]->b = b;
+        }
     }
+    free(records);
+    free(watches);
+    free(ps.p);
+    free(insns);
     if (nblocks == blocks_cap) {
         blocks_cap = blocks_cap ? blocks_cap * 2 : 4096;
         blocks = xrealloc(blocks, sizeof(*blocks) * blocks_cap);
@@ -580,9 +457,86 @@ static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
                                              &b->exec, 1);
 }
 
+/*
+ * Delay slots annulled since the last flush. A block that ends in an annulling
+ * conditional branch at A ran e times; the branch was taken as often as a block starting
+ * at its delay slot A + 4 ran (QEMU starts a block there for the taken path only), so
+ * the slot was annulled e - taken times. A branch-always with annul never runs its slot.
+ */
+struct annul_entry {
+    uint64_t addr, branch, taken;
+};
+
+static uint64_t annulled_slots(void)
+{
+    size_t cap = 64;
+    size_t count = 0;
+    for (size_t i = 0; i < nblocks; i++) {
+        count += blocks[i]->exec && blocks[i]->annul;
+    }
+    if (!count) {
+        return 0;
+    }
+    while (cap < 2 * count) {
+        cap *= 2;
+    }
+    struct annul_entry *t = xmalloc(sizeof(*t) * cap);
+    memset(t, 0, sizeof(*t) * cap);
+    for (size_t i = 0; i < nblocks; i++) {
+        struct block *b = blocks[i];
+        if (!b->exec || !b->annul) {
+            continue;
+        }
+        size_t s = (size_t)(b->annul >> 2) & (cap - 1);
+        while (t[s].addr && t[s].addr != b->annul) {
+            s = (s + 1) & (cap - 1);
+        }
+        t[s].addr = b->annul;
+        t[s].branch += b->exec - (b->cut < b->exec ? b->cut : b->exec);
+    }
+    for (size_t i = 0; i < nblocks; i++) {
+        struct block *b = blocks[i];
+        if (!b->exec || b->vaddr < 4) {
+            continue;
+        }
+        uint64_t a = b->vaddr - 4;
+        size_t s = (size_t)(a >> 2) & (cap - 1);
+        while (t[s].addr && t[s].addr != a) {
+            s = (s + 1) & (cap - 1);
+        }
+        if (t[s].addr == a) {
+            t[s].taken += b->exec;
+        }
+    }
+    uint64_t annulled = 0;
+    for (size_t s = 0; s < cap; s++) {
+        if (t[s].addr && t[s].branch > t[s].taken) {
+            annulled += t[s].branch - t[s].taken;
+        }
+    }
+    free(t);
+    return annulled;
+}
+
+static void add_to_phase(const char *key, uint64_t k)
+{
+    if (k) {
+        phase_cls[cur_phase][cls_intern(key)] += k;
+    }
+}
+
 /* Multiply out all block counters into the current phase; zero them. */
 static void flush_counts(void)
 {
+    if (isa->annulling_branch) {
+        uint64_t annulled = annulled_slots();
+        if (annulled) {
+            phase_cls[cur_phase][annulled_cls] += annulled;
+        }
+    }
+    if (isa->flush_events) {
+        isa->flush_events(add_to_phase);
+    }
     uint64_t *tot = phase_cls[cur_phase];
     uint64_t insns = 0, bytes = 0;
     for (size_t i = 0; i < nblocks; i++) {
@@ -592,6 +546,7 @@ static void flush_counts(void)
             continue;
         }
         b->exec = 0;
+        b->cut = 0;
         insns += e * b->ninsns;
         bytes += e * b->bytes;
         for (uint32_t j = 0; j < b->npairs; j++) {
@@ -690,13 +645,14 @@ static void plugin_exit(qemu_plugin_id_t id, void *userdata)
     for (int p = 0; p < FB89_NPHASES; p++) {
         total += phase_insns[p];
     }
-    fprintf(f, "{\"tool\":\"fb89_count\",\"version\":1,"
+    fprintf(f, "{\"tool\":\"fb89_count\",\"version\":1,\"isa\":\"%s\","
                "\"guest_instructions\":%" PRIu64 ","
                "\"blocks_translated\":%" PRIu64 ","
-               "\"multi_vcpu\":%s,\"bad_markers\":%" PRIu64 ",\n"
+               "\"multi_vcpu\":%s,\"bad_markers\":%" PRIu64 ","
+               "\"restart_mismatches\":%" PRIu64 ",\n"
                " \"phases\":[",
-            total, blocks_translated, multi_vcpu ? "true" : "false",
-            bad_markers);
+            isa->name, total, blocks_translated, multi_vcpu ? "true" : "false",
+            bad_markers, restart_mismatches);
     bool firstp = true;
     for (int p = 0; p < FB89_NPHASES; p++) {
         if (phase_insns[p] == 0 && phase_entered[p] == 0) {
@@ -736,6 +692,23 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
                                            int argc, char **argv)
 {
     const char *dump_path = NULL;
+    static const struct fb89_isa *const known[] = {&fb89_isa_m68k, &fb89_isa_sparc};
+
+    isa = NULL;
+    for (size_t k = 0; k < sizeof(known) / sizeof(known[0]) && !isa; k++) {
+        for (const char *const *t = known[k]->qemu_targets; *t; t++) {
+            if (info && info->target_name && strcmp(info->target_name, *t) == 0) {
+                isa = known[k];
+            }
+        }
+    }
+    if (!isa) {
+        char msg[256];
+        snprintf(msg, sizeof(msg), "fb89_count: no instruction set of ours for QEMU target '%s'"
+                 " (known: m68k, sparc32plus)\n", info && info->target_name ? info->target_name : "?");
+        report(msg);
+        return 1;
+    }
 
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
@@ -749,11 +722,12 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
                 report("fb89_count: cannot open phase= file for writing\n");
                 return 1;
             }
-        } else {
+        } else if (!isa->option || !isa->option(a)) {
             char msg[512];
             snprintf(msg, sizeof(msg),
                      "fb89_count: unknown argument '%s' "
-                     "(expected out=PATH [dump=PATH] [phase=PATH])\n", a);
+                     "(expected out=PATH [dump=PATH] [phase=PATH]%s)\n", a,
+                     isa->options_help ? isa->options_help : "");
             report(msg);
             return 1;
         }
@@ -764,7 +738,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
     }
     if (info && info->system_emulation) {
         report("fb89_count: warning: written for linux-user "
-                         "(qemu-m68k); system emulation is untested\n");
+                         "(qemu-m68k, qemu-sparc32plus); system emulation is untested\n");
     }
     if (dump_path) {
         dump_fp = fopen(dump_path, "w");
@@ -784,6 +758,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
     fclose(f);
 
     install_pid = getpid();
+    annulled_cls = cls_intern("@annulled_slot");
     cur_phase = 0;
     phase_entered[0] = 1;
     qemu_plugin_register_vcpu_tb_trans_cb(id, vcpu_tb_trans);

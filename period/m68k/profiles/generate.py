@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Writes period/profiles/sun3-60.json and sun3-260.json: one rule list, two machines.
+"""Writes period/m68k/profiles/sun3-60.json and sun3-260.json: one rule list, two machines.
 
 Why one file of ~470 lines: it is the cycle table itself, one rule (and its source) a line,
 in the manuals' order; splitting it would scatter one table.
 
-Edit the rules here and run `python3 period/profiles/generate.py period/profiles`; the JSON
+Edit the rules here and run `python3 period/m68k/profiles/generate.py`; the JSON
 files are what fb89 embeds and reads (docs/HOST_COST_MODEL.md).
 
 Every figure carries a source tag:
@@ -435,11 +435,14 @@ COMMON_NOTES = (
     "behaviour, MMU/page faults, branch outcomes, OS time. See docs/HOST_COST_MODEL.md.")
 
 
-def profile(name, desc, cpu_mhz, fpu_mhz, ws, notes):
+def profile(name, desc, cpu, fpu, cpu_mhz, fpu_mhz, ws, notes):
     return {
         "schema": 1,
         "name": name,
         "description": desc,
+        "isa": "m68k",
+        "cpu": cpu,
+        "fpu": fpu,
         "cpu_clock_mhz": cpu_mhz,
         "fpu_clock_mhz": fpu_mhz,
         "memory_wait_states": ws,
@@ -454,6 +457,7 @@ def profile(name, desc, cpu_mhz, fpu_mhz, ws, notes):
 p60 = profile(
     "sun3-60",
     "Sun-3/60: MC68020 at 20 MHz with an MC68881 at 20 MHz, no external cache",
+    "MC68020 at 20 MHz", "MC68881 at 20 MHz",
     20.0, 20.0, 1,
     "SUN: 20 MHz MC68020 and MC68881, 200 ns memory cycle, no external cache. A 20 MHz MC68020 "
     "bus cycle is 3 clocks = 150 ns; a 200 ns memory cycle needs 4 clocks, so every data "
@@ -462,6 +466,7 @@ p60 = profile(
 p260 = profile(
     "sun3-260",
     "Sun-3/260: MC68020 at 25 MHz with an MC68881 at 20 MHz, 64 KB write-back external cache",
+    "MC68020 at 25 MHz", "MC68881 at 20 MHz",
     25.0, 20.0, 0,
     "SUN: 25 MHz MC68020, 20 MHz MC68881, 64 KB direct-mapped write-back cache with 16-byte "
     "lines. Every data access is taken to hit that cache at 0 wait states (memory_wait_states 0); "

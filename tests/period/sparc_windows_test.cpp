@@ -1,0 +1,76 @@
+// Register windows on the Sun-4 (period/sparc/classify.c): the recursion kernel
+// (period/kernels/recurse.cpp) calls itself DEPTH times inside phase 3, so that phase runs
+// DEPTH + 1 saves and restores. With W windows, W - 1 are resident (one is kept invalid for
+// the trap handler): once the register file is full every further save spills a window,
+// and on the way back every restore past the W - 2 that are still resident fills one.
+// QEMU itself restarts a save or restore after its own window trap; the counts must show
+// each instruction once. (ctest label `period`: these run the emulator.)
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "period/emulator.h"
+#include "period/host_cost.h"
+
+namespace fb89::period {
+namespace {
+
+struct Windows {
+    uint64_t instructions = 0, saves = 0, restores = 0, overflows = 0, underflows = 0;
+};
+
+uint64_t count(const PhaseCounts& p, const std::string& key) {
+    const auto it = p.classes.find(key);
+    return it == p.classes.end() ? 0 : it->second;
+}
+
+// The recursion at `depth` on an MB86900 with `windows` windows (QEMU's set to the same).
+Windows recurse(int depth, int windows) {
+    const InstructionSet& sparc = instruction_set("sparc");
+    EmulatorParts parts = find_emulator_parts(sparc);
+    InstructionSet isa = sparc;
+    const std::string cpu = "TI UltraSparc II,nwindows=" + std::to_string(windows);
+    const std::string option = "windows=" + std::to_string(windows);
+    isa.qemu_options = {"-cpu", cpu};
+    isa.plugin_options = {option};
+    parts.isa = &isa;
+    const GuestRun run =
+        run_kernel(parts, find_kernel(sparc, "fb89_kernel_recurse"), {std::to_string(depth)});
+    EXPECT_NE(run.counts_json.find("\"restart_mismatches\":0,"), std::string::npos);
+    const PhaseCounts* timed = run.counts.phase(static_cast<int>(Phase::HiddenSurface));
+    EXPECT_NE(timed, nullptr);
+    if (!timed) return {};
+    return {timed->instructions, count(*timed, "save"), count(*timed, "restore"),
+            count(*timed, "@window_overflow"), count(*timed, "@window_underflow")};
+}
+
+TEST(PeriodSparcWindows, EachLevelOfARecursionPastTheRegisterFileSpillsAndFillsOneWindow) {
+    for (const int windows : {7, 8}) {
+        SCOPED_TRACE(std::to_string(windows) + " windows");
+        const Windows shallow = recurse(20, windows), deep = recurse(100, windows);
+        // every level one save and one restore, counted once though QEMU restarts them
+        EXPECT_EQ(shallow.saves, 21u);
+        EXPECT_EQ(shallow.restores, 21u);
+        EXPECT_EQ(deep.saves, 101u);
+        EXPECT_EQ(deep.restores, 101u);
+        // ten instructions a level: save, cmp, bne, nop, st, call, add, ld, ret, restore
+        EXPECT_EQ(deep.instructions - shallow.instructions, 80u * 10);
+        // eighty more levels: eighty more spills and eighty more fills
+        EXPECT_EQ(deep.overflows - shallow.overflows, 80u);
+        EXPECT_EQ(deep.underflows - shallow.underflows, 80u);
+        // on the way back W - 2 restores find their window resident; every other one fills
+        const uint64_t resident = static_cast<uint64_t>(windows) - 2;
+        EXPECT_EQ(shallow.underflows, shallow.restores - resident);
+        EXPECT_EQ(deep.underflows, deep.restores - resident);
+    }
+}
+
+TEST(PeriodSparcWindows, MoreWindowsTakeOneTrapFewerEachWay) {
+    const Windows seven = recurse(50, 7), eight = recurse(50, 8);
+    EXPECT_EQ(seven.overflows - eight.overflows, 1u);
+    EXPECT_EQ(seven.underflows - eight.underflows, 1u);
+    EXPECT_EQ(seven.instructions, eight.instructions);
+}
+
+}  // namespace
+}  // namespace fb89::period
