@@ -63,9 +63,13 @@ int run_list(const std::string& what) {
     }
     if (all || what == "hosts") {
         fmt::print("hosts (--host NAME, or a .json host profile):\n");
-        fmt::print("  {:<22} {}\n", "native", "this machine, timed in interleaved rounds");
-        for (const auto& p : period::builtin_profiles())
-            fmt::print("  {:<22} {}\n", p.name, description_of(p.json));
+        fmt::print("  {:<16} {:<6} {:<22} {}\n", "name", "isa", "CPU", "FPU");
+        fmt::print("  {:<16} {:<6} {}\n", "native", "-",
+                   "this machine, timed in interleaved rounds");
+        for (const std::string& name : period::builtin_host_profile_names()) {
+            const period::HostProfile p = period::load_host_profile(name);
+            fmt::print("  {:<16} {:<6} {:<22} {}\n", p.name, p.isa, p.cpu, p.fpu);
+        }
     }
     if (all || what == "experiments") {
         fmt::print("experiments (fb89 experiment NAME):\n");

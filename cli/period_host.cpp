@@ -50,6 +50,8 @@ PeriodHostRun run_on_period_host(const std::string& host, const std::string& sce
         period::find_emulator_parts(period::instruction_set(profile.isa)), scene, options);
     PeriodHostRun run;
     run.cost = period::price(guest.counts, profile);
+    run.cpu = profile.cpu;
+    run.fpu = profile.fpu;
     run.guest_instructions = guest.counts.instructions;
     run.emulated_seconds = guest.wall_s;
 
@@ -76,15 +78,45 @@ PeriodHostRun run_on_period_host(const std::string& host, const std::string& sce
 std::string period_summary(const PeriodHostRun& run) {
     const auto& p = run.cost.phases;
     auto phase = [&](period::Phase ph) { return p[static_cast<int>(ph)]; };
-    std::string out =
-        fmt::format("host {} (MC68020 + MC68881, modelled from {} emulated instructions):\n",
-                    run.cost.profile, run.guest_instructions);
+    const std::string chips =
+        run.cpu.empty() ? "" : run.cpu + (run.fpu.empty() ? "" : " + " + run.fpu) + ", ";
+    std::string out = fmt::format("host {} ({}modelled from {} emulated instructions):\n",
+                                  run.cost.profile, chips, run.guest_instructions);
+    double stand_in_ms = 0, ms = 0;
     for (auto [name, ph] : {std::pair{"load", period::Phase::Load},
                             {"set-up", period::Phase::Setup},
-                            {"hidden-surface", period::Phase::HiddenSurface}})
+                            {"hidden-surface", period::Phase::HiddenSurface}}) {
         out += fmt::format("  {:<16} {:>12.3f} ms  {:>14} instructions\n", name, phase(ph).ms,
                            phase(ph).instructions);
+        stand_in_ms += phase(ph).stand_in_ms;
+        ms += phase(ph).ms;
+    }
     out += fmt::format("  {:<16} {:>12.3f} ms\n", "end to end", run.cost.end_to_end_ms());
+    // register-window traps (SPARC), per phase
+    const auto events = [&](period::Phase ph, const char* key) {
+        const auto& e = phase(ph).events;
+        const auto it = e.find(key);
+        return it == e.end() ? uint64_t{0} : it->second;
+    };
+    uint64_t traps = 0;
+    for (const char* key : {"@window_overflow", "@window_underflow"})
+        for (auto ph : {period::Phase::Load, period::Phase::Setup, period::Phase::HiddenSurface})
+            traps += events(ph, key);
+    if (traps > 0)
+        out += fmt::format(
+            "  window traps     overflow/underflow: load {}/{}, set-up {}/{}, hidden-surface "
+            "{}/{}\n",
+            events(period::Phase::Load, "@window_overflow"),
+            events(period::Phase::Load, "@window_underflow"),
+            events(period::Phase::Setup, "@window_overflow"),
+            events(period::Phase::Setup, "@window_underflow"),
+            events(period::Phase::HiddenSurface, "@window_overflow"),
+            events(period::Phase::HiddenSurface, "@window_underflow"));
+    if (stand_in_ms > 0)
+        out += fmt::format(
+            "  stand-ins        {:.2f}% of the modelled time: instructions the machine does "
+            "not have (V8/V9 forms in the libraries), priced as the V7 code standing in\n",
+            ms > 0 ? 100 * stand_in_ms / ms : 0.0);
     out += fmt::format(
         "  its command stream: {}; emulated in {:.2f} s here ({:.0f} M "
         "instructions/s)\n",
@@ -118,7 +150,10 @@ nlohmann::json period_json(const PeriodHostRun& run) {
                                                             {"cpu_cycles", c.cpu_cycles},
                                                             {"fpu_cycles", c.fpu_cycles},
                                                             {"unpriced", c.unpriced},
-                                                            {"ms", c.ms}};
+                                                            {"ms", c.ms},
+                                                            {"stand_in_ms", c.stand_in_ms},
+                                                            {"stand_ins", c.stand_ins},
+                                                            {"events", c.events}};
     }
     return j;
 }
@@ -144,7 +179,8 @@ void add_host_options(CLI::App* sub, HostArgs& a) {
                     "1989 host (" +
                         hosts +
                         "or a .json host profile): fb89's host code on "
-                        "the emulated MC68020 + MC68881, each run once, its time modelled")
+                        "the emulated period host (fb89 list hosts), each run once, its time "
+                        "modelled")
         ->capture_default_str();
     sub->add_option("--jobs,-j", a.jobs, "1989 host: emulated runs at once on this machine")
         ->check(CLI::Range(1, 256))

@@ -1,7 +1,7 @@
 // `--host`: the frame's host side timed on a 1989 host. fb89's host code runs on the
-// emulated MC68020 + MC68881 (period/emulator.h) with the same method and options as the
-// native run, its counts are priced by the host profile (period/host_cost.h), and its
-// command stream is checked against the native one.
+// emulated period host of the profile's instruction set (period/emulator.h) with the same
+// method and options as the native run, its counts are priced by the host profile
+// (period/host_cost.h), and its command stream is checked against the native one.
 #pragma once
 
 #include <string>
@@ -19,6 +19,7 @@ namespace fb89::cli {
 
 struct PeriodHostRun {
     period::HostCost cost;
+    std::string cpu, fpu;  // the profile's chips, for the report
     uint64_t guest_instructions = 0;
     double emulated_seconds = 0;
     bool same_frame = false;        // the guest's frame checksum equals the native one's

@@ -26,6 +26,14 @@ fb89_guest_header_library(CLI11::CLI11)
 # as the native package builds it (its CMake config exports the definition)
 fb89_guest_header_library(tinyobjloader::tinyobjloader TINYOBJLOADER_USE_DOUBLE)
 
+# SPARC: 64-bit integer helpers in V7 code in place of Debian's V8plus libgcc ones
+# (period/sparc/v7_runtime.c), linked into every program of the guest build.
+if(CMAKE_SYSTEM_PROCESSOR STREQUAL "sparc")
+  add_library(fb89_v7_runtime OBJECT ${PROJECT_SOURCE_DIR}/period/sparc/v7_runtime.c)
+  set_target_properties(fb89_v7_runtime PROPERTIES C_STANDARD 11)
+  link_libraries(fb89_v7_runtime)
+endif()
+
 add_subdirectory(protocol)
 add_subdirectory(host)
 add_subdirectory(period/guest)

@@ -138,6 +138,7 @@ HostCost price(const GuestCounts& counts, const HostProfile& profile) {
         for (const auto& [key, n] : c.classes) {
             const KeyPrice k = price_key(profile, key);
             const double cpu = k.cpu * static_cast<double>(n), fpu = k.fpu * static_cast<double>(n);
+            if (key.starts_with('@')) out.events[key] += n;
             out.cpu_cycles += cpu;
             out.fpu_cycles += fpu;
             if (!k.rule) {

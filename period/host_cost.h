@@ -45,6 +45,9 @@ struct PhaseCost {
     // sequences that would stand in for them (CostRule::stand_in), and how many there were
     double stand_in_ms = 0;
     uint64_t stand_ins = 0;
+    // the pseudo-classes' counts: events that cost time but are no instruction of the
+    // guest's ("@window_overflow", "@dcache_64k_read_miss", ...: period/plugin/README.md)
+    std::map<std::string, uint64_t> events;
 };
 
 struct HostCost {

@@ -12,7 +12,8 @@ const std::vector<InstructionSet>& all() {
          "Motorola MC68020 + MC68881 (qemu-m68k -cpu m68020)",
          "qemu-m68k",
          {"-cpu", "m68020"},
-         {},
+         // the Sun-3/260's data cache (the Sun-3/60 has none)
+         {"cache=65536:16:wb"},
          "M68K",
          "g++-m68k-linux-gnu, qemu-user",
          FB89_M68K_GUEST_PATH,
@@ -23,7 +24,9 @@ const std::vector<InstructionSet>& all() {
          // QEMU's window count set to the MB86900's, so that its own window traps fall
          // where the chip's do (period/sparc/classify.c)
          {"-cpu", "TI UltraSparc II,nwindows=7"},
-         {"windows=7"},
+         // the MB86900's windows; the SPARCstation 1's (write-through) and the Sun-4/260's
+         // (write-back) caches
+         {"windows=7", "cache=65536:16:wt", "cache=131072:16:wb"},
          "SPARC",
          "g++-12-sparc64-linux-gnu, g++-12-multilib-sparc64-linux-gnu, "
          "libc6-dev-sparc-sparc64-cross, qemu-user",

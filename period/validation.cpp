@@ -35,7 +35,8 @@ double positive(const json& j, const char* key, const std::string& origin, const
 }
 
 bool known_unit(const std::string& unit) {
-    return unit == "Mflop/s" || unit == "kflop/s" || unit.starts_with("us/");
+    return unit == "Mflop/s" || unit == "kflop/s" || unit.starts_with("us/") ||
+           unit.starts_with("s/");
 }
 
 }  // namespace
@@ -69,8 +70,8 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
         kernel.operation = text(k, "operation", origin, at);
         kernel.unit = text(k, "unit", origin, at);
         if (!known_unit(kernel.unit))
-            fail(origin,
-                 fmt::format("{}unit '{}' is not Mflop/s, kflop/s or us/...", at, kernel.unit));
+            fail(origin, fmt::format("{}unit '{}' is not Mflop/s, kflop/s, us/... or s/...", at,
+                                     kernel.unit));
         kernel.description = text(k, "description", origin, at, false);
         out.kernels.push_back(std::move(kernel));
     }
@@ -94,8 +95,8 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
         figure.value = positive(f, "value", origin, at);
         figure.unit = text(f, "unit", origin, at);
         if (!known_unit(figure.unit))
-            fail(origin,
-                 fmt::format("{}unit '{}' is not Mflop/s, kflop/s or us/...", at, figure.unit));
+            fail(origin, fmt::format("{}unit '{}' is not Mflop/s, kflop/s, us/... or s/...", at,
+                                     figure.unit));
         const std::string check = text(f, "check", origin, at, false);
         if (check.empty() || check == "within")
             figure.check = FigureCheck::Within;
@@ -135,6 +136,7 @@ double modelled_value(const ValidationKernel& kernel, const std::string& unit, d
     if (unit == "Mflop/s") return kernel.operations / seconds / 1e6;
     if (unit == "kflop/s") return kernel.operations / seconds / 1e3;
     if (unit.starts_with("us/")) return seconds * 1e6 / kernel.operations;
+    if (unit.starts_with("s/")) return seconds / kernel.operations;
     throw std::runtime_error(fmt::format("unknown unit '{}'", unit));
 }
 

@@ -1,9 +1,9 @@
-// Validating the modelled 1989 host against published figures (docs/HOST_COST_MODEL.md,
+// Validating the modelled 1989 hosts against published figures (docs/HOST_COST_MODEL.md,
 // "Validation"). Small kernels of our own (period/kernels: a LINPACK 100x100 solve, the
-// register-add loop of Appel & Li's vmpup.c) run on the emulated MC68020 + MC68881 like fb89's host
-// code; a host profile prices their timed phase (3), and the modelled speed is set beside what the
-// period measured on real machines. period/validation.json holds the figures, each with its source,
-// and is embedded at build time.
+// register-add loop of Appel & Li's vmpup.c, FFBENCH's 2-D FFT) run on each emulated
+// instruction set like fb89's host code; a host profile prices their timed phase (3), and the
+// modelled speed is set beside what the period measured on real machines. period/validation.json
+// holds the figures, each with its source, and is embedded at build time.
 #pragma once
 
 #include <string>
@@ -38,7 +38,7 @@ enum class FigureCheck {
 struct PublishedFigure {
     std::string id, machine, benchmark, kernel;
     double value = 0;
-    std::string unit;  // "Mflop/s", "kflop/s" or "us/add" (any "us/<operation>")
+    std::string unit;  // "Mflop/s", "kflop/s", "us/add" (any "us/<op>") or "s/pass" ("s/<op>")
     FigureCheck check = FigureCheck::Within;
     std::vector<std::string> profiles;  // host profiles it is compared with; none: context only
     // > 0: the figure's machine runs at this clock, and the profiles' cycle counts are timed
@@ -60,7 +60,8 @@ ValidationData parse_validation(std::string_view json, const std::string& origin
 ValidationData builtin_validation();  // the embedded period/validation.json
 
 // The modelled value, in a figure's unit, of a kernel whose timed phase took `seconds`:
-// operations per second (Mflop/s, kflop/s) or microseconds per operation (us/...).
+// operations per second (Mflop/s, kflop/s), or microseconds or seconds per operation
+// (us/..., s/...).
 // Throws std::runtime_error for a unit it does not know.
 double modelled_value(const ValidationKernel& kernel, const std::string& unit, double seconds);
 

@@ -45,7 +45,7 @@
 typedef uint64_t qemu_plugin_id_t;
 
 typedef struct qemu_info_t {
-    const char *target_name;
+    const char* target_name;
     struct {
         int min;
         int cur;
@@ -72,39 +72,44 @@ enum qemu_plugin_cb_flags {
     QEMU_PLUGIN_CB_RW_REGS,
 };
 
-typedef void (*qemu_plugin_udata_cb_t)(qemu_plugin_id_t id, void *userdata);
-typedef void (*qemu_plugin_vcpu_udata_cb_t)(unsigned int vcpu_index, void *userdata);
-typedef void (*qemu_plugin_vcpu_tb_trans_cb_t)(qemu_plugin_id_t id,
-                                               struct qemu_plugin_tb *tb);
-typedef void (*qemu_plugin_vcpu_syscall_cb_t)(qemu_plugin_id_t id,
-                                              unsigned int vcpu_index,
-                                              int64_t num, uint64_t a1,
-                                              uint64_t a2, uint64_t a3,
-                                              uint64_t a4, uint64_t a5,
-                                              uint64_t a6, uint64_t a7,
+typedef uint32_t qemu_plugin_meminfo_t;
+
+enum qemu_plugin_mem_rw {
+    QEMU_PLUGIN_MEM_R = 1,
+    QEMU_PLUGIN_MEM_W,
+    QEMU_PLUGIN_MEM_RW,
+};
+
+typedef void (*qemu_plugin_udata_cb_t)(qemu_plugin_id_t id, void* userdata);
+typedef void (*qemu_plugin_vcpu_mem_cb_t)(unsigned int vcpu_index, qemu_plugin_meminfo_t info,
+                                          uint64_t vaddr, void* userdata);
+typedef void (*qemu_plugin_vcpu_udata_cb_t)(unsigned int vcpu_index, void* userdata);
+typedef void (*qemu_plugin_vcpu_tb_trans_cb_t)(qemu_plugin_id_t id, struct qemu_plugin_tb* tb);
+typedef void (*qemu_plugin_vcpu_syscall_cb_t)(qemu_plugin_id_t id, unsigned int vcpu_index,
+                                              int64_t num, uint64_t a1, uint64_t a2, uint64_t a3,
+                                              uint64_t a4, uint64_t a5, uint64_t a6, uint64_t a7,
                                               uint64_t a8);
 
-void qemu_plugin_register_vcpu_tb_trans_cb(qemu_plugin_id_t id,
-                                           qemu_plugin_vcpu_tb_trans_cb_t cb);
-void qemu_plugin_register_vcpu_tb_exec_inline(struct qemu_plugin_tb *tb,
-                                              enum qemu_plugin_op op,
-                                              void *ptr, uint64_t imm);
-size_t qemu_plugin_tb_n_insns(const struct qemu_plugin_tb *tb);
-struct qemu_plugin_insn *qemu_plugin_tb_get_insn(const struct qemu_plugin_tb *tb,
-                                                 size_t idx);
-size_t qemu_plugin_insn_size(const struct qemu_plugin_insn *insn);
-const void *qemu_plugin_insn_data(const struct qemu_plugin_insn *insn);
-void qemu_plugin_register_vcpu_insn_exec_cb(struct qemu_plugin_insn *insn,
+void qemu_plugin_register_vcpu_tb_trans_cb(qemu_plugin_id_t id, qemu_plugin_vcpu_tb_trans_cb_t cb);
+void qemu_plugin_register_vcpu_tb_exec_inline(struct qemu_plugin_tb* tb, enum qemu_plugin_op op,
+                                              void* ptr, uint64_t imm);
+size_t qemu_plugin_tb_n_insns(const struct qemu_plugin_tb* tb);
+struct qemu_plugin_insn* qemu_plugin_tb_get_insn(const struct qemu_plugin_tb* tb, size_t idx);
+size_t qemu_plugin_insn_size(const struct qemu_plugin_insn* insn);
+const void* qemu_plugin_insn_data(const struct qemu_plugin_insn* insn);
+void qemu_plugin_register_vcpu_mem_cb(struct qemu_plugin_insn* insn, qemu_plugin_vcpu_mem_cb_t cb,
+                                      enum qemu_plugin_cb_flags flags, enum qemu_plugin_mem_rw rw,
+                                      void* userdata);
+bool qemu_plugin_mem_is_store(qemu_plugin_meminfo_t info);
+unsigned int qemu_plugin_mem_size_shift(qemu_plugin_meminfo_t info);
+void qemu_plugin_register_vcpu_insn_exec_cb(struct qemu_plugin_insn* insn,
                                             qemu_plugin_vcpu_udata_cb_t cb,
-                                            enum qemu_plugin_cb_flags flags,
-                                            void *userdata);
-uint64_t qemu_plugin_insn_vaddr(const struct qemu_plugin_insn *insn);
-char *qemu_plugin_insn_disas(const struct qemu_plugin_insn *insn);
-void qemu_plugin_register_vcpu_syscall_cb(qemu_plugin_id_t id,
-                                          qemu_plugin_vcpu_syscall_cb_t cb);
-void qemu_plugin_register_atexit_cb(qemu_plugin_id_t id,
-                                    qemu_plugin_udata_cb_t cb, void *userdata);
-void qemu_plugin_outs(const char *string);
+                                            enum qemu_plugin_cb_flags flags, void* userdata);
+uint64_t qemu_plugin_insn_vaddr(const struct qemu_plugin_insn* insn);
+char* qemu_plugin_insn_disas(const struct qemu_plugin_insn* insn);
+void qemu_plugin_register_vcpu_syscall_cb(qemu_plugin_id_t id, qemu_plugin_vcpu_syscall_cb_t cb);
+void qemu_plugin_register_atexit_cb(qemu_plugin_id_t id, qemu_plugin_udata_cb_t cb, void* userdata);
+void qemu_plugin_outs(const char* string);
 
 QEMU_PLUGIN_EXPORT int qemu_plugin_version = 1;
 
@@ -121,16 +126,14 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_version = 1;
  * QEMU runs with "-d plugin", so also write them to stderr (they appear
  * twice under "-d plugin").
  */
-static void report(const char *msg)
-{
+static void report(const char* msg) {
     qemu_plugin_outs(msg);
     fputs(msg, stderr);
     fflush(stderr);
 }
 
-static void *xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
+static void* xmalloc(size_t n) {
+    void* p = malloc(n ? n : 1);
     if (!p) {
         report("fb89_count: out of memory\n");
         abort();
@@ -138,9 +141,8 @@ static void *xmalloc(size_t n)
     return p;
 }
 
-static void *xrealloc(void *old, size_t n)
-{
-    void *p = realloc(old, n ? n : 1);
+static void* xrealloc(void* old, size_t n) {
+    void* p = realloc(old, n ? n : 1);
     if (!p) {
         report("fb89_count: out of memory\n");
         abort();
@@ -148,31 +150,29 @@ static void *xrealloc(void *old, size_t n)
     return p;
 }
 
-static char *xstrdup(const char *s)
-{
+static char* xstrdup(const char* s) {
     size_t n = strlen(s) + 1;
-    char *p = xmalloc(n);
+    char* p = xmalloc(n);
     memcpy(p, s, n);
     return p;
 }
 
 /* ---- class table: key string <-> dense id (open addressing) ------------- */
 
-static char **cls_keys;        /* id -> key */
-static uint32_t cls_n;         /* number of classes */
-static uint32_t cls_cap;       /* capacity of cls_keys and per-phase arrays */
-static int32_t *cls_hash;      /* slot -> id, -1 empty */
-static uint32_t cls_hash_cap;  /* power of two */
+static char** cls_keys;       /* id -> key */
+static uint32_t cls_n;        /* number of classes */
+static uint32_t cls_cap;      /* capacity of cls_keys and per-phase arrays */
+static int32_t* cls_hash;     /* slot -> id, -1 empty */
+static uint32_t cls_hash_cap; /* power of two */
 
 /* Per-phase totals. */
-static uint64_t *phase_cls[FB89_NPHASES]; /* [phase][class id] */
+static uint64_t* phase_cls[FB89_NPHASES]; /* [phase][class id] */
 static uint64_t phase_insns[FB89_NPHASES];
 static uint64_t phase_bytes[FB89_NPHASES];
 static uint64_t phase_entered[FB89_NPHASES];
 static unsigned cur_phase;
 
-static uint32_t hash_str(const char *s)
-{
+static uint32_t hash_str(const char* s) {
     uint32_t h = 2166136261u; /* FNV-1a */
     for (; *s; s++) {
         h ^= (unsigned char)*s;
@@ -181,8 +181,7 @@ static uint32_t hash_str(const char *s)
     return h;
 }
 
-static void cls_rehash(uint32_t newcap)
-{
+static void cls_rehash(uint32_t newcap) {
     free(cls_hash);
     cls_hash = xmalloc(sizeof(int32_t) * newcap);
     for (uint32_t i = 0; i < newcap; i++) {
@@ -198,8 +197,7 @@ static void cls_rehash(uint32_t newcap)
     }
 }
 
-static uint32_t cls_intern(const char *key)
-{
+static uint32_t cls_intern(const char* key) {
     if (cls_hash_cap == 0) {
         cls_rehash(256);
     }
@@ -213,11 +211,10 @@ static uint32_t cls_intern(const char *key)
     /* new class */
     if (cls_n == cls_cap) {
         uint32_t ncap = cls_cap ? cls_cap * 2 : 128;
-        cls_keys = xrealloc(cls_keys, sizeof(char *) * ncap);
+        cls_keys = xrealloc(cls_keys, sizeof(char*) * ncap);
         for (int p = 0; p < FB89_NPHASES; p++) {
             phase_cls[p] = xrealloc(phase_cls[p], sizeof(uint64_t) * ncap);
-            memset(phase_cls[p] + cls_cap, 0,
-                   sizeof(uint64_t) * (ncap - cls_cap));
+            memset(phase_cls[p] + cls_cap, 0, sizeof(uint64_t) * (ncap - cls_cap));
         }
         cls_cap = ncap;
     }
@@ -229,6 +226,91 @@ static uint32_t cls_intern(const char *key)
         cls_hash[s] = (int32_t)id;
     }
     return id;
+}
+
+/* ---- data caches ----------------------------------------------------------- */
+
+/*
+ * Direct-mapped, virtually indexed and tagged data caches (plugin option
+ * cache=SIZE:LINE:POLICY, as many as asked for: every period machine's cache at once, so
+ * the counts stay the same whatever profile prices them). POLICY is wb (write-back,
+ * write-allocate: a store that misses fetches its line, as on the Sun-3/260 and
+ * Sun-4/260) or wt (write-through, no write-allocate: a store that misses goes to memory
+ * and invalidates the line at its index, as on the SPARCstation 1). Every load and store
+ * the guest makes is looked up in each cache; the misses are counted per phase as
+ * "@dcache_<SIZE/1024>k_<POLICY>_read_miss" and "..._write_miss". A host profile prices
+ * the misses of its own machine's cache and nothing for the others. Instruction fetches
+ * are not simulated.
+ */
+#define FB89_MAX_CACHES 4
+
+struct cache {
+    uint32_t size, line, shift, sets;
+    bool write_allocate;
+    uint64_t* tags; /* line address + 1 per set; 0 = empty */
+    uint64_t read_miss, write_miss;
+    char read_key[48], write_key[48];
+};
+
+static struct cache caches[FB89_MAX_CACHES];
+static unsigned ncaches;
+
+static bool cache_option(const char* arg) {
+    if (strncmp(arg, "cache=", 6) != 0) {
+        return false;
+    }
+    char* end = NULL;
+    unsigned long size = strtoul(arg + 6, &end, 10);
+    if (!end || *end != ':') {
+        return false;
+    }
+    unsigned long line = strtoul(end + 1, &end, 10);
+    if (!end || *end != ':' || (strcmp(end + 1, "wb") != 0 && strcmp(end + 1, "wt") != 0)) {
+        return false;
+    }
+    const char* policy = end + 1;
+    if (ncaches == FB89_MAX_CACHES || line < 4 || size < line || (line & (line - 1)) ||
+        (size & (size - 1)) || size > (1ul << 24)) {
+        return false;
+    }
+    struct cache* c = &caches[ncaches++];
+    c->size = (uint32_t)size;
+    c->line = (uint32_t)line;
+    c->write_allocate = policy[1] == 'b';
+    c->shift = 0;
+    while ((1u << c->shift) < c->line) {
+        c->shift++;
+    }
+    c->sets = c->size / c->line;
+    c->tags = xmalloc(sizeof(uint64_t) * c->sets);
+    memset(c->tags, 0, sizeof(uint64_t) * c->sets);
+    snprintf(c->read_key, sizeof(c->read_key), "@dcache_%luk_%s_read_miss", size / 1024, policy);
+    snprintf(c->write_key, sizeof(c->write_key), "@dcache_%luk_%s_write_miss", size / 1024, policy);
+    return true;
+}
+
+static void vcpu_mem(unsigned int vcpu_index, qemu_plugin_meminfo_t info, uint64_t vaddr,
+                     void* userdata) {
+    (void)vcpu_index;
+    (void)userdata;
+    const bool store = qemu_plugin_mem_is_store(info);
+    const uint64_t last = vaddr + (1u << qemu_plugin_mem_size_shift(info)) - 1;
+    for (unsigned i = 0; i < ncaches; i++) {
+        struct cache* c = &caches[i];
+        for (uint64_t l = vaddr >> c->shift; l <= last >> c->shift; l++) {
+            uint64_t* tag = &c->tags[l & (c->sets - 1)];
+            if (*tag == l + 1) {
+                continue;
+            }
+            if (!store) {
+                c->read_miss++;
+                *tag = l + 1;
+            } else {
+                c->write_miss++;
+                *tag = c->write_allocate ? l + 1 : 0;
+            }
+        }
+    }
 }
 
 /* ---- per-block records ---------------------------------------------------- */
@@ -247,11 +329,11 @@ struct insn_record {
 };
 
 struct block {
-    uint64_t exec;      /* incremented inline by the generated code */
-    uint64_t vaddr;     /* of its first instruction */
-    uint64_t annul;     /* address of the annulling branch ending it, else 0 */
-    uint64_t cut;       /* times it was stopped short (before its branch) by a QEMU trap */
-    struct insn_record *insns; /* per instruction, or NULL when nothing in it is watched */
+    uint64_t exec;             /* incremented inline by the generated code */
+    uint64_t vaddr;            /* of its first instruction */
+    uint64_t annul;            /* address of the annulling branch ending it, else 0 */
+    uint64_t cut;              /* times it was stopped short (before its branch) by a QEMU trap */
+    struct insn_record* insns; /* per instruction, or NULL when nothing in it is watched */
     uint32_t ninsns;
     uint32_t bytes;
     uint32_t npairs;
@@ -260,33 +342,32 @@ struct block {
 
 /* A watched instruction: the block it is in and its place there. */
 struct watch {
-    struct block *b;
+    struct block* b;
     uint64_t vaddr;
     uint32_t index;
     int event;
 };
 
-static struct block **blocks;
+static struct block** blocks;
 static size_t nblocks, blocks_cap;
 static uint64_t blocks_translated;
 
-static const char *out_path;
-static FILE *dump_fp;          /* optional dump=PATH: per-insn key log */
+static const char* out_path;
+static FILE* dump_fp; /* optional dump=PATH: per-insn key log */
 static bool multi_vcpu;
-static pid_t install_pid;     /* a forked guest child must not write */
+static pid_t install_pid; /* a forked guest child must not write */
 static uint64_t bad_markers;
-static FILE *phase_fp; /* phase=PATH: the current phase, rewritten at each marker */
-static const struct fb89_isa *isa; /* chosen at install by QEMU's target name */
+static FILE* phase_fp;             /* phase=PATH: the current phase, rewritten at each marker */
+static const struct fb89_isa* isa; /* chosen at install by QEMU's target name */
 static uint32_t annulled_cls;      /* class id of "@annulled_slot" */
 
 /* A block's pairs while it is translated: one entry per class, with its count. */
 struct pairs {
-    struct pair *p;
+    struct pair* p;
     uint32_t n;
 };
 
-static void pairs_add(struct pairs *ps, uint32_t c, uint32_t k)
-{
+static void pairs_add(struct pairs* ps, uint32_t c, uint32_t k) {
     for (uint32_t j = 0; j < ps->n; j++) {
         if (ps->p[j].cls == c) {
             ps->p[j].cnt += k;
@@ -298,11 +379,10 @@ static void pairs_add(struct pairs *ps, uint32_t c, uint32_t k)
     ps->n++;
 }
 
-static struct pairs *extras_target; /* the block_extras callback's destination */
-static uint32_t *extras_at;         /* and the class each instruction gets, or UINT32_MAX */
+static struct pairs* extras_target; /* the block_extras callback's destination */
+static uint32_t* extras_at;         /* and the class each instruction gets, or UINT32_MAX */
 
-static void add_extra(const char *key, size_t at)
-{
+static void add_extra(const char* key, size_t at) {
     const uint32_t c = cls_intern(key);
     pairs_add(extras_target, c, 1);
     extras_at[at] = c;
@@ -323,10 +403,9 @@ static uint64_t restart_mismatches;
  * (the counts are unsigned: the block's executions, added at the next flush, make it up).
  * The restarts themselves run this callback again; they are not new executions.
  */
-static void vcpu_insn_event(unsigned int vcpu_index, void *userdata)
-{
+static void vcpu_insn_event(unsigned int vcpu_index, void* userdata) {
     (void)vcpu_index;
-    const struct watch *w = userdata;
+    const struct watch* w = userdata;
     if (pending_restarts) {
         if (pending_vaddr == w->vaddr) {
             pending_restarts--;
@@ -334,8 +413,9 @@ static void vcpu_insn_event(unsigned int vcpu_index, void *userdata)
         }
         /* the window model and QEMU disagree: count it, and start afresh */
         if (restart_mismatches++ == 0) {
-            report("fb89_count: warning: a restart QEMU was expected to make did not come "
-                   "(the window model is out of step with QEMU)\n");
+            report(
+                "fb89_count: warning: a restart QEMU was expected to make did not come "
+                "(the window model is out of step with QEMU)\n");
         }
         pending_restarts = 0;
     }
@@ -343,8 +423,8 @@ static void vcpu_insn_event(unsigned int vcpu_index, void *userdata)
     if (!restarts) {
         return;
     }
-    const struct block *b = w->b;
-    uint64_t *tot = phase_cls[cur_phase];
+    const struct block* b = w->b;
+    uint64_t* tot = phase_cls[cur_phase];
     for (uint32_t k = w->index; k < b->ninsns; k++) {
         tot[b->insns[k].cls] -= restarts;
         if (k > w->index && b->insns[k].extra != UINT32_MAX) {
@@ -353,13 +433,12 @@ static void vcpu_insn_event(unsigned int vcpu_index, void *userdata)
         phase_insns[cur_phase] -= restarts;
         phase_bytes[cur_phase] -= (uint64_t)restarts * b->insns[k].bytes;
     }
-    ((struct block *)b)->cut += restarts;
+    ((struct block*)b)->cut += restarts;
     pending_vaddr = w->vaddr;
     pending_restarts = restarts;
 }
 
-static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
-{
+static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb* tb) {
     (void)id;
     size_t n = qemu_plugin_tb_n_insns(tb);
     if (n > 4096) { /* QEMU's blocks hold at most 512 instructions */
@@ -368,46 +447,49 @@ static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     }
     /* room for every instruction's class and a pseudo-class at each */
     struct pairs ps = {xmalloc(sizeof(struct pair) * (2 * n + 1)), 0};
-    struct fb89_insn *insns = xmalloc(sizeof(struct fb89_insn) * (n + 1));
-    struct insn_record *records = xmalloc(sizeof(struct insn_record) * (n + 1));
-    struct watch **watches = xmalloc(sizeof(struct watch *) * (n + 1));
+    struct fb89_insn* insns = xmalloc(sizeof(struct fb89_insn) * (n + 1));
+    struct insn_record* records = xmalloc(sizeof(struct insn_record) * (n + 1));
+    struct watch** watches = xmalloc(sizeof(struct watch*) * (n + 1));
     size_t nwatches = 0;
     uint64_t bytes = 0;
     char key[KEY_MAX];
 
     for (size_t i = 0; i < n; i++) {
-        struct qemu_plugin_insn *qi = qemu_plugin_tb_get_insn(tb, i);
-        struct fb89_insn *in = &insns[i];
+        struct qemu_plugin_insn* qi = qemu_plugin_tb_get_insn(tb, i);
+        struct fb89_insn* in = &insns[i];
         in->bytes = qemu_plugin_insn_data(qi);
         in->size = qemu_plugin_insn_size(qi);
         in->vaddr = qemu_plugin_insn_vaddr(qi);
         in->disas = qemu_plugin_insn_disas(qi);
         isa->make_key(in, key);
         if (dump_fp) {
-            fprintf(dump_fp, "%08" PRIx64 "\t%s\t%s\n", in->vaddr, key,
-                    in->disas ? in->disas : "");
+            fprintf(dump_fp, "%08" PRIx64 "\t%s\t%s\n", in->vaddr, key, in->disas ? in->disas : "");
         }
         bytes += in->size;
         records[i].cls = cls_intern(key);
         records[i].extra = UINT32_MAX;
         records[i].bytes = (uint32_t)in->size;
         pairs_add(&ps, records[i].cls, 1);
+        if (ncaches) {
+            qemu_plugin_register_vcpu_mem_cb(qi, vcpu_mem, QEMU_PLUGIN_CB_NO_REGS,
+                                             QEMU_PLUGIN_MEM_RW, NULL);
+        }
         if (isa->exec_event) {
             int event = isa->exec_event(in);
             if (event) {
-                struct watch *w = xmalloc(sizeof(struct watch));
+                struct watch* w = xmalloc(sizeof(struct watch));
                 w->b = NULL;
                 w->vaddr = in->vaddr;
                 w->index = (uint32_t)i;
                 w->event = event;
                 watches[nwatches++] = w;
-                qemu_plugin_register_vcpu_insn_exec_cb(qi, vcpu_insn_event,
-                                                       QEMU_PLUGIN_CB_NO_REGS, w);
+                qemu_plugin_register_vcpu_insn_exec_cb(qi, vcpu_insn_event, QEMU_PLUGIN_CB_NO_REGS,
+                                                       w);
             }
         }
     }
     if (isa->block_extras) {
-        uint32_t *at = xmalloc(sizeof(uint32_t) * (n + 1));
+        uint32_t* at = xmalloc(sizeof(uint32_t) * (n + 1));
         for (size_t i = 0; i < n; i++) {
             at[i] = UINT32_MAX;
         }
@@ -421,11 +503,10 @@ static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     }
     uint64_t annul = n && isa->annulling_branch ? isa->annulling_branch(&insns[n - 1]) : 0;
     for (size_t i = 0; i < n; i++) {
-        free((void *)insns[i].disas);
+        free((void*)insns[i].disas);
     }
 
-    struct block *b = xmalloc(sizeof(struct block) +
-                              sizeof(struct pair) * ps.n);
+    struct block* b = xmalloc(sizeof(struct block) + sizeof(struct pair) * ps.n);
     b->exec = 0;
     b->vaddr = n ? insns[0].vaddr : 0;
     b->annul = annul;
@@ -453,8 +534,7 @@ static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     blocks[nblocks++] = b;
     blocks_translated++;
 
-    qemu_plugin_register_vcpu_tb_exec_inline(tb, QEMU_PLUGIN_INLINE_ADD_U64,
-                                             &b->exec, 1);
+    qemu_plugin_register_vcpu_tb_exec_inline(tb, QEMU_PLUGIN_INLINE_ADD_U64, &b->exec, 1);
 }
 
 /*
@@ -467,8 +547,7 @@ struct annul_entry {
     uint64_t addr, branch, taken;
 };
 
-static uint64_t annulled_slots(void)
-{
+static uint64_t annulled_slots(void) {
     size_t cap = 64;
     size_t count = 0;
     for (size_t i = 0; i < nblocks; i++) {
@@ -480,10 +559,10 @@ static uint64_t annulled_slots(void)
     while (cap < 2 * count) {
         cap *= 2;
     }
-    struct annul_entry *t = xmalloc(sizeof(*t) * cap);
+    struct annul_entry* t = xmalloc(sizeof(*t) * cap);
     memset(t, 0, sizeof(*t) * cap);
     for (size_t i = 0; i < nblocks; i++) {
-        struct block *b = blocks[i];
+        struct block* b = blocks[i];
         if (!b->exec || !b->annul) {
             continue;
         }
@@ -495,7 +574,7 @@ static uint64_t annulled_slots(void)
         t[s].branch += b->exec - (b->cut < b->exec ? b->cut : b->exec);
     }
     for (size_t i = 0; i < nblocks; i++) {
-        struct block *b = blocks[i];
+        struct block* b = blocks[i];
         if (!b->exec || b->vaddr < 4) {
             continue;
         }
@@ -518,16 +597,14 @@ static uint64_t annulled_slots(void)
     return annulled;
 }
 
-static void add_to_phase(const char *key, uint64_t k)
-{
+static void add_to_phase(const char* key, uint64_t k) {
     if (k) {
         phase_cls[cur_phase][cls_intern(key)] += k;
     }
 }
 
 /* Multiply out all block counters into the current phase; zero them. */
-static void flush_counts(void)
-{
+static void flush_counts(void) {
     if (isa->annulling_branch) {
         uint64_t annulled = annulled_slots();
         if (annulled) {
@@ -537,10 +614,15 @@ static void flush_counts(void)
     if (isa->flush_events) {
         isa->flush_events(add_to_phase);
     }
-    uint64_t *tot = phase_cls[cur_phase];
+    for (unsigned i = 0; i < ncaches; i++) {
+        add_to_phase(caches[i].read_key, caches[i].read_miss);
+        add_to_phase(caches[i].write_key, caches[i].write_miss);
+        caches[i].read_miss = caches[i].write_miss = 0;
+    }
+    uint64_t* tot = phase_cls[cur_phase];
     uint64_t insns = 0, bytes = 0;
     for (size_t i = 0; i < nblocks; i++) {
-        struct block *b = blocks[i];
+        struct block* b = blocks[i];
         uint64_t e = b->exec;
         if (!e) {
             continue;
@@ -557,25 +639,31 @@ static void flush_counts(void)
     phase_bytes[cur_phase] += bytes;
 }
 
-static void vcpu_syscall(qemu_plugin_id_t id, unsigned int vcpu_index,
-                         int64_t num, uint64_t a1, uint64_t a2, uint64_t a3,
-                         uint64_t a4, uint64_t a5, uint64_t a6, uint64_t a7,
-                         uint64_t a8)
-{
-    (void)id; (void)a2; (void)a3; (void)a4; (void)a5; (void)a6; (void)a7;
+static void vcpu_syscall(qemu_plugin_id_t id, unsigned int vcpu_index, int64_t num, uint64_t a1,
+                         uint64_t a2, uint64_t a3, uint64_t a4, uint64_t a5, uint64_t a6,
+                         uint64_t a7, uint64_t a8) {
+    (void)id;
+    (void)a2;
+    (void)a3;
+    (void)a4;
+    (void)a5;
+    (void)a6;
+    (void)a7;
     (void)a8;
     if (vcpu_index != 0 && !multi_vcpu) {
         multi_vcpu = true;
-        report("fb89_count: warning: guest uses more than one "
-                         "vCPU/thread; counts are not reliable\n");
+        report(
+            "fb89_count: warning: guest uses more than one "
+            "vCPU/thread; counts are not reliable\n");
     }
     if (num != FB89_MARKER_SYSCALL) {
         return;
     }
     if (a1 >= FB89_NPHASES) {
         if (bad_markers++ == 0) {
-            report("fb89_count: warning: marker phase out of range "
-                             "0..15, ignored\n");
+            report(
+                "fb89_count: warning: marker phase out of range "
+                "0..15, ignored\n");
         }
         return;
     }
@@ -592,8 +680,7 @@ static void vcpu_syscall(qemu_plugin_id_t id, unsigned int vcpu_index,
 
 /* ---- output --------------------------------------------------------------- */
 
-static void put_json_string(FILE *f, const char *s)
-{
+static void put_json_string(FILE* f, const char* s) {
     fputc('"', f);
     for (; *s; s++) {
         unsigned char c = (unsigned char)*s;
@@ -609,17 +696,16 @@ static void put_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
-static int cmp_key_ids(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+static int cmp_key_ids(const void* a, const void* b) {
+    uint32_t x = *(const uint32_t*)a, y = *(const uint32_t*)b;
     return strcmp(cls_keys[x], cls_keys[y]);
 }
 
-static void plugin_exit(qemu_plugin_id_t id, void *userdata)
-{
-    (void)id; (void)userdata;
+static void plugin_exit(qemu_plugin_id_t id, void* userdata) {
+    (void)id;
+    (void)userdata;
     if (getpid() != install_pid) {
-        return;   /* forked child of the guest: only the original writes */
+        return; /* forked child of the guest: only the original writes */
     }
     flush_counts();
     if (dump_fp) {
@@ -627,15 +713,14 @@ static void plugin_exit(qemu_plugin_id_t id, void *userdata)
         dump_fp = NULL;
     }
 
-    FILE *f = fopen(out_path, "w");
+    FILE* f = fopen(out_path, "w");
     if (!f) {
         char msg[512];
-        snprintf(msg, sizeof(msg), "fb89_count: cannot open %s for writing\n",
-                 out_path);
+        snprintf(msg, sizeof(msg), "fb89_count: cannot open %s for writing\n", out_path);
         report(msg);
         return;
     }
-    uint32_t *order = xmalloc(sizeof(uint32_t) * (cls_n ? cls_n : 1));
+    uint32_t* order = xmalloc(sizeof(uint32_t) * (cls_n ? cls_n : 1));
     for (uint32_t i = 0; i < cls_n; i++) {
         order[i] = i;
     }
@@ -645,24 +730,28 @@ static void plugin_exit(qemu_plugin_id_t id, void *userdata)
     for (int p = 0; p < FB89_NPHASES; p++) {
         total += phase_insns[p];
     }
-    fprintf(f, "{\"tool\":\"fb89_count\",\"version\":1,\"isa\":\"%s\","
-               "\"guest_instructions\":%" PRIu64 ","
-               "\"blocks_translated\":%" PRIu64 ","
-               "\"multi_vcpu\":%s,\"bad_markers\":%" PRIu64 ","
-               "\"restart_mismatches\":%" PRIu64 ",\n"
-               " \"phases\":[",
-            isa->name, total, blocks_translated, multi_vcpu ? "true" : "false",
-            bad_markers, restart_mismatches);
+    fprintf(f,
+            "{\"tool\":\"fb89_count\",\"version\":1,\"isa\":\"%s\","
+            "\"guest_instructions\":%" PRIu64
+            ","
+            "\"blocks_translated\":%" PRIu64
+            ","
+            "\"multi_vcpu\":%s,\"bad_markers\":%" PRIu64
+            ","
+            "\"restart_mismatches\":%" PRIu64
+            ",\n"
+            " \"phases\":[",
+            isa->name, total, blocks_translated, multi_vcpu ? "true" : "false", bad_markers,
+            restart_mismatches);
     bool firstp = true;
     for (int p = 0; p < FB89_NPHASES; p++) {
         if (phase_insns[p] == 0 && phase_entered[p] == 0) {
             continue;
         }
-        fprintf(f, "%s\n  {\"phase\":%d,\"entered\":%" PRIu64
-                   ",\"instructions\":%" PRIu64 ",\"bytes\":%" PRIu64
-                   ",\"classes\":{",
-                firstp ? "" : ",", p, phase_entered[p], phase_insns[p],
-                phase_bytes[p]);
+        fprintf(f,
+                "%s\n  {\"phase\":%d,\"entered\":%" PRIu64 ",\"instructions\":%" PRIu64
+                ",\"bytes\":%" PRIu64 ",\"classes\":{",
+                firstp ? "" : ",", p, phase_entered[p], phase_insns[p], phase_bytes[p]);
         firstp = false;
         bool firstc = true;
         for (uint32_t k = 0; k < cls_n; k++) {
@@ -687,16 +776,14 @@ static void plugin_exit(qemu_plugin_id_t id, void *userdata)
 
 /* ---- install --------------------------------------------------------------- */
 
-QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
-                                           const qemu_info_t *info,
-                                           int argc, char **argv)
-{
-    const char *dump_path = NULL;
-    static const struct fb89_isa *const known[] = {&fb89_isa_m68k, &fb89_isa_sparc};
+QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t* info, int argc,
+                                           char** argv) {
+    const char* dump_path = NULL;
+    static const struct fb89_isa* const known[] = {&fb89_isa_m68k, &fb89_isa_sparc};
 
     isa = NULL;
     for (size_t k = 0; k < sizeof(known) / sizeof(known[0]) && !isa; k++) {
-        for (const char *const *t = known[k]->qemu_targets; *t; t++) {
+        for (const char* const* t = known[k]->qemu_targets; *t; t++) {
             if (info && info->target_name && strcmp(info->target_name, *t) == 0) {
                 isa = known[k];
             }
@@ -704,14 +791,16 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
     }
     if (!isa) {
         char msg[256];
-        snprintf(msg, sizeof(msg), "fb89_count: no instruction set of ours for QEMU target '%s'"
-                 " (known: m68k, sparc32plus)\n", info && info->target_name ? info->target_name : "?");
+        snprintf(msg, sizeof(msg),
+                 "fb89_count: no instruction set of ours for QEMU target '%s'"
+                 " (known: m68k, sparc32plus)\n",
+                 info && info->target_name ? info->target_name : "?");
         report(msg);
         return 1;
     }
 
     for (int i = 0; i < argc; i++) {
-        const char *a = argv[i];
+        const char* a = argv[i];
         if (strncmp(a, "out=", 4) == 0 && a[4]) {
             out_path = a + 4;
         } else if (strncmp(a, "dump=", 5) == 0 && a[5]) {
@@ -722,12 +811,22 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
                 report("fb89_count: cannot open phase= file for writing\n");
                 return 1;
             }
+        } else if (strncmp(a, "cache=", 6) == 0) {
+            if (!cache_option(a)) {
+                char msg[256];
+                snprintf(msg, sizeof(msg),
+                         "fb89_count: bad '%s' (expected cache=SIZE:LINE:wb "
+                         "or :wt, powers of two, at most %d caches)\n",
+                         a, FB89_MAX_CACHES);
+                report(msg);
+                return 1;
+            }
         } else if (!isa->option || !isa->option(a)) {
             char msg[512];
             snprintf(msg, sizeof(msg),
                      "fb89_count: unknown argument '%s' "
-                     "(expected out=PATH [dump=PATH] [phase=PATH]%s)\n", a,
-                     isa->options_help ? isa->options_help : "");
+                     "(expected out=PATH [dump=PATH] [phase=PATH] [cache=SIZE:LINE:wb|wt]%s)\n",
+                     a, isa->options_help ? isa->options_help : "");
             report(msg);
             return 1;
         }
@@ -737,8 +836,9 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
         return 1;
     }
     if (info && info->system_emulation) {
-        report("fb89_count: warning: written for linux-user "
-                         "(qemu-m68k, qemu-sparc32plus); system emulation is untested\n");
+        report(
+            "fb89_count: warning: written for linux-user "
+            "(qemu-m68k, qemu-sparc32plus); system emulation is untested\n");
     }
     if (dump_path) {
         dump_fp = fopen(dump_path, "w");
@@ -750,7 +850,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
     }
     /* Check now that the output file can be created, so a bad path fails
        before the guest runs rather than at exit. */
-    FILE *f = fopen(out_path, "w");
+    FILE* f = fopen(out_path, "w");
     if (!f) {
         report("fb89_count: cannot open out= file for writing\n");
         return 1;

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <vector>
+
 #include <stdexcept>
 #include <string>
 
@@ -102,17 +105,58 @@ TEST(HostCost, BadProfilesAndCountsAreRefusedNamingWhatIsWrong) {
                  std::runtime_error);
 }
 
-TEST(HostCost, EveryBuiltInProfileLoadsAndPricesTheCommonKeys) {
+TEST(HostCost, EveryBuiltInProfileLoadsAndPricesTheCommonKeysOfItsInstructionSet) {
     ASSERT_FALSE(builtin_host_profile_names().empty());
+    const std::map<std::string, std::vector<const char*>> common = {
+        {"m68k",
+         {"movel disp,dreg", "moveq imm,dreg", "fmoved disp,fpreg", "fmuld fpreg,fpreg",
+          "beqw target", "lea disp,areg", "rts", "cmpl dreg,dreg", "faddd fpreg,fpreg", "jsr abs",
+          "@dcache_64k_read_miss", "@dcache_64k_write_miss"}},
+        {"sparc",
+         {"ld",
+          "st",
+          "ldd",
+          "std",
+          "add",
+          "subcc",
+          "sethi",
+          "bicc",
+          "bicc,a",
+          "call",
+          "jmpl",
+          "save",
+          "restore",
+          "lddf",
+          "faddd",
+          "fmuld",
+          "@load_use",
+          "@annulled_slot",
+          "@window_overflow",
+          "@window_underflow",
+          "@dcache_64k_read_miss",
+          "@dcache_128k_read_miss"}}};
     for (const std::string& name : builtin_host_profile_names()) {
         const HostProfile p = load_host_profile(name);
         EXPECT_EQ(p.name, name);
-        for (const char* key : {"movel disp,dreg", "moveq imm,dreg", "fmoved disp,fpreg",
-                                "fmuld fpreg,fpreg", "beqw target", "lea disp,areg", "rts",
-                                "cmpl dreg,dreg", "faddd fpreg,fpreg", "jsr abs"})
+        ASSERT_TRUE(common.contains(p.isa)) << name << ": " << p.isa;
+        EXPECT_FALSE(p.cpu.empty()) << name;
+        for (const char* key : common.at(p.isa))
             EXPECT_NE(price_key(p, key).rule, nullptr) << name << ": " << key;
     }
     EXPECT_THROW(load_host_profile("sun3-61"), std::runtime_error);
+}
+
+TEST(HostCost, AProfileNamesAKnownInstructionSet) {
+    const std::string text = R"({"schema": 1, "name": "x", "isa": "vax", "cpu_clock_mhz": 5,
+        "fpu_clock_mhz": 5, "memory_wait_states": 0, "ea": {"fetch": {}, "calc": {}},
+        "rules": [{"cpu": 1}], "default": {"cpu": 1}})";
+    try {
+        parse_host_profile(text, "x.json");
+        ADD_FAILURE() << "took isa vax";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("unknown instruction set 'vax'"), std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

@@ -20,7 +20,8 @@ TEST(PeriodRender, ASun360HostPrintsItsPhasesAndTheSplit) {
     CliRun r =
         run_fb89("render " + kScenes + "/A.json --size 256x195 --host sun3-60 --stats " + stats);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("host sun3-60 (MC68020 + MC68881"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("host sun3-60 (MC68020 at 20 MHz + MC68881 at 20 MHz"), std::string::npos)
+        << r.out;
     EXPECT_NE(r.out.find("the native one's frame"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("split: host sun3-60"), std::string::npos) << r.out;
     const auto j = nlohmann::json::parse(slurp(stats))["period_host"];
@@ -35,6 +36,33 @@ TEST(PeriodRender, ASun360HostPrintsItsPhasesAndTheSplit) {
         0);
     EXPECT_EQ(nlohmann::json::parse(slurp(again))["period_host"]["end_to_end_ms"],
               j["end_to_end_ms"]);
+}
+
+// The Sun-4: its own guest under qemu-sparc32plus, the same frame as natively, and the
+// report's SPARC lines: register-window traps per phase and the stand-ins' share.
+TEST(PeriodRender, ASun4HostPrintsItsWindowTrapsAndStandInsAndTheSplit) {
+    const std::string stats = (test_dir() / "s4.json").string();
+    CliRun r =
+        run_fb89("render " + kScenes + "/A.json --size 256x195 --host sun4-260 --stats " + stats);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("host sun4-260 (MB86900 at 16.67 MHz + Weitek 1164/1165 + FPC"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("window traps     overflow/underflow: load "), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("% of the modelled time: instructions the machine does not have"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("the native one's frame"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("split: host sun4-260"), std::string::npos) << r.out;
+    const auto j = nlohmann::json::parse(slurp(stats))["period_host"];
+    EXPECT_EQ(j["profile"], "sun4-260");
+    EXPECT_TRUE(j["same_frame"].get<bool>());
+    const auto& hs = j["phases"]["hidden_surface"];
+    EXPECT_GT(hs["ms"].get<double>(), 0);
+    EXPECT_GE(hs["stand_in_ms"].get<double>(), 0);
+    EXPECT_LT(hs["stand_in_ms"].get<double>(), hs["ms"].get<double>());
+    EXPECT_TRUE(hs["events"].contains("@window_overflow"));
 }
 
 TEST(PeriodRender, NativeRunsEndWithTheSplitToo) {

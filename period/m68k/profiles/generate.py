@@ -435,7 +435,15 @@ COMMON_NOTES = (
     "behaviour, MMU/page faults, branch outcomes, OS time. See docs/HOST_COST_MODEL.md.")
 
 
-def profile(name, desc, cpu, fpu, cpu_mhz, fpu_mhz, ws, notes):
+def cache_rules(read, write, src):
+    """The misses of the Sun-3/260's data cache (the plugin's "@dcache_64k_wb_*") at `read`
+    and `write` clocks; with read = write = 0, a machine without a cache."""
+    return [{"mnemonic": "@dcache_64k_wb_read_miss", "cpu": read, "source": src},
+            {"mnemonic": "@dcache_64k_wb_write_miss", "cpu": write, "source": src},
+            {"mnemonic": "@dcache_.*", "cpu": 0, "source": "another machine's cache: no cost"}]
+
+
+def profile(name, desc, cpu, fpu, cpu_mhz, fpu_mhz, ws, notes, caches):
     return {
         "schema": 1,
         "name": name,
@@ -449,7 +457,7 @@ def profile(name, desc, cpu, fpu, cpu_mhz, fpu_mhz, ws, notes):
         "sources": SOURCES,
         "notes": notes + " " + COMMON_NOTES,
         "ea": {"fetch": FETCH, "calc": CALC, "source": EA_SOURCE},
-        "rules": rules,
+        "rules": caches + rules,
         "default": DEFAULT,
     }
 
@@ -462,17 +470,24 @@ p60 = profile(
     "SUN: 20 MHz MC68020 and MC68881, 200 ns memory cycle, no external cache. A 20 MHz MC68020 "
     "bus cycle is 3 clocks = 150 ns; a 200 ns memory cycle needs 4 clocks, so every data "
     "access is charged 1 wait state (memory_wait_states 1). CPU and FPU share the 20 MHz clock, "
-    "the UM881 tables' own assumption.")
+    "the UM881 tables' own assumption.",
+    cache_rules(0, 0, "SUN: the Sun-3/60 has no cache; every data access is charged its wait "
+                "state instead"))
 p260 = profile(
     "sun3-260",
     "Sun-3/260: MC68020 at 25 MHz with an MC68881 at 20 MHz, 64 KB write-back external cache",
     "MC68020 at 25 MHz", "MC68881 at 20 MHz",
     25.0, 20.0, 0,
     "SUN: 25 MHz MC68020, 20 MHz MC68881, 64 KB direct-mapped write-back cache with 16-byte "
-    "lines. Every data access is taken to hit that cache at 0 wait states (memory_wait_states 0); "
-    "misses, write-backs and the virtually-tagged cache's flushes are not modelled. The FPU runs "
+    "lines. A hit costs 0 wait states (memory_wait_states 0); the plugin counts the data "
+    "misses and they are priced below; write-backs of dirty lines and the virtually-tagged "
+    "cache's flushes are not modelled. The FPU runs "
     "at 20 MHz: its part (fpu) is priced at its own clock, the coprocessor-interface part (cpu) "
-    "at the MPU's 25 MHz, although CIR accesses are paced by the slower FPU.")
+    "at the MPU's 25 MHz, although CIR accesses are paced by the slower FPU.",
+    cache_rules(10, 10, "EST: a 16-byte line filled from the 64-bit ECC memory in two transfers "
+                "of about 200 ns (the Sun-3/60's memory cycle, SUN), 400 ns = 10 clocks at 25 MHz; "
+                "write-back, write-allocate (SunOS). No measured figure was found "
+                "(docs/HOST_COST_MODEL.md, 'Caches')"))
 
 for p in (p60, p260):
     with open(f"{OUT}/{p['name']}.json", "w") as f:
