@@ -16,66 +16,7 @@
 
 namespace fb89::cli {
 
-namespace {
-
-struct Frame {
-    bool complete = false;
-    uint64_t checksum = 0;
-    std::vector<uint8_t> pixels;
-};
-
-Frame replayed(const protocol::MemoryBuffer& commands) {
-    controller::Controller ctl(controller::load_profile("ideal"));
-    commands.replay_into(ctl);
-    Frame f;
-    f.complete = !ctl.frames().empty();
-    if (f.complete) f.checksum = ctl.frames().at(0).checksum;
-    const auto px = ctl.framebuffer().pixels();
-    f.pixels.assign(px.begin(), px.end());
-    return f;
-}
-
-}  // namespace
-
-PeriodHostRun run_on_period_host(const std::string& host, const std::string& scene,
-                                 const std::vector<std::string>& options,
-                                 const protocol::MemoryBuffer& native) {
-    period::HostProfile profile;
-    try {
-        profile = period::load_host_profile(host);
-    } catch (const std::runtime_error& e) {
-        throw UsageError(std::string("--host: ") + e.what());
-    }
-    const period::GuestRun guest = period::run_guest(
-        period::find_emulator_parts(period::instruction_set(profile.isa)), scene, options);
-    PeriodHostRun run;
-    run.cost = period::price(guest.counts, profile);
-    run.cpu = profile.cpu;
-    run.fpu = profile.fpu;
-    run.guest_instructions = guest.counts.instructions;
-    run.emulated_seconds = guest.wall_s;
-
-    // the guest's frame against the native one
-    protocol::StreamReader reader(guest.stream, "the guest's stream");
-    protocol::MemoryBuffer commands;
-    protocol::Command c;
-    while (reader.next(c))
-        commands.submit(c);
-    const Frame a = replayed(native), b = replayed(commands);
-    run.same_frame = a.complete && b.complete && a.checksum == b.checksum;
-    const auto& pa = a.pixels;
-    const auto& pb = b.pixels;
-    if (pa.size() != pb.size()) {
-        run.differing_pixels = pa.size() / 3;
-    } else {
-        for (size_t i = 0; i + 2 < pa.size(); i += 3)
-            run.differing_pixels +=
-                pa[i] != pb[i] || pa[i + 1] != pb[i + 1] || pa[i + 2] != pb[i + 2];
-    }
-    return run;
-}
-
-std::string period_summary(const PeriodHostRun& run) {
+std::string period_summary(const experiments::PeriodFrame& run) {
     const auto& p = run.cost.phases;
     auto phase = [&](period::Phase ph) { return p[static_cast<int>(ph)]; };
     const std::string chips =
@@ -117,14 +58,15 @@ std::string period_summary(const PeriodHostRun& run) {
             "  stand-ins        {:.2f}% of the modelled time: instructions the machine does "
             "not have (V8/V9 forms in the libraries), priced as the V7 code standing in\n",
             ms > 0 ? 100 * stand_in_ms / ms : 0.0);
-    out += fmt::format(
-        "  its command stream: {}; emulated in {:.2f} s here ({:.0f} M "
-        "instructions/s)\n",
-        run.same_frame
-            ? "the native one's frame"
-            : fmt::format("{} pixels differ from the native frame", run.differing_pixels),
-        run.emulated_seconds,
-        static_cast<double>(run.guest_instructions) / run.emulated_seconds / 1e6);
+    if (run.checked)
+        out += fmt::format(
+            "  its command stream: {}; emulated in {:.2f} s here ({:.0f} M "
+            "instructions/s)\n",
+            run.same_frame
+                ? "the same frame as the native run's"
+                : fmt::format("{} pixels differ from the native run's frame", run.differing_pixels),
+            run.emulated_seconds,
+            static_cast<double>(run.guest_instructions) / run.emulated_seconds / 1e6);
     uint64_t unpriced = 0;
     for (const auto& [key, n] : run.cost.unpriced_keys)
         unpriced += n;
@@ -136,11 +78,12 @@ std::string period_summary(const PeriodHostRun& run) {
     return out;
 }
 
-nlohmann::json period_json(const PeriodHostRun& run) {
+nlohmann::json period_json(const experiments::PeriodFrame& run) {
     nlohmann::json j;
     j["profile"] = run.cost.profile;
     j["guest_instructions"] = run.guest_instructions;
     j["emulated_seconds"] = run.emulated_seconds;
+    j["frame_checked"] = run.checked;
     j["same_frame"] = run.same_frame;
     j["differing_pixels"] = run.differing_pixels;
     j["end_to_end_ms"] = run.cost.end_to_end_ms();

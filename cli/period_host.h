@@ -10,31 +10,17 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "experiments/render_job.h"
 #include "experiments/settings.h"
 #include "host/methods.h"
 #include "period/host_cost.h"
-#include "protocol/memory_buffer.h"
 
 namespace fb89::cli {
 
-struct PeriodHostRun {
-    period::HostCost cost;
-    std::string cpu, fpu;  // the profile's chips, for the report
-    uint64_t guest_instructions = 0;
-    double emulated_seconds = 0;
-    bool same_frame = false;        // the guest's frame checksum equals the native one's
-    uint64_t differing_pixels = 0;  // where they differ (depth ties the 68881 decides otherwise)
-};
-
-// Runs the guest and prices it; `native` is the native run's commands for the same frame.
-// Throws UsageError for an unknown host, period::EmulatorError when the emulation fails.
-PeriodHostRun run_on_period_host(const std::string& host, const std::string& scene,
-                                 const std::vector<std::string>& options,
-                                 const protocol::MemoryBuffer& native);
-
-// "load 1.2 ms, set-up 3.4 ms, ..." lines for people, and the JSON for --stats.
-std::string period_summary(const PeriodHostRun& run);
-nlohmann::json period_json(const PeriodHostRun& run);
+// A method's 1989-host run (experiments/render_job.h) as "load 1.2 ms, set-up 3.4 ms, ..."
+// lines for people, and as the JSON for --stats.
+std::string period_summary(const experiments::PeriodFrame& run);
+nlohmann::json period_json(const experiments::PeriodFrame& run);
 
 // The two-stage pipeline at a glance: host per frame (set-up + hidden-surface) against the
 // controller's frame time; the frame time is the larger, the side that bounds it named.

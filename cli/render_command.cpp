@@ -90,48 +90,6 @@ host::WindowTest window_test_named(const std::string& name) {
     throw std::invalid_argument("unknown window test '" + name + "' (known: area, centres)");
 }
 
-struct HostRun {
-    host::Scene scene;
-    host::ScreenScene screen;
-    protocol::MemoryBuffer commands;
-    host::HostStats stats;
-};
-
-// Everything the paper times: load, set-up, hidden-surface, end to end. With --repeat N
-// the frame is rendered N times and the hidden-surface time is the median; the commands
-// and counts are those of the last frame (every repeat produces the same).
-HostRun run_host(const RenderArgs& args, host::Renderer& renderer) {
-    HostRun run;
-    host::Stopwatch stage;
-    run.scene = host::load_scene(args.scene);
-    if (!args.size.empty()) {
-        ImageSize size = parse_size(args.size);
-        run.scene.width = size.width;
-        run.scene.height = size.height;
-    }
-    run.stats.load = stage.elapsed();
-
-    stage.restart();
-    run.screen = host::project_scene(run.scene, host::ColorMode::Shaded, run.stats.counters);
-    renderer.setup(run.screen);
-    run.stats.setup = stage.elapsed();
-
-    for (int r = 0; r < args.repeat; ++r) {
-        host::HostStats pass;
-        run.commands.clear();
-        run.stats.hidden_surface_samples.push_back(
-            host::render_frame(renderer, run.screen, run.commands, pass));
-        if (r + 1 == args.repeat)
-            for (const auto& [name, value] : pass.counters.items())
-                run.stats.counters.add(name, value);
-    }
-    run.stats.hidden_surface = host::median(run.stats.hidden_surface_samples);
-    run.stats.end_to_end = run.stats.load;
-    run.stats.end_to_end += run.stats.setup;
-    run.stats.end_to_end += run.stats.hidden_surface;
-    return run;
-}
-
 // The face-id pass: the same method through the same sink and controller, every face
 // coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer. Run once
 // for --ids (exact) and --ids-view (false colour) alike.
@@ -148,30 +106,33 @@ void write_beam_mask(const std::string& path, const controller::Framebuffer& fra
     controller::write_png(path, experiments::masked_by_beams(frame, beam.beam_mask()));
 }
 
-protocol::Properties stream_properties(const RenderArgs& args, const HostRun& run) {
+protocol::Properties stream_properties(const RenderArgs& args,
+                                       const experiments::RenderResult& job) {
     return {{"scene", args.scene},
             {"method", args.method},
-            {"resolution", fmt::format("{}x{}", run.screen.width, run.screen.height)},
+            {"resolution", fmt::format("{}x{}", job.screen.width, job.screen.height)},
             {"tool", std::string("fb89 ") + FB89_VERSION}};
 }
 
-void write_stream(const RenderArgs& args, const HostRun& run) {
+void write_stream(const RenderArgs& args, const experiments::RenderResult& job) {
     make_parent_dirs(args.stream);
-    protocol::StreamWriter writer(args.stream, stream_properties(args, run));
-    run.commands.replay_into(writer);
+    protocol::StreamWriter writer(args.stream, stream_properties(args, job));
+    job.runs.front().commands.replay_into(writer);
     writer.close();
 }
 
 // --connect: streams the rendered commands to a controller process and waits for its
 // answer. Returns the exit code; a controller that goes away is reported, never waited on.
-int send_to_controller(const RenderArgs& args, const HostRun& run, const Console& console) {
+int send_to_controller(const RenderArgs& args, const experiments::RenderResult& job,
+                       const Console& console) {
     const auto start = std::chrono::steady_clock::now();
+    const protocol::MemoryBuffer& commands = job.runs.front().commands;
     protocol::UniqueFd socket = protocol::connect_socket(args.connect);  // names the path
     protocol::StreamWriter writer(socket.get(), "socket " + args.connect,
-                                  stream_properties(args, run));
-    const std::size_t total = run.commands.size();
+                                  stream_properties(args, job));
+    const std::size_t total = commands.size();
     try {
-        run.commands.replay_into(writer);
+        commands.replay_into(writer);
         writer.close();
     } catch (const std::runtime_error& e) {
         fmt::print(stderr,
@@ -209,16 +170,17 @@ int send_to_controller(const RenderArgs& args, const HostRun& run, const Console
     return kSuccess;
 }
 
-nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
-                          const controller::Controller& ctl, const PeriodHostRun* period) {
+nlohmann::json stats_json(const RenderArgs& args, const experiments::RenderResult& job,
+                          const controller::Controller& ctl) {
+    const experiments::MethodRun& run = job.runs.front();
     nlohmann::json j;
     j["tool"] = std::string("fb89 ") + FB89_VERSION;
     j["scene"] = {{"file", args.scene},
-                  {"faces", run.scene.face_count},
-                  {"triangulated", run.scene.triangulated},
-                  {"dropped", run.scene.dropped},
-                  {"width", run.screen.width},
-                  {"height", run.screen.height}};
+                  {"faces", job.scene.face_count},
+                  {"triangulated", job.scene.triangulated},
+                  {"dropped", job.scene.dropped},
+                  {"width", job.screen.width},
+                  {"height", job.screen.height}};
     j["method"] = args.method;
     if (args.method == "warnock" || args.method == "hybrid") j["window_test"] = args.window_test;
     if (args.method == "hybrid") {
@@ -232,7 +194,7 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
     if (args.method == "beam" || args.method == "raytrace") j["reflections"] = args.reflections;
     j["host"] = run.stats.to_json();
     j["host"]["commands"] = run.commands.size();
-    host::SceneMeasures m = host::measure_scene(run.screen);
+    host::SceneMeasures m = host::measure_scene(job.screen);
     j["scene"]["measures"] = {{"faces_on_screen", m.faces},
                               {"visible_faces", m.visible_faces},
                               {"covered_pixels", m.covered_pixels},
@@ -241,7 +203,7 @@ nlohmann::json stats_json(const RenderArgs& args, const HostRun& run,
                               {"screen_depth_complexity", m.screen_depth_complexity},
                               {"mean_visible_face_px", m.mean_visible_face}};
     j["controller"] = ctl.stats().to_json();
-    if (period) j["period_host"] = period_json(*period);
+    if (run.period) j["period_host"] = period_json(*run.period);
     return j;
 }
 
@@ -255,7 +217,6 @@ int run_render(const RenderArgs& args) {
                                              {"--stats", args.stats}});
     host::MethodOptions options;
     std::string threshold_source, beam_source;
-    std::unique_ptr<host::Renderer> renderer;
     try {
         options.method = host::method_named(args.method);
         options.warnock.window_test = window_test_named(args.window_test);
@@ -267,7 +228,7 @@ int run_render(const RenderArgs& args) {
             resolve_beam_threshold(args.beam_threshold, &beam_source, args.host);
         options.trace.max_reflections = args.reflections;
         options.beam.grid_density = args.grid_density;
-        renderer = host::make_renderer(options);
+        host::make_renderer(options);  // refuses options no renderer can take
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
@@ -278,64 +239,60 @@ int run_render(const RenderArgs& args) {
             fmt::format("hybrid threshold {} ({})", options.hybrid.threshold, threshold_source));
     if (options.method == host::Method::Beam)
         console.note(fmt::format("beam threshold {} ({})", options.beam.threshold, beam_source));
-    controller::CostProfile profile = controller::load_profile(args.profile);
 
-    HostRun run = run_host(args, *renderer);
-    for (const auto& note : run.scene.notes)
+    // the job: this scene, this method, timed here (and on a 1989 host, emulated once)
+    experiments::RenderJob job;
+    job.scene = args.scene;
+    job.methods = {options};
+    if (!args.size.empty()) job.size = parse_size(args.size);
+    job.repeat = args.repeat;
+    job.controller = args.profile;
+    job.progress = !args.quiet && isatty(STDERR_FILENO);
+    job.period = make_period_runs(HostArgs{args.host, 1, "", ""});
+    job.check_frames = true;
+    const experiments::RenderResult result = experiments::run_render_job(job);
+    const experiments::MethodRun& run = result.runs.front();
+    for (const auto& note : result.scene.notes)
         console.note("note: " + note);
 
     // the controller tiles what the host decided; its cost is modelled, never timed
-    controller::Controller ctl(profile);
+    controller::Controller ctl(controller::load_profile(args.profile));
     run.commands.replay_into(ctl);
-
-    // a 1989 host: the same frame on the emulated MC68020 + MC68881, priced
-    std::optional<PeriodHostRun> period;
-    if (args.host != "native") {
-        // one emulated run has no measure of its own to estimate from: the time so far
-        experiments::ProgressLine line(!args.quiet && isatty(STDERR_FILENO));
-        line.start(
-            fmt::format("{} on the emulated {} (MC68020 + MC68881)", args.method, args.host));
-        period = line.ticking([&] {
-            return run_on_period_host(args.host, args.scene,
-                                      experiments::guest_options(options, args.size), run.commands);
-        });
-    }
 
     // a controller process that goes away fails the command before any output is written
     if (!args.connect.empty()) {
         std::fflush(stdout);
-        if (const int code = send_to_controller(args, run, console); code != kSuccess) return code;
+        if (const int code = send_to_controller(args, result, console); code != kSuccess)
+            return code;
     }
     if (!args.png.empty()) {
         make_parent_dirs(args.png);
         controller::write_png(args.png, ctl.framebuffer());
     }
-    if (!args.mask.empty()) write_beam_mask(args.mask, ctl.framebuffer(), *renderer);
-    if (!args.ids.empty() || !args.ids_view.empty()) write_id_buffer(args, run.scene, *renderer);
-    if (!args.stream.empty()) write_stream(args, run);
-    if (!args.stats.empty())
-        write_json(args.stats, stats_json(args, run, ctl, period ? &*period : nullptr));
+    if (!args.mask.empty()) write_beam_mask(args.mask, ctl.framebuffer(), *run.renderer);
+    if (!args.ids.empty() || !args.ids_view.empty())
+        write_id_buffer(args, result.scene, *run.renderer);
+    if (!args.stream.empty()) write_stream(args, result);
+    if (!args.stats.empty()) write_json(args.stats, stats_json(args, result, ctl));
 
     if (!args.quiet && !stdout_taken) {
         fmt::print("scene {}: {} faces ({}{} pieces on screen), {}x{}, method {}\n", args.scene,
-                   run.scene.face_count,
-                   run.scene.dropped ? fmt::format("{} dropped, ", run.scene.dropped) : "",
-                   run.screen.faces.size(), run.screen.width, run.screen.height, args.method);
-        fmt::print("{}", run.stats.summary());
-        fmt::print("controller ({}):\n{}", profile.name, ctl.stats().summary());
-        const double controller_ms = ctl.frames().empty() ? 0 : ctl.frames().back().end_us / 1e3;
-        if (period) {
-            fmt::print("{}", period_summary(*period));
-            const auto& p = period->cost.phases;
-            fmt::print("{}", split_line(period->cost.profile,
-                                        p[static_cast<int>(period::Phase::Setup)].ms +
-                                            p[static_cast<int>(period::Phase::HiddenSurface)].ms,
-                                        profile.name, controller_ms));
-        } else {
-            fmt::print("{}", split_line("native",
-                                        run.stats.setup.wall_ms + run.stats.hidden_surface.wall_ms,
-                                        profile.name, controller_ms));
+                   result.scene.face_count,
+                   result.scene.dropped ? fmt::format("{} dropped, ", result.scene.dropped) : "",
+                   result.screen.faces.size(), result.screen.width, result.screen.height,
+                   args.method);
+        // a 1989 host first: its phases are the host times this run is about
+        if (run.period) {
+            fmt::print("{}", period_summary(*run.period));
+            fmt::print(
+                "native run (this machine; it made the command stream the controller "
+                "tiles):\n");
         }
+        fmt::print("{}", run.stats.summary());
+        fmt::print("controller ({}):\n{}", ctl.profile().name, ctl.stats().summary());
+        fmt::print("{}",
+                   split_line(run.period ? run.period->cost.profile : "native", run.host_frame_ms,
+                              ctl.profile().name, run.controller.frame_ms));
     }
     return kSuccess;
 }

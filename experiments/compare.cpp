@@ -11,6 +11,7 @@
 #include "controller_sim/controller.h"
 #include "experiments/id_pass.h"
 #include "experiments/period_runs.h"
+#include "experiments/render_job.h"
 #include "host/raster/screen_setup.h"
 
 namespace fb89::experiments {
@@ -101,24 +102,28 @@ Comparison compare_methods(const std::string& file,
     c.scene = file;
     c.host = s.period ? s.period->profile().name : "native";
     c.profile = s.profile;
-    const controller::CostProfile profile = controller::load_profile(s.profile);
-    host::Scene scene;
-    const host::ScreenScene screen = load_screen(file, s, scene);
-    c.width = static_cast<uint32_t>(screen.width);
-    c.height = static_cast<uint32_t>(screen.height);
-    const std::vector<Measured> r = measure_settings(file, screen, settings, s);
-    const controller::Framebuffer truth = ids_of(scene, host::Method::ZBuffer);
-    for (size_t m = 0; m < settings.size(); ++m) {
+    RenderJob job;
+    job.scene = file;
+    job.methods = settings;
+    job.size = s.size;
+    job.repeat = s.period ? 0 : s.repeat;
+    job.controller = s.profile;
+    job.progress = s.progress;
+    job.period = s.period;
+    const RenderResult r = run_render_job(job);
+    c.width = static_cast<uint32_t>(r.screen.width);
+    c.height = static_cast<uint32_t>(r.screen.height);
+    const controller::Framebuffer truth = ids_of(r.scene, host::Method::ZBuffer);
+    for (const MethodRun& run : r.runs) {
         CompareRow row;
-        row.method = std::string(host::method_info(settings[m].method).name);
-        row.host_ms = r[m].setup.cpu_ms + r[m].median.cpu_ms;
-        row.controller = controller_figures(r[m].commands, profile);
-        const FrameSplit split = frame_split(row.host_ms, row.controller.frame_ms);
-        row.frame_ms = split.frame_ms;
-        row.host_bound = split.host_bounds;
-        row.pixels_differing = pixels_differing(truth, ids_of(scene, settings[m]));
+        row.method = std::string(host::method_info(run.options.method).name);
+        row.host_ms = run.host_frame_ms;
+        row.controller = run.controller;
+        row.frame_ms = run.split.frame_ms;
+        row.host_bound = run.split.host_bounds;
+        row.pixels_differing = pixels_differing(truth, ids_of(r.scene, run.options));
         c.rows.push_back(row);
-        c.frames.push_back(frame_of(r[m].commands));
+        c.frames.push_back(frame_of(run.commands));
     }
     c.sheet = draw_sheet(c);
     return c;

@@ -1,8 +1,8 @@
-// Speed against accuracy for one scene in one go (`fb89 compare`): every given method
-// timed as the experiments time it (measure_settings(): interleaved rounds here, or
-// modelled from emulated runs on a 1989 host), its commands costed by the controller, its
-// face-id buffer counted against the Z-buffer's, and its frame laid out on a contact sheet
-// with a caption of those figures under it.
+// Speed against accuracy for one scene in one go (`fb89 compare`): one render job
+// (render_job.h) of every given method, timed as the experiments time them (interleaved
+// rounds here, or modelled from emulated runs on a 1989 host), its commands costed by the
+// controller, its face-id buffer counted against the Z-buffer's, and its frame laid out on a
+// contact sheet with a caption of those figures under it.
 #pragma once
 
 #include <cstdint>

@@ -13,28 +13,54 @@
 
 namespace fb89::experiments {
 
+std::vector<Measured> time_renderers(const host::ScreenScene& screen,
+                                     const std::vector<host::Renderer*>& renderers, int repeat,
+                                     const std::string& label, bool progress) {
+    std::vector<std::vector<host::Timing>> times(renderers.size());
+    std::vector<Measured> out(renderers.size());
+    interleave(renderers.size(), repeat, label, progress, [&](size_t m, bool timed) {
+        out[m].commands.clear();
+        host::HostStats stats;
+        host::Timing t = host::render_frame(*renderers[m], screen, out[m].commands, stats);
+        if (timed) {
+            times[m].push_back(t);
+            out[m].samples.push_back(t);
+        }
+        out[m].counters = stats.counters;
+    });
+    for (size_t m = 0; m < renderers.size(); ++m)
+        out[m].median = host::median(times[m]);
+    return out;
+}
+
 std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
                                           const std::vector<host::MethodOptions>& settings,
                                           int repeat, const std::string& label, bool progress) {
     std::vector<std::unique_ptr<host::Renderer>> renderers;
-    std::vector<std::vector<host::Timing>> times(settings.size());
-    std::vector<Measured> out(settings.size());
-    for (size_t m = 0; m < settings.size(); ++m) {
-        renderers.push_back(host::make_renderer(settings[m]));
+    std::vector<host::Renderer*> pointers;
+    std::vector<host::Timing> setups;
+    for (const host::MethodOptions& o : settings) {
+        renderers.push_back(host::make_renderer(o));
+        pointers.push_back(renderers.back().get());
         host::Stopwatch clock;
         renderers.back()->setup(screen);
-        out[m].setup = clock.elapsed();
+        setups.push_back(clock.elapsed());
     }
-    interleave(settings.size(), repeat, label, progress, [&](size_t m, bool timed) {
-        out[m].commands.clear();
-        host::HostStats stats;
-        host::Timing t = host::render_frame(*renderers[m], screen, out[m].commands, stats);
-        if (timed) times[m].push_back(t);
-        out[m].counters = stats.counters;
-    });
+    std::vector<Measured> out = time_renderers(screen, pointers, repeat, label, progress);
     for (size_t m = 0; m < settings.size(); ++m)
-        out[m].median = host::median(times[m]);
+        out[m].setup = setups[m];
     return out;
+}
+
+std::vector<GuestOutcome> run_on_period_host(const std::string& file,
+                                             const std::vector<host::MethodOptions>& settings,
+                                             ImageSize size, PeriodRuns& period, bool progress) {
+    const std::string wh = size.width > 0 ? fmt::format("{}x{}", size.width, size.height) : "";
+    std::vector<GuestJob> jobs;
+    for (const host::MethodOptions& o : settings)
+        jobs.push_back({file, guest_options(o, wh)});
+    period.set_progress(progress, file);
+    return period.run_outcomes(jobs);
 }
 
 std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
@@ -56,18 +82,14 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
     }
     // commands and counts from one frame here, untimed
     std::vector<Measured> out = measure_interleaved(screen, settings, 0, file, false);
-    const std::string size =
-        s.size.width > 0 ? fmt::format("{}x{}", s.size.width, s.size.height) : "";
-    std::vector<GuestJob> jobs;
-    for (const host::MethodOptions& o : settings)
-        jobs.push_back({file, guest_options(o, size)});
-    s.period->set_progress(s.progress, file);
-    const std::vector<period::HostCost> costs = s.period->run(jobs);
+    const std::vector<GuestOutcome> runs =
+        run_on_period_host(file, settings, s.size, *s.period, s.progress);
     for (size_t m = 0; m < settings.size(); ++m) {
-        const double ms = costs[m].phases[static_cast<int>(period::Phase::HiddenSurface)].ms;
+        const auto& phases = runs[m].cost.phases;
+        const double ms = phases[static_cast<int>(period::Phase::HiddenSurface)].ms;
         out[m].median = {ms, ms};
         // the whole set-up stage: projection and the method's own
-        const double setup = costs[m].phases[static_cast<int>(period::Phase::Setup)].ms;
+        const double setup = phases[static_cast<int>(period::Phase::Setup)].ms;
         out[m].setup = {setup, setup};
     }
     return out;

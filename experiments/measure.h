@@ -17,6 +17,9 @@
 
 namespace fb89::experiments {
 
+class PeriodRuns;
+struct GuestOutcome;
+
 // The one interleaved-timing loop: a warm-up round, then `repeat` rounds; each round runs
 // every one of `count` settings once, in an order rotated by one from round to round, so
 // that slow drifts of the machine fall on all settings alike. run(m, timed) runs setting m;
@@ -38,10 +41,16 @@ void interleave(size_t count, int repeat, const std::string& label, bool progres
 // of its last frame (every frame is the same).
 struct Measured {
     host::Timing median;
+    std::vector<host::Timing> samples;  // every timed round's
     host::Timing setup;  // the whole set-up stage, once: projection and the method's own
     host::Counters counters;
     protocol::MemoryBuffer commands;
 };
+// The interleaved rounds over renderers already set up on `screen`: each one's median
+// hidden-surface time, last frame and counters (setup left at zero).
+std::vector<Measured> time_renderers(const host::ScreenScene& screen,
+                                     const std::vector<host::Renderer*>& renderers, int repeat,
+                                     const std::string& label, bool progress);
 // Every setting's hidden-surface time on one screen scene, set up once, timed interleaved.
 std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
                                           const std::vector<host::MethodOptions>& settings,
@@ -52,6 +61,12 @@ std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
 std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
                                        const std::vector<host::MethodOptions>& settings,
                                        const ExperimentSettings& s);
+
+// Each setting of `file` (at `size`, 0 x 0 for the scene's own) emulated once on the 1989
+// host and priced, with progress shown as "FILE: i/n emulated runs".
+std::vector<GuestOutcome> run_on_period_host(const std::string& file,
+                                             const std::vector<host::MethodOptions>& settings,
+                                             ImageSize size, PeriodRuns& period, bool progress);
 
 // Every method, each with its default options.
 std::vector<host::MethodOptions> every_method();

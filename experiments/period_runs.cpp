@@ -108,7 +108,7 @@ PeriodRuns::PeriodRuns(const std::string& host, int jobs, std::string results_di
     if (!m_emit.empty()) write_whole(m_emit, "");  // a fresh list
 }
 
-std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
+std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key, GuestOutcome& out) {
     const fs::path cached = m_results.empty() ? fs::path() : fs::path(m_results) / (key + ".json");
     if (!m_results.empty() && fs::exists(cached)) return slurp(cached.string());
     if (!m_emit.empty()) {
@@ -124,15 +124,25 @@ std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key) {
         ++m_emitted;
         return "";
     }
-    const period::GuestRun run = period::run_guest(m_parts, job.scene, job.options);
+    period::GuestRun run = period::run_guest(m_parts, job.scene, job.options);
     if (!m_results.empty()) write_whole(cached, run.counts_json, protocol::Publish::Now);
+    out.emulated = true;
+    out.emulated_seconds = run.wall_s;
+    out.stream = std::move(run.stream);
     std::lock_guard lock(m_mutex);
     ++m_emulated;
     return run.counts_json;
 }
 
 std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs) {
-    std::vector<period::HostCost> out(jobs.size());
+    std::vector<period::HostCost> costs;
+    for (GuestOutcome& o : run_outcomes(jobs))
+        costs.push_back(std::move(o.cost));
+    return costs;
+}
+
+std::vector<GuestOutcome> PeriodRuns::run_outcomes(const std::vector<GuestJob>& jobs) {
+    std::vector<GuestOutcome> out(jobs.size());
     std::vector<std::string> errors(jobs.size());
     std::atomic<size_t> next{0};
     size_t done = 0;
@@ -145,10 +155,14 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
     auto worker = [&] {
         for (size_t i = next++; i < jobs.size(); i = next++) {
             try {
-                const std::string text = counts_of(jobs[i], job_key(m_guest_fingerprint, jobs[i]));
-                if (!text.empty())  // else emitted, not run
-                    out[i] =
-                        period::price(period::parse_guest_counts(text, jobs[i].scene), m_profile);
+                const std::string text =
+                    counts_of(jobs[i], job_key(m_guest_fingerprint, jobs[i]), out[i]);
+                if (!text.empty()) {  // else emitted, not run
+                    const period::GuestCounts counts =
+                        period::parse_guest_counts(text, jobs[i].scene);
+                    out[i].cost = period::price(counts, m_profile);
+                    out[i].instructions = counts.instructions;
+                }
             } catch (const std::exception& e) {
                 errors[i] = e.what();
             }

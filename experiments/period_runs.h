@@ -25,7 +25,17 @@ std::vector<std::string> guest_options(const host::MethodOptions& options, const
 
 struct GuestJob {
     std::string scene;                 // as given (a path)
-    std::vector<std::string> options;  // the guest's own options (cli/period_host.h's form)
+    std::vector<std::string> options;  // the guest's own options (guest_options()' form)
+};
+
+// One job's result: its priced counts and, when it was emulated here (not answered from the
+// results folder, not emitted), what the emulation gave besides.
+struct GuestOutcome {
+    period::HostCost cost;
+    uint64_t instructions = 0;
+    bool emulated = false;        // run here now
+    double emulated_seconds = 0;  // how long that took
+    std::vector<uint8_t> stream;  // the guest's command stream (emulated runs only)
 };
 
 class PeriodRuns {
@@ -38,6 +48,8 @@ class PeriodRuns {
     // folder is not run again; with emit_jobs, a missing one is written out and priced as
     // zero (emitted() says how many).
     std::vector<period::HostCost> run(const std::vector<GuestJob>& jobs);
+    // The same with what each emulated run gave besides its counts.
+    std::vector<GuestOutcome> run_outcomes(const std::vector<GuestJob>& jobs);
 
     // With progress on, run() shows "label: i/n emulated runs, about T s left" on stderr.
     void set_progress(bool on, std::string label) {
@@ -51,7 +63,8 @@ class PeriodRuns {
 
   private:
     std::string key(const GuestJob& job);
-    std::string counts_of(const GuestJob& job, const std::string& key);
+    // The job's counts (from the results folder, or emulated into `out`); "" when emitted.
+    std::string counts_of(const GuestJob& job, const std::string& key, GuestOutcome& out);
 
     period::HostProfile m_profile;
     int m_jobs = 1;

@@ -22,7 +22,7 @@ TEST(PeriodRender, ASun360HostPrintsItsPhasesAndTheSplit) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("host sun3-60 (MC68020 at 20 MHz + MC68881 at 20 MHz"), std::string::npos)
         << r.out;
-    EXPECT_NE(r.out.find("the native one's frame"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("the same frame as the native run's"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("split: host sun3-60"), std::string::npos) << r.out;
     const auto j = nlohmann::json::parse(slurp(stats))["period_host"];
     EXPECT_EQ(j["profile"], "sun3-60");
@@ -48,12 +48,11 @@ TEST(PeriodRender, ASun4HostPrintsItsWindowTrapsAndStandInsAndTheSplit) {
     EXPECT_NE(r.out.find("host sun4-260 (MB86900 at 16.67 MHz + Weitek 1164/1165 + FPC"),
               std::string::npos)
         << r.out;
-    EXPECT_NE(r.out.find("window traps     overflow/underflow: load "), std::string::npos)
-        << r.out;
+    EXPECT_NE(r.out.find("window traps     overflow/underflow: load "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("% of the modelled time: instructions the machine does not have"),
               std::string::npos)
         << r.out;
-    EXPECT_NE(r.out.find("the native one's frame"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("the same frame as the native run's"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("split: host sun4-260"), std::string::npos) << r.out;
     const auto j = nlohmann::json::parse(slurp(stats))["period_host"];
     EXPECT_EQ(j["profile"], "sun4-260");

@@ -1,0 +1,142 @@
+#include "experiments/render_job.h"
+
+#include "controller_sim/controller.h"
+#include "experiments/period_runs.h"
+#include "host/raster/screen_setup.h"
+#include "host/scene/scene_loader.h"
+#include "period/host_profile.h"
+#include "protocol/stream_reader.h"
+
+namespace fb89::experiments {
+
+namespace {
+
+// The frame `commands` leave in a controller (pixels do not depend on its profile).
+struct Frame {
+    bool complete = false;
+    uint64_t checksum = 0;
+    std::vector<uint8_t> pixels;
+};
+
+Frame frame_of(const protocol::MemoryBuffer& commands) {
+    controller::Controller ctl(controller::load_profile("ideal"));
+    commands.replay_into(ctl);
+    Frame f;
+    f.complete = !ctl.frames().empty();
+    if (f.complete) f.checksum = ctl.frames().at(0).checksum;
+    const auto px = ctl.framebuffer().pixels();
+    f.pixels.assign(px.begin(), px.end());
+    return f;
+}
+
+protocol::MemoryBuffer decoded(const std::vector<uint8_t>& stream) {
+    protocol::StreamReader reader(stream, "the guest's stream");
+    protocol::MemoryBuffer commands;
+    protocol::Command c;
+    while (reader.next(c))
+        commands.submit(c);
+    return commands;
+}
+
+PeriodFrame period_frame(GuestOutcome&& outcome, const period::HostProfile& profile,
+                         const protocol::MemoryBuffer& native, bool check) {
+    PeriodFrame f;
+    f.cost = std::move(outcome.cost);
+    f.cpu = profile.cpu;
+    f.fpu = profile.fpu;
+    f.guest_instructions = outcome.instructions;
+    f.emulated_seconds = outcome.emulated_seconds;
+    if (check && outcome.emulated) {
+        f.checked = true;
+        f.differing_pixels = frames_differing(native, decoded(outcome.stream), &f.same_frame);
+    }
+    return f;
+}
+
+}  // namespace
+
+uint64_t frames_differing(const protocol::MemoryBuffer& a, const protocol::MemoryBuffer& b,
+                          bool* same_checksum) {
+    const Frame fa = frame_of(a), fb = frame_of(b);
+    if (same_checksum) *same_checksum = fa.complete && fb.complete && fa.checksum == fb.checksum;
+    if (fa.pixels.size() != fb.pixels.size())
+        return std::max(fa.pixels.size(), fb.pixels.size()) / 3;
+    uint64_t n = 0;
+    for (size_t i = 0; i + 2 < fa.pixels.size(); i += 3)
+        n += fa.pixels[i] != fb.pixels[i] || fa.pixels[i + 1] != fb.pixels[i + 1] ||
+             fa.pixels[i + 2] != fb.pixels[i + 2];
+    return n;
+}
+
+RenderResult run_render_job(const RenderJob& job) {
+    RenderResult result;
+    const controller::CostProfile profile = controller::load_profile(job.controller);
+
+    // load and set-up, as the paper times them: the scene once, each method's own set-up
+    host::Stopwatch stage;
+    result.scene = host::load_scene(job.scene);
+    if (job.size.width > 0) {
+        result.scene.width = job.size.width;
+        result.scene.height = job.size.height;
+    }
+    const host::Timing load = stage.elapsed();
+    stage.restart();
+    host::Counters projection_counters;
+    result.screen = host::project_scene(result.scene, host::ColorMode::Shaded, projection_counters);
+    const host::Timing projection = stage.elapsed();
+
+    std::vector<host::Renderer*> renderers;
+    for (const host::MethodOptions& o : job.methods) {
+        MethodRun run;
+        run.options = o;
+        run.renderer = host::make_renderer(o);
+        host::Stopwatch clock;
+        run.renderer->setup(result.screen);
+        run.stats.load = load;
+        run.stats.setup = projection;
+        run.stats.setup += clock.elapsed();
+        for (const auto& [name, value] : projection_counters.items())
+            run.stats.counters.add(name, value);
+        renderers.push_back(run.renderer.get());
+        result.runs.push_back(std::move(run));
+    }
+
+    // hidden-surface: interleaved rounds here (the commands are the last round's)
+    std::vector<Measured> measured = time_renderers(result.screen, renderers, job.repeat, job.scene,
+                                                    job.progress && !job.period);
+    for (size_t m = 0; m < result.runs.size(); ++m) {
+        MethodRun& run = result.runs[m];
+        run.commands = std::move(measured[m].commands);
+        run.stats.hidden_surface = measured[m].median;
+        run.stats.hidden_surface_samples = std::move(measured[m].samples);
+        for (const auto& [name, value] : measured[m].counters.items())
+            run.stats.counters.add(name, value);
+        run.stats.end_to_end = run.stats.load;
+        run.stats.end_to_end += run.stats.setup;
+        run.stats.end_to_end += run.stats.hidden_surface;
+        run.host_frame_ms = run.stats.setup.cpu_ms + run.stats.hidden_surface.cpu_ms;
+    }
+
+    // on a 1989 host: each method emulated once, priced, and (asked) its frame checked
+    if (job.period) {
+        std::vector<GuestOutcome> outcomes =
+            run_on_period_host(job.scene, job.methods, job.size, *job.period, job.progress);
+        for (size_t m = 0; m < result.runs.size(); ++m) {
+            MethodRun& run = result.runs[m];
+            run.period = period_frame(std::move(outcomes[m]), job.period->profile(), run.commands,
+                                      job.check_frames);
+            const auto& phases = run.period->cost.phases;
+            run.host_frame_ms = phases[static_cast<int>(period::Phase::Setup)].ms +
+                                phases[static_cast<int>(period::Phase::HiddenSurface)].ms;
+        }
+    }
+
+    // the controller tiles what the host decided; its cost is modelled, never timed
+    for (MethodRun& run : result.runs) {
+        run.controller = controller_figures(run.commands, profile);
+        run.split = frame_split(run.host_frame_ms, run.controller.frame_ms);
+    }
+    return result;
+}
+
+}  // namespace fb89::experiments

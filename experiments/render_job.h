@@ -1,0 +1,82 @@
+// One render job, below the command line: a scene, the methods to render it with, the host
+// they are timed on -- this machine, in interleaved rounds, or a 1989 host, each method
+// emulated once and priced -- and the controller that tiles their commands. Out come the
+// scene, and per method its renderer (set up, for the id pass and the beam mask), its
+// command stream, its host statistics, its 1989-host run, the controller's figures and the
+// split. `fb89 render` runs a job of one method, `fb89 compare` one of every method; the
+// experiments time their settings through the same engine (measure_settings()).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "controller_sim/profile.h"
+#include "experiments/measure.h"
+#include "experiments/settings.h"
+#include "host/methods.h"
+#include "host/raster/screen_scene.h"
+#include "host/scene/scene.h"
+#include "host/stats.h"
+#include "period/host_cost.h"
+#include "protocol/memory_buffer.h"
+
+namespace fb89::experiments {
+
+class PeriodRuns;
+
+struct RenderJob {
+    std::string scene;                         // a scene file
+    std::vector<host::MethodOptions> methods;  // one or more
+    ImageSize size;                            // 0 x 0: the scene's own
+    int repeat = 1;  // native: timed rounds, the hidden-surface time their median (0: untimed)
+    std::string controller = std::string(controller::kDefaultProfile);
+    bool progress = false;
+    // A 1989 host (period_runs.h): each method's set-up and hidden-surface times are
+    // modelled from one emulated run; the native run gives the commands. Null: this machine.
+    std::shared_ptr<PeriodRuns> period;
+    // On a 1989 host: set each emulated run's frame against the native one's, pixel for pixel.
+    bool check_frames = false;
+};
+
+// A method's run on the 1989 host.
+struct PeriodFrame {
+    period::HostCost cost;
+    std::string cpu, fpu;  // the profile's chips
+    uint64_t guest_instructions = 0;
+    double emulated_seconds = 0;  // 0: answered from a results folder
+    bool checked = false;         // the frames were compared (an emulated run, check_frames)
+    bool same_frame = false;      // the emulated frame's checksum is the native one's
+    uint64_t differing_pixels = 0;
+};
+
+struct MethodRun {
+    host::MethodOptions options;
+    std::unique_ptr<host::Renderer> renderer;  // set up on the job's screen
+    protocol::MemoryBuffer commands;           // the frame (the last round's, natively)
+    // natively: load (the job's), set-up (projection + the method's own), hidden-surface
+    // (the median), its samples, end to end; the last frame's counters
+    host::HostStats stats;
+    std::optional<PeriodFrame> period;
+    ControllerFigures controller;
+    double host_frame_ms = 0;  // set-up + hidden-surface on the job's host (CPU ms natively)
+    FrameSplit split;          // host_frame_ms against the controller's frame time
+};
+
+struct RenderResult {
+    host::Scene scene;
+    host::ScreenScene screen;  // projected, shaded
+    std::vector<MethodRun> runs;
+};
+
+// Throws what loading the scene or the controller profile throws, and period::EmulatorError
+// when an emulated run fails.
+RenderResult run_render_job(const RenderJob& job);
+
+// The rows of the job's frame check: the frame `commands` leave, and how many pixels differ
+// between two such frames (all of them when the sizes differ).
+uint64_t frames_differing(const protocol::MemoryBuffer& a, const protocol::MemoryBuffer& b,
+                          bool* same_checksum);
+
+}  // namespace fb89::experiments
