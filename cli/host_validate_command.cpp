@@ -165,18 +165,36 @@ int run_host_validate(const HostValidateArgs& a) {
 
     bool all_pass = true;
     std::string table =
-        fmt::format("{:<8} {:<9} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<9} {}\n", "kernel", "profile",
-                    "clock", "modelled", "published", "unit", "error", "check", "source");
+        fmt::format("{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<9} {}\n", "kernel",
+                    "profile", "clock", "modelled", "published", "unit", "error", "check", "source");
     for (const Row& r : rows) {
         const auto& f = *r.figure;
         all_pass = all_pass && r.pass;
         table += fmt::format(
-            "{:<8} {:<9} {:>6} {:>10} {:>10} {:<8} {:>+7.1f}%  {:<9} {} [{}]{}\n", f.kernel,
+            "{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>+7.1f}%  {:<9} {} [{}]{}\n", f.kernel,
             r.profile, f.clock_mhz > 0 ? fmt::format("{:g}MHz", f.clock_mhz) : "own",
             number(r.modelled), number(f.value), f.unit, 100 * r.error,
             std::string(period::check_name(f.check)) + (r.pass ? "" : "!"), f.cite, f.id,
             r.unpriced ? fmt::format(" ({} executions unpriced)", r.unpriced) : "");
     }
+    // The same benchmark on two machines, each compared with its own figure at its own
+    // clocks: the ratio of the machines' speeds, modelled against published.
+    std::string ratios;
+    for (size_t i = 0; i < rows.size(); ++i)
+        for (size_t k = i + 1; k < rows.size(); ++k) {
+            const Row &a = rows[i], &b = rows[k];
+            if (a.figure->kernel != b.figure->kernel || a.figure->benchmark != b.figure->benchmark ||
+                a.figure == b.figure || a.figure->clock_mhz > 0 || b.figure->clock_mhz > 0 ||
+                a.figure->check != period::FigureCheck::Within ||
+                b.figure->check != period::FigureCheck::Within)
+                continue;
+            const double modelled = a.modelled / b.modelled, published = a.figure->value / b.figure->value;
+            ratios += fmt::format("  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%)\n",
+                                  a.figure->kernel, a.profile, b.profile, modelled, published,
+                                  100 * period::relative_error(modelled, published));
+        }
+    if (!ratios.empty())
+        table += "the same program on two machines, the ratio of their figures:\n" + ratios;
     // What each profile makes of each kernel at its own clocks, in the kernel's usual unit.
     table += "modelled at the profiles' own clocks:\n";
     for (const auto& [asked, profile] : profiles) {

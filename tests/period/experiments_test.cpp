@@ -55,6 +55,27 @@ TEST(PeriodExperiments, EmittedJobsRunByGnuParallelJoinIntoTheSameTable) {
     EXPECT_EQ(slurp(merged), slurp(single));
 }
 
+// The Sun-4 the same way: its jobs name the SPARC guest (host-run --isa sparc).
+TEST(PeriodExperiments, Sun4JobsNameTheirInstructionSetAndJoinIntoTheSameTable) {
+    const auto dir = test_dir();
+    std::filesystem::remove_all(dir / "results4");
+    const std::string sweep = "sweep threshold " + kScenes +
+                              "/A.json --size 96x73 --steps 1 --host sun4-260 -q --csv ";
+    const std::string single = (dir / "single4.csv").string(),
+                      merged = (dir / "merged4.csv").string(), jobs = (dir / "jobs4.txt").string(),
+                      results = (dir / "results4").string();
+    ASSERT_EQ(run_fb89(sweep + single).exit_code, 0);
+    CliRun emit = run_fb89(sweep + merged + " --results " + results + " --emit-jobs " + jobs);
+    ASSERT_EQ(emit.exit_code, 0) << emit.err;
+    const std::string lines = slurp(jobs);
+    EXPECT_NE(lines.find(" host-run "), std::string::npos) << lines;
+    EXPECT_NE(lines.find(" --isa sparc "), std::string::npos) << lines;
+    ASSERT_EQ(std::system(("sh " + jobs + " >/dev/null").c_str()), 0);
+    CliRun join = run_fb89(sweep + merged + " --results " + results);
+    ASSERT_EQ(join.exit_code, 0) << join.err;
+    EXPECT_EQ(slurp(merged), slurp(single));
+}
+
 TEST(PeriodExperiments, JobOptionsNeedA1989Host) {
     CliRun r = run_fb89(kSweep.substr(0, kSweep.find("--host")) + "--jobs 2");
     EXPECT_EQ(r.exit_code, 2);

@@ -7,6 +7,10 @@
 // each instruction once. (ctest label `period`: these run the emulator.)
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "period/emulator.h"
@@ -70,6 +74,22 @@ TEST(PeriodSparcWindows, MoreWindowsTakeOneTrapFewerEachWay) {
     EXPECT_EQ(seven.overflows - eight.overflows, 1u);
     EXPECT_EQ(seven.underflows - eight.underflows, 1u);
     EXPECT_EQ(seven.instructions, eight.instructions);
+}
+
+// V7 purity: fb89_v7_check (period/sparc/v7_check.c) is built like the guest, with fb89's V7
+// 64-bit helpers and libgcc's .umul and .udiv but no C library, and runs on a CPU that has
+// nothing newer than V7, which stops it on any V8 or V9 instruction.
+TEST(PeriodSparcV7, TheHelpersAndTheCodeGenRunOnACpuWithNothingNewerThanV7) {
+    const std::filesystem::path guest = instruction_set("sparc").guest_path;
+    if (guest.empty()) GTEST_SKIP() << "the SPARC guest is not built";
+    const std::filesystem::path check =
+        guest.parent_path().parent_path().parent_path() / "fb89_v7_check";
+    ASSERT_TRUE(std::filesystem::exists(check)) << check;
+    const std::string command = "qemu-sparc -cpu 'Fujitsu MB86904,-mul,-div,-fsqrt' " +
+                                check.string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << "stopped by a signal: an instruction V7 does not have";
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "a wrong answer (exit 1) or no V7 CPU (127)";
 }
 
 }  // namespace
