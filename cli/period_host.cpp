@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -99,6 +101,23 @@ nlohmann::json period_json(const experiments::PeriodFrame& run) {
                                                             {"events", c.events}};
     }
     return j;
+}
+
+std::string period_classes(const experiments::PeriodFrame& run, period::Phase phase, int n) {
+    const period::PhaseCost& c = run.cost.phases[static_cast<int>(phase)];
+    std::vector<std::pair<std::string, std::pair<uint64_t, double>>> shares(c.classes.begin(),
+                                                                            c.classes.end());
+    std::sort(shares.begin(), shares.end(),
+              [](const auto& a, const auto& b) { return a.second.second > b.second.second; });
+    std::string out = fmt::format("  {} phase, the classes that take most of its {:.3f} ms:\n",
+                                  period::phase_name(static_cast<int>(phase)), c.ms);
+    for (int i = 0; i < n && i < static_cast<int>(shares.size()); ++i) {
+        const auto& [key, figures] = shares[static_cast<size_t>(i)];
+        out += fmt::format("    {:>5.1f}%  {:<28} {:>12} x  {:>12.3f} ms\n",
+                           c.ms > 0 ? 100 * figures.second / c.ms : 0.0, key, figures.first,
+                           figures.second);
+    }
+    return out;
 }
 
 std::string split_line(const std::string& host_name, double host_ms, const std::string& profile,

@@ -21,6 +21,9 @@ namespace fb89::cli {
 // lines for people, and as the JSON for --stats.
 std::string period_summary(const experiments::PeriodFrame& run);
 nlohmann::json period_json(const experiments::PeriodFrame& run);
+// The `n` instruction classes (and events) that take most of a phase's modelled time, with
+// their executions and shares: where the 1989 host's time goes.
+std::string period_classes(const experiments::PeriodFrame& run, period::Phase phase, int n);
 
 // The two-stage pipeline at a glance: host per frame (set-up + hidden-surface) against the
 // controller's frame time; the frame time is the larger, the side that bounds it named.

@@ -51,6 +51,7 @@ struct RenderArgs {
     std::string profile = std::string(controller::kDefaultProfile);
     std::string host = "native";
     int repeat = 1;
+    int classes = 0;
     bool quiet = false;
 };
 
@@ -284,6 +285,9 @@ int run_render(const RenderArgs& args) {
         // a 1989 host first: its phases are the host times this run is about
         if (run.period) {
             fmt::print("{}", period_summary(*run.period));
+            if (args.classes > 0)
+                for (auto phase : {period::Phase::Setup, period::Phase::HiddenSurface})
+                    fmt::print("{}", period_classes(*run.period, phase, args.classes));
             fmt::print(
                 "native run (this machine; it made the command stream the controller "
                 "tiles):\n");
@@ -364,6 +368,10 @@ void register_render(CLI::App& app, int& exit_code) {
                     ".json host profile; a 1989 host runs fb89's host code on an emulated "
                     "MC68020 + MC68881 and models its time (docs/HOST_COST_MODEL.md)")
         ->capture_default_str();
+    sub->add_option("--classes", args->classes,
+                    "1989 host: also list the N instruction classes that take most of the "
+                    "set-up and hidden-surface time")
+        ->check(CLI::Range(1, 1000));
     sub->add_option("--repeat", args->repeat,
                     "Render the frame N times; hidden-surface time is the median")
         ->check(CLI::Range(1, 10000))

@@ -139,6 +139,9 @@ HostCost price(const GuestCounts& counts, const HostProfile& profile) {
             const KeyPrice k = price_key(profile, key);
             const double cpu = k.cpu * static_cast<double>(n), fpu = k.fpu * static_cast<double>(n);
             if (key.starts_with('@')) out.events[key] += n;
+            auto& [executions, ms] = out.classes[key];
+            executions += n;
+            ms += cpu / cpu_khz + fpu / fpu_khz;
             out.cpu_cycles += cpu;
             out.fpu_cycles += fpu;
             if (!k.rule) {

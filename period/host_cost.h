@@ -48,6 +48,8 @@ struct PhaseCost {
     // the pseudo-classes' counts: events that cost time but are no instruction of the
     // guest's ("@window_overflow", "@dcache_64k_read_miss", ...: period/plugin/README.md)
     std::map<std::string, uint64_t> events;
+    // each class key's executions and modelled time (for the classes that take most)
+    std::map<std::string, std::pair<uint64_t, double>> classes;
 };
 
 struct HostCost {

@@ -42,9 +42,14 @@ TEST(PeriodRender, ASun360HostPrintsItsPhasesAndTheSplit) {
 // report's SPARC lines: register-window traps per phase and the stand-ins' share.
 TEST(PeriodRender, ASun4HostPrintsItsWindowTrapsAndStandInsAndTheSplit) {
     const std::string stats = (test_dir() / "s4.json").string();
-    CliRun r =
-        run_fb89("render " + kScenes + "/A.json --size 256x195 --host sun4-260 --stats " + stats);
+    CliRun r = run_fb89("render " + kScenes + "/A.json --size 256x195 --host sun4-260 --classes 5 " +
+                        "--stats " + stats);
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    // the classes that take most of each phase: five lines under each heading
+    const size_t heading = r.out.find("hidden_surface phase, the classes that take most of its ");
+    ASSERT_NE(heading, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("setup phase, the classes that take most of its "), std::string::npos);
+    EXPECT_NE(r.out.find("%  ", heading), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("host sun4-260 (MB86900 at 16.67 MHz + Weitek 1164/1165 + FPC"),
               std::string::npos)
         << r.out;
