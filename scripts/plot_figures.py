@@ -303,7 +303,7 @@ def split_hosts(root):
         rows.append(row)
     fields = list(dict.fromkeys(f for r in rows for f in r))
     text = ",".join(fields) + "\n" + "".join(
-        ",".join(r.get(f, "") for f in fields) + "\n" for r in rows)
+        ",".join(str(r.get(f, "")) for f in fields) + "\n" for r in rows)
     write_text(os.path.join(root, "split_hosts.csv"), text)
 
     fig, ax = plt.subplots(figsize=(8, 6.5))
