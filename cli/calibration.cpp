@@ -104,10 +104,10 @@ double resolve(const std::string& option, const std::string& text, std::optional
     };
     if (text == "calibrated") {
         if (saved) {
-            said("calibrated");
+            said("calibrated here");
             return *saved;
         }
-        said(std::string(fallback_name) + " (not calibrated yet)");
+        said(std::string(fallback_name) + ": not calibrated yet, `fb89 calibrate` does it");
         return fallback;
     }
     if (text == "inf" || text == "infinity") {
@@ -130,12 +130,12 @@ double resolve(const std::string& option, const std::string& text, std::optional
 
 double resolve_threshold(const std::string& text, std::string* source, const std::string& host) {
     if (text == "paper") {
-        if (source) *source = "paper";
+        if (source) *source = "the paper's";
         return host::kPaperThreshold;
     }
     const std::optional<double> saved =
         text == "calibrated" ? calibrated_threshold(host) : std::optional<double>{};
-    return resolve("--threshold", text, saved, host::kPaperThreshold, "paper",
+    return resolve("--threshold", text, saved, host::kPaperThreshold, "the paper's",
                    "a number >= 0, inf, paper or calibrated", source);
 }
 
@@ -143,7 +143,7 @@ double resolve_beam_threshold(const std::string& text, std::string* source,
                               const std::string& host) {
     const std::optional<double> saved =
         text == "calibrated" ? calibrated_beam_threshold(host) : std::optional<double>{};
-    return resolve("--beam-threshold", text, saved, host::kDefaultBeamThreshold, "default",
+    return resolve("--beam-threshold", text, saved, host::kDefaultBeamThreshold, "the built-in one",
                    "a number >= 0, inf or calibrated", source);
 }
 

@@ -13,11 +13,16 @@
 namespace fb89::cli {
 
 ImageSize parse_size(const std::string& text) {
-    static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+    static const std::regex pattern(R"((\d+)x(\d+))");
     std::smatch m;
     if (!std::regex_match(text, m, pattern))
-        throw UsageError(fmt::format("--size: expected WxH such as 1024x780, got '{}'", text));
-    ImageSize s{std::stoi(m[1]), std::stoi(m[2])};
+        throw UsageError(fmt::format(
+            "--size: expected WxH such as 1024x780, width and height in [1, 16384], got '{}'",
+            text));
+    auto side = [](const std::string& digits) {  // more digits than an int holds: too large
+        return digits.size() > 6 ? 1 << 30 : std::stoi(digits);
+    };
+    ImageSize s{side(m[1]), side(m[2])};
     if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
         throw UsageError(
             fmt::format("--size: width and height must be in [1, 16384], got '{}'", text));

@@ -10,7 +10,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "cli/period_host.h"
 #include "controller_sim/png_io.h"
 #include "experiments/compare.h"
@@ -23,31 +25,26 @@ namespace {
 
 struct CompareArgs {
     HostArgs host;
-    std::string scene, size, threshold, beam_threshold, csv, json;
-    std::string sheet = "compare.png";
+    std::string scene, size, csv, json;
+    std::string threshold = "calibrated", beam_threshold = "calibrated";
+    std::string sheet = "out/compare.png";
     std::string profile = "tms34010-50mhz";
     int repeat = 3;
     bool quiet = false;
 };
 
-// A threshold given as a number (or inf); throws UsageError naming the option.
-double parse_threshold(const std::string& text, const std::string& option) {
-    try {
-        size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (used == text.size() && !std::isnan(v)) return v;
-    } catch (const std::logic_error&) {
-    }
-    throw UsageError(fmt::format("{}: '{}' is not a number", option, text));
-}
-
-// Every method with its defaults, the thresholds replaced when given.
-std::vector<host::MethodOptions> settings_of(const CompareArgs& a) {
+// Every method with its defaults, the thresholds by render's rule (calibrated if saved,
+// else the paper's / the built-in one); `said` gets the line that says which.
+std::vector<host::MethodOptions> settings_of(const CompareArgs& a, std::string& said) {
+    std::string hybrid_source, beam_source;
+    const double hybrid = resolve_threshold(a.threshold, &hybrid_source, a.host.host);
+    const double beam = resolve_beam_threshold(a.beam_threshold, &beam_source, a.host.host);
+    said = fmt::format("hybrid threshold {:.6g} ({}), beam threshold {:.6g} ({})\n", hybrid,
+                       hybrid_source, beam, beam_source);
     std::vector<host::MethodOptions> settings = every_method();
     for (host::MethodOptions& o : settings) {
-        if (!a.threshold.empty()) o.hybrid.threshold = parse_threshold(a.threshold, "--threshold");
-        if (!a.beam_threshold.empty())
-            o.beam.threshold = parse_threshold(a.beam_threshold, "--beam-threshold");
+        o.hybrid.threshold = hybrid;
+        o.beam.threshold = beam;
         try {
             host::validate(o);
         } catch (const std::invalid_argument& e) {
@@ -70,12 +67,31 @@ nlohmann::json rows_json(const Comparison& c) {
                         {"controller_ms", r.controller.frame_ms},
                         {"frame_ms", r.frame_ms},
                         {"bound_by", r.host_bound ? "host" : "controller"},
-                        {"pixels_differing", r.pixels_differing}});
+                        {"pixels_differing", r.ids.total()},
+                        {"px_coverage", r.ids.coverage},
+                        {"px_other_face", r.ids.other_face}});
     return rows;
 }
 
+// What the pixels_differing column means, when any method differs from the Z-buffer.
+std::string differences_note(const Comparison& c) {
+    uint64_t coverage = 0, other = 0;
+    for (const CompareRow& r : c.rows) {
+        coverage += r.ids.coverage;
+        other += r.ids.other_face;
+    }
+    if (coverage + other == 0) return "";
+    return "pixels_differing: face ids unlike the Z-buffer's = px_coverage (a face against the "
+           "background: silhouettes) + px_other_face (another face: a shared edge or a depth "
+           "tie). The ray methods test each pixel centre with the watertight ray test where "
+           "the raster methods apply their shared top-left rule, so a centre on an edge, or "
+           "within rounding of one, may go either way: such differences are sampling, not "
+           "error.\n";
+}
+
 int run_compare(const CompareArgs& a) {
-    const std::vector<host::MethodOptions> settings = settings_of(a);
+    std::string thresholds;
+    const std::vector<host::MethodOptions> settings = settings_of(a, thresholds);
     ExperimentSettings s;
     s.scenes = {a.scene};
     s.repeat = a.repeat;
@@ -89,10 +105,11 @@ int run_compare(const CompareArgs& a) {
     if (report_emitted(s, a.host)) return kSuccess;
     make_parent_dirs(a.sheet);
     controller::write_png(a.sheet, c.sheet);
-    const Table table = comparison_table(c);
+    Table table = comparison_table(c);
+    table.map_column("scene", scene_display_name);
     if (!a.csv.empty()) write_text(a.csv, table.csv());
     if (!a.json.empty()) write_json(a.json, rows_json(c));
-    if (!a.quiet && !stdout_taken) std::cout << table.text();
+    if (!a.quiet && !stdout_taken) std::cout << thresholds << table.text() << differences_note(c);
     Console{a.quiet}.note(
         fmt::format("contact sheet: {} ({}x{})", a.sheet, c.sheet.width(), c.sheet.height()));
     return kSuccess;
@@ -104,7 +121,9 @@ void register_compare(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<CompareArgs>();
     CLI::App* sub = app.add_subcommand(
         "compare", "Every method on one scene: speed against accuracy, and a contact sheet PNG");
-    sub->add_option("scene", a->scene, "Scene file")->required();
+    sub->add_option("scene", a->scene,
+                    "Scene: a file, or a bundled scene by name (fb89 list scenes)")
+        ->required();
     sub->add_option("--sheet", a->sheet, "Write the contact sheet of every method's frame (PNG)")
         ->capture_default_str();
     sub->add_option("--csv", a->csv, "Write the table as CSV ('-' for stdout)");
@@ -115,12 +134,20 @@ void register_compare(CLI::App& app, int& exit_code) {
     sub->add_option("--size", a->size, "Image size WxH, overriding the scene's");
     sub->add_option("--profile", a->profile, profile_option_help())->capture_default_str();
     sub->add_option("--threshold", a->threshold,
-                    "Hybrid: Expr. 3.1 threshold, a number or inf (default: the paper's 0.04)");
+                    "Hybrid: Expr. 3.1 threshold: a number, inf, paper (0.04) or calibrated "
+                    "(this machine's, else the paper's)")
+        ->capture_default_str();
     sub->add_option("--beam-threshold", a->beam_threshold,
-                    "Beam: Expr. 2.7 threshold, a number or inf (default: the built-in one)");
+                    fmt::format("Beam: Expr. 2.7 threshold: a number, inf or calibrated (this "
+                                "machine's, else the built-in {:g})",
+                                host::kDefaultBeamThreshold))
+        ->capture_default_str();
     add_host_options(sub, a->host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
-    sub->callback([a, &exit_code] { exit_code = run_compare(*a); });
+    sub->callback([a, &exit_code] {
+        a->scene = resolve_scene(a->scene);
+        exit_code = run_compare(*a);
+    });
 }
 
 }  // namespace fb89::cli

@@ -2,8 +2,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 
+#include <vector>
+
+#include "host/scene/scene_error.h"
 #include "period/isa.h"
 
 namespace fb89::cli {
@@ -26,6 +30,58 @@ fs::path data_dir() {
 
 std::string bundled_scene(const std::string& name) {
     return (data_dir() / "scenes" / name).string();
+}
+
+namespace {
+
+// The bundled scenes' folder, canonical, or empty when there is none.
+fs::path scenes_dir() {
+    std::error_code ec;
+    const fs::path dir = fs::canonical(data_dir() / "scenes", ec);
+    return ec ? fs::path() : dir;
+}
+
+}  // namespace
+
+std::string resolve_scene(const std::string& argument) {
+    std::error_code ec;
+    if (argument.empty() || fs::exists(argument, ec)) return argument;
+    const fs::path dir = scenes_dir();
+    std::vector<fs::path> candidates;
+    // a path relative to the data folder ("scenes/demo.json" from any folder)
+    if (fs::path(argument).is_relative()) candidates.push_back(data_dir() / argument);
+    // a bare name: the bundled scene, with or without its extension
+    if (!dir.empty() && fs::path(argument).filename() == argument) {
+        candidates.push_back(dir / argument);
+        if (fs::path(argument).extension().empty()) {
+            candidates.push_back(dir / (argument + ".json"));
+            candidates.push_back(dir / (argument + ".tri"));
+        }
+    }
+    for (const fs::path& c : candidates)
+        if (fs::is_regular_file(c, ec)) return c.string();
+    std::string looked = "\"" + argument + "\"";
+    for (const fs::path& c : candidates)
+        looked += ", " + c.string();
+    std::vector<std::string> bundled;
+    if (!dir.empty())
+        for (const auto& e : fs::directory_iterator(dir, ec))
+            if (e.path().extension() == ".json") bundled.push_back(e.path().stem().string());
+    std::sort(bundled.begin(), bundled.end());
+    std::string names;
+    for (const std::string& n : bundled)
+        names += (names.empty() ? "" : " ") + n;
+    throw host::SceneError(
+        argument + ": cannot open the scene file (looked for " + looked + ")" +
+        (names.empty() ? "" : "; the bundled scenes are " + names + " (fb89 list scenes)"));
+}
+
+std::string scene_display_name(const std::string& path) {
+    std::error_code ec;
+    const fs::path dir = scenes_dir();
+    const fs::path file = fs::canonical(path, ec);
+    if (ec || dir.empty() || file.parent_path() != dir) return path;
+    return file.stem().string();
 }
 
 void use_installed_period_parts() {

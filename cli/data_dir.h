@@ -15,6 +15,14 @@ std::filesystem::path data_dir();
 // data_dir()/scenes/NAME (e.g. "A.json").
 std::string bundled_scene(const std::string& name);
 
+// The scene file an argument names: the path itself when it exists; else a bundled scene by
+// name ("demo", "G", "garish_room.json"), from data_dir()/scenes. Throws
+// host::SceneError naming every place it looked when there is none.
+std::string resolve_scene(const std::string& argument);
+// How tables and reports show a scene file: a bundled scene by its name ("G"), any other
+// file as it was given.
+std::string scene_display_name(const std::string& path);
+
 // Points the emulator at an installed guest and plugin when fb89 runs from its install
 // prefix (and the caller set neither $FB89_GUEST nor $FB89_COUNT_PLUGIN).
 void use_installed_period_parts();

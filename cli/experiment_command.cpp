@@ -125,6 +125,7 @@ int run_experiment(const ExperimentArgs& args) {
                                      known_experiments()));
 
     if (report_emitted(settings, args.host)) return kSuccess;
+    table.map_column("scene", scene_display_name);
     if (!args.csv.empty()) write_text(args.csv, table.csv());
     if (!args.quiet && args.csv != "-") std::cout << table.text();
     return kSuccess;
@@ -172,7 +173,11 @@ void register_experiment(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     add_host_options(sub, args->host);
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-    sub->callback([args, &exit_code] { exit_code = run_experiment(*args); });
+    sub->callback([args, &exit_code] {
+        for (std::string& scene : args->scenes)
+            scene = resolve_scene(scene);
+        exit_code = run_experiment(*args);
+    });
 }
 
 }  // namespace fb89::cli

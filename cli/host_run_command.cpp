@@ -3,6 +3,7 @@
 // The commands that `experiment|sweep|calibrate --host H --emit-jobs FILE` write are of this form,
 // for GNU parallel or a Slurm job array; the experiment run again with --results DIR joins them.
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "experiments/period_runs.h"
 #include "period/isa.h"
 
@@ -21,7 +22,7 @@ void register_host_run(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<HostRunArgs>();
     CLI::App* sub = app.add_subcommand(
         "host-run", "Run one emulated 1989-host job (as written by --emit-jobs) into --results");
-    sub->add_option("scene", a->scene, "Scene file")->required()->check(CLI::ExistingFile);
+    sub->add_option("scene", a->scene, "Scene: a file, or a bundled scene by name")->required();
     sub->add_option("options", a->options, "The guest's options, after --");
     sub->add_option("--results", a->results, "Folder the counts go to")->required();
     std::vector<std::string> isas;
@@ -31,7 +32,7 @@ void register_host_run(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember(isas))
         ->capture_default_str();
     sub->callback([a, &exit_code] {
-        experiments::run_one_job({a->scene, a->options}, a->isa, a->results);
+        experiments::run_one_job({resolve_scene(a->scene), a->options}, a->isa, a->results);
         exit_code = kSuccess;
     });
 }

@@ -165,8 +165,8 @@ int run_host_validate(const HostValidateArgs& a) {
 
     bool all_pass = true;
     std::string table =
-        fmt::format("{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<9} {}\n", "kernel",
-                    "profile", "clock", "modelled", "published", "unit", "error", "check", "source");
+        fmt::format("{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<9} {}\n", "kernel", "profile",
+                    "clock", "modelled", "published", "unit", "error", "check", "source");
     for (const Row& r : rows) {
         const auto& f = *r.figure;
         all_pass = all_pass && r.pass;
@@ -182,16 +182,18 @@ int run_host_validate(const HostValidateArgs& a) {
     std::string ratios;
     for (size_t i = 0; i < rows.size(); ++i)
         for (size_t k = i + 1; k < rows.size(); ++k) {
-            const Row &a = rows[i], &b = rows[k];
-            if (a.figure->kernel != b.figure->kernel || a.figure->benchmark != b.figure->benchmark ||
-                a.figure == b.figure || a.figure->clock_mhz > 0 || b.figure->clock_mhz > 0 ||
-                a.figure->check != period::FigureCheck::Within ||
-                b.figure->check != period::FigureCheck::Within)
+            const Row &one = rows[i], &other = rows[k];
+            if (one.figure->kernel != other.figure->kernel ||
+                one.figure->benchmark != other.figure->benchmark || one.figure == other.figure ||
+                one.figure->clock_mhz > 0 || other.figure->clock_mhz > 0 ||
+                one.figure->check != period::FigureCheck::Within ||
+                other.figure->check != period::FigureCheck::Within)
                 continue;
-            const double modelled = a.modelled / b.modelled, published = a.figure->value / b.figure->value;
+            const double modelled = one.modelled / other.modelled,
+                         published = one.figure->value / other.figure->value;
             ratios += fmt::format("  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%)\n",
-                                  a.figure->kernel, a.profile, b.profile, modelled, published,
-                                  100 * period::relative_error(modelled, published));
+                                  one.figure->kernel, one.profile, other.profile, modelled,
+                                  published, 100 * period::relative_error(modelled, published));
         }
     if (!ratios.empty())
         table += "the same program on two machines, the ratio of their figures:\n" + ratios;

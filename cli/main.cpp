@@ -45,6 +45,13 @@ int main(int argc, char** argv) {
     register_list(app, exit_code);
     use_installed_period_parts();
 
+    // no command at all: say how to start
+    if (argc == 1) {
+        std::cerr << "fb89: usage: fb89 COMMAND [OPTIONS], e.g. `fb89 render demo`; "
+                     "`fb89 --help` lists the commands, `fb89 COMMAND --help` a command's "
+                     "options, `fb89 list` the methods, hosts, scenes and experiments\n";
+        return kBadInput;
+    }
     // an unknown command: say so, and the nearest known one
     if (argc > 1 && argv[1][0] != '-') {
         std::vector<std::string> names;
@@ -69,24 +76,31 @@ int main(int argc, char** argv) {
     } catch (const CLI::Success& e) {
         return app.exit(e);  // --help, --version
     } catch (const CLI::ParseError& e) {
-        app.exit(e);
-        // an option no command knows: name the nearest the command does
-        if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+        // an option the command does not know: one line each, with the nearest it does know
+        if (dynamic_cast<const CLI::ExtrasError*>(&e) && argc > 1 && argv[1][0] != '-') {
+            const std::string command = argv[1];
             std::vector<std::string> options;
-            if (argc > 1 && argv[1][0] != '-')
-                for (const CLI::Option* o : app.get_subcommand(argv[1])->get_options())
-                    for (const std::string& name : o->get_lnames())
-                        options.push_back("--" + name);
-            for (int i = 1; i < argc; ++i) {
+            for (const CLI::Option* o : app.get_subcommand(command)->get_options())
+                for (const std::string& name : o->get_lnames())
+                    options.push_back("--" + name);
+            bool said = false;
+            for (int i = 2; i < argc; ++i) {
                 const std::string word = argv[i];
                 if (word.rfind("--", 0) != 0) continue;
                 const std::string given = word.substr(0, word.find('='));
                 if (std::find(options.begin(), options.end(), given) != options.end()) continue;
-                const std::string hint = nearest_hint(given, options);
-                if (!hint.empty())
-                    std::cerr << "fb89: usage: " << given << ":" << hint.substr(1) << "\n";
+                std::cerr << "fb89: usage: " << command << ": unknown option '" << given << "'"
+                          << nearest_hint(given, options) << " (fb89 " << command
+                          << " --help lists them)\n";
+                said = true;
             }
+            if (said) return kBadInput;
         }
+        // CLI11's own words, said as fb89 says every usage error: one line, and where to look
+        const bool command = argc > 1 && argv[1][0] != '-';
+        std::cerr << "fb89: usage: " << (command ? std::string(argv[1]) + ": " : "") << e.what()
+                  << " (fb89 " << (command ? std::string(argv[1]) + " " : "")
+                  << "--help says more)\n";
         return kBadInput;
     } catch (const UsageError& e) {
         std::cerr << "fb89: usage: " << e.what() << "\n";

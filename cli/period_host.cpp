@@ -178,10 +178,28 @@ std::shared_ptr<experiments::PeriodRuns> make_period_runs(const HostArgs& a) {
 
 bool report_emitted(const experiments::ExperimentSettings& s, const HostArgs& a) {
     if (!s.period || a.emit_jobs.empty() || s.period->emitted() == 0) return false;
+    const auto& work = s.period->emitted_work();
+    std::string known, unknown;
+    if (work.known > 0)
+        known = fmt::format(
+            "; {} of them ran before (by this or an earlier guest): {:.3g} billion guest "
+            "instructions, {:.0f} s of emulation where they ran",
+            work.known, static_cast<double>(work.instructions) / 1e9, work.seconds);
+    if (work.unknown > 0) {
+        std::string names;
+        for (size_t i = 0; i < work.unknown_names.size() && i < 6; ++i)
+            names += (i ? ", " : "") + work.unknown_names[i];
+        if (work.unknown_names.size() > 6) names += ", ...";
+        unknown = fmt::format(
+            "; {} never ran with these results, so their work is known only "
+            "by their size: {} faces and {:.3g} million pixels in all ({})",
+            work.unknown, work.unknown_faces, static_cast<double>(work.unknown_pixels) / 1e6,
+            names);
+    }
     fmt::print(stderr,
-               "fb89: {} emulated runs written to {}; run them, e.g. `parallel < {}`, then this "
-               "command again with --results {} to join them into its table\n",
-               s.period->emitted(), a.emit_jobs, a.emit_jobs, a.results);
+               "fb89: {} emulated runs written to {}{}{}. Run them, e.g. `parallel < {}`, then "
+               "this command again with --results {} to join them into its table\n",
+               s.period->emitted(), a.emit_jobs, known, unknown, a.emit_jobs, a.results);
     return true;
 }
 

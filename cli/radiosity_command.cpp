@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "experiments/id_pass.h"
@@ -177,6 +178,35 @@ nlohmann::json stats_json(const RadiosityArgs& args, const RadiosityRun& run,
     return j;
 }
 
+// Row sums of F above 1, flagged and explained: how many, by how much, where, and why.
+std::string row_sum_flag(const RadiosityArgs& args, const RadiosityRun& run) {
+    const host::RowSums& rows = run.result.rows;
+    if (rows.above_one == 0) return "";
+    const auto& mesh = run.result.mesh;
+    const host::Patch& worst = mesh.patches[rows.largest_patch];
+    const char* point_form =
+        "The centre-to-centre point form over-counts patches close to one another for their "
+        "size (it grows as 1/r^2 while a true factor cannot exceed 1), so an excess is "
+        "expected along edges where walls meet and where small patches face larger ones "
+        "nearby; --ff disk bounds it, and the solver may not converge when it is large.";
+    const char* all_or_nothing =
+        "Each factor is bounded, but delta is decided at patch centres, all or nothing: a "
+        "patch partly hidden behind another counts whole, so both count and a row can exceed "
+        "1 where faces stand in front of others; a finer mesh (--patches) lowers it.";
+    const char* hemicube =
+        "The hemicube's cells are counted whole, so a row can exceed 1 by the rounding of its "
+        "resolution; a finer hemicube (--hemicube-res) lowers it.";
+    const char* why = args.ff == "disk" || args.ff == "exact" ? all_or_nothing
+                      : args.ff == "hemicube"                 ? hemicube
+                                                              : point_form;
+    return fmt::format(
+        "! {} of {} rows of F sum above 1, the largest by {:.1f}% (patch {}, on face {}). A "
+        "patch's row is the share of what it sends that reaches each other patch: at most 1 "
+        "in a closed room, less where it is open. {}\n",
+        rows.above_one, mesh.patches.size(), 100 * (rows.largest - 1), rows.largest_patch,
+        mesh.elements[worst.element].face_id, why);
+}
+
 std::string summary(const RadiosityArgs& args, const RadiosityRun& run) {
     std::string out = fmt::format(
         "scene {}: {} faces, {} patches in {} elements (patch size {:.4g}), {}x{}\n", args.scene,
@@ -195,6 +225,7 @@ std::string summary(const RadiosityArgs& args, const RadiosityRun& run) {
         args.solver == "progressive" ? "shots" : "sweeps", run.result.solution.residual,
         run.result.solution.converged ? "" : " (NOT converged)", run.result.max_row_sum,
         run.result.exposure, args.options.exposure > 0 ? "" : " (automatic)");
+    out += row_sum_flag(args, run);
     out += "host (wall / CPU):\n";
     auto line = [&](const char* name, const host::Timing& t) {
         out += fmt::format("  {:<16} {:>10.3f} ms {:>10.3f} ms\n", name, t.wall_ms, t.cpu_ms);
@@ -207,11 +238,9 @@ std::string summary(const RadiosityArgs& args, const RadiosityRun& run) {
     line("rendering", run.times.rendering);
     line("end to end", run.times.end_to_end);
     out += "host counted operations:\n";
-    for (const auto& [name, value] : run.counters.items())
-        out += fmt::format("  {:<24} {:>14}\n", name, value);
+    out += run.counters.lines();
     out += "render of the patches (zbuffer):\n";
-    for (const auto& [name, value] : run.render_stats.counters.items())
-        out += fmt::format("  {:<24} {:>14}\n", name, value);
+    out += run.render_stats.counters.lines();
     return out;
 }
 
@@ -282,7 +311,9 @@ void register_radiosity(CLI::App& app, int& exit_code) {
         "radiosity",
         "Radiosity (the paper's §5): patches, intervisibility, form factors, solve, "
         "and the result through the Z-buffer and controller");
-    sub->add_option("scene", args->scene, "Scene file (.json) with at least one emitting face")
+    sub->add_option("scene", args->scene,
+                    "Scene with at least one emitting face: a .json file, or a bundled scene by "
+                    "name (fb89 list scenes)")
         ->required();
     sub->add_option("--ff", args->ff,
                     "Form factors: flux (flux-traced δ, centre point form), hybrid (δ by the "
@@ -344,6 +375,7 @@ void register_radiosity(CLI::App& app, int& exit_code) {
             throw UsageError("--adaptive-passes: needs --adaptive THRESHOLD");
         args->options.form_factors = *host::form_factor_method_named(args->ff);
         args->options.solver = *host::solver_named(args->solver);
+        args->scene = resolve_scene(args->scene);
         exit_code = run_radiosity_command(*args);
     });
 }

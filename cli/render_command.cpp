@@ -14,6 +14,7 @@
 
 #include "cli/calibration.h"
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "cli/period_host.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
@@ -109,7 +110,8 @@ void write_beam_mask(const std::string& path, const controller::Framebuffer& fra
 
 protocol::Properties stream_properties(const RenderArgs& args,
                                        const experiments::RenderResult& job) {
-    return {{"scene", args.scene},
+    // a bundled scene by its name: the stream's bytes do not depend on where the checkout is
+    return {{"scene", scene_display_name(args.scene)},
             {"method", args.method},
             {"resolution", fmt::format("{}x{}", job.screen.width, job.screen.height)},
             {"tool", std::string("fb89 ") + FB89_VERSION}};
@@ -235,11 +237,14 @@ int run_render(const RenderArgs& args) {
     }
     if (!args.mask.empty() && options.method != host::Method::Beam)
         throw UsageError("--mask: only the beam method decides pixels by beams");
+    // which threshold runs, and why: the first line of the report
+    std::string threshold_line;
     if (options.method == host::Method::Hybrid)
-        console.note(
-            fmt::format("hybrid threshold {} ({})", options.hybrid.threshold, threshold_source));
+        threshold_line = fmt::format("hybrid threshold {:.6g} ({})\n", options.hybrid.threshold,
+                                     threshold_source);
     if (options.method == host::Method::Beam)
-        console.note(fmt::format("beam threshold {} ({})", options.beam.threshold, beam_source));
+        threshold_line =
+            fmt::format("beam threshold {:.6g} ({})\n", options.beam.threshold, beam_source);
 
     // the job: this scene, this method, timed here (and on a 1989 host, emulated once)
     experiments::RenderJob job;
@@ -277,8 +282,9 @@ int run_render(const RenderArgs& args) {
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, result, ctl));
 
     if (!args.quiet && !stdout_taken) {
-        fmt::print("scene {}: {} faces ({}{} pieces on screen), {}x{}, method {}\n", args.scene,
-                   result.scene.face_count,
+        fmt::print("{}", threshold_line);
+        fmt::print("scene {}: {} faces ({}{} pieces on screen), {}x{}, method {}\n",
+                   scene_display_name(args.scene), result.scene.face_count,
                    result.scene.dropped ? fmt::format("{} dropped, ", result.scene.dropped) : "",
                    result.screen.faces.size(), result.screen.width, result.screen.height,
                    args.method);
@@ -306,7 +312,9 @@ int run_render(const RenderArgs& args) {
 void register_render(CLI::App& app, int& exit_code) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* sub = app.add_subcommand("render", "Render a scene with one hidden-surface method");
-    sub->add_option("scene", args->scene, "Scene file (.json, or .tri screen-space triangles)")
+    sub->add_option("scene", args->scene,
+                    "Scene: a file (.json, or .tri screen-space triangles), or a bundled scene by "
+                    "name (fb89 list scenes)")
         ->required();
     std::string methods;
     for (const host::MethodInfo& m : host::methods())
@@ -326,9 +334,10 @@ void register_render(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"window", "scene"}))
         ->capture_default_str();
     sub->add_option("--beam-threshold", args->beam_threshold,
-                    "Beam: Expr. 2.7 threshold: a number, inf (beams down to pixels) or "
-                    "calibrated (this machine's, from fb89 calibrate --method beam; else the "
-                    "default)")
+                    fmt::format("Beam: Expr. 2.7 threshold: a number, inf (beams down to "
+                                "pixels) or calibrated (this machine's, from fb89 calibrate "
+                                "--method beam; else the built-in {:g})",
+                                host::kDefaultBeamThreshold))
         ->capture_default_str();
     sub->add_option("--reflections", args->reflections,
                     "Raytrace and beam: mirror bounces followed (0: primary visibility)")
@@ -379,6 +388,7 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, sub, &exit_code] {
         refuse_options_the_method_ignores(*sub, args->method);
+        args->scene = resolve_scene(args->scene);
         exit_code = run_render(*args);
     });
 }

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "cli/common.h"
+#include "cli/data_dir.h"
 #include "cli/period_host.h"
 #include "experiments/experiments.h"
 
@@ -53,6 +54,7 @@ int run_sweep(const SweepArgs& a) {
     base.hybrid.depth =
         a.depth_estimate == "scene" ? host::DepthEstimate::Scene : host::DepthEstimate::Window;
     Table table = sweep_threshold(s, thresholds, base);
+    table.map_column("scene", scene_display_name);
     if (report_emitted(s, a.host)) return kSuccess;
     if (!a.csv.empty()) write_text(a.csv, table.csv());
     if (!a.quiet && a.csv != "-") std::cout << table.text();
@@ -67,7 +69,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
     sub->add_option("what", a->what, "What to sweep: threshold (the hybrid's Expr. 3.1)")
         ->check(CLI::IsMember({"threshold"}))
         ->required();
-    sub->add_option("scenes", a->scenes, "Scene files")->required();
+    sub->add_option("scenes", a->scenes,
+                    "Scenes: files, or bundled scenes by name (fb89 list scenes)")
+        ->required();
     sub->add_option("--from", a->from, "Smallest threshold of the ramp (> 0)")
         ->capture_default_str();
     sub->add_option("--to", a->to, "Largest threshold of the ramp")->capture_default_str();
@@ -88,7 +92,11 @@ void register_sweep(CLI::App& app, int& exit_code) {
     sub->add_option("--profile", a->profile, profile_option_help())->capture_default_str();
     add_host_options(sub, a->host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
-    sub->callback([a, &exit_code] { exit_code = run_sweep(*a); });
+    sub->callback([a, &exit_code] {
+        for (std::string& scene : a->scenes)
+            scene = resolve_scene(scene);
+        exit_code = run_sweep(*a);
+    });
 }
 
 }  // namespace fb89::cli

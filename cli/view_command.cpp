@@ -36,7 +36,7 @@ struct ViewArgs {
     bool speed_given = false;
     int64_t start_call = -1, start_frame = -1;
     bool overlay = false;
-    int scale = 1;
+    double scale = 1;
     std::string screenshot;
     bool exit_at_end = false;
 };
@@ -252,8 +252,10 @@ void register_view(CLI::App& app, int& exit_code) {
         ->check(CLI::NonNegativeNumber)
         ->excludes(call);
     sub->add_flag("--overlay", args->overlay, "Start with the opcode overlay on");
-    sub->add_option("--scale", args->scale, "Window pixels per framebuffer pixel")
-        ->check(CLI::Range(1, 8))
+    sub->add_option("--scale", args->scale,
+                    "Window pixels per framebuffer pixel, 0.125 to 8 (0.5: a 2048x1560 frame in "
+                    "a 1024x780 window)")
+        ->check(CLI::Range(0.125, 8.0))
         ->capture_default_str();
     sub->add_option("--screenshot", args->screenshot,
                     "At the end of the stream, save what the window shows of the image as PNG "

@@ -170,6 +170,7 @@ Controller::Executed Controller::exec_frame_begin(const FrameBegin& f) {
     m_fb.resize(f.width, f.height);
     m_fb.clear(f.background);
     m_in_frame = true;
+    m_stats.frame_open = true;
     m_frame = FrameResult{};
     m_frame.frame = f.frame;
     m_frame.width = f.width;
@@ -296,6 +297,7 @@ void Controller::close_frame(bool complete) {
     m_stats.frames_incomplete += complete ? 0 : 1;
     m_stats.frames.push_back(m_frame);
     m_in_frame = false;
+    m_stats.frame_open = false;
 }
 
 double Controller::elapsed_us() const {

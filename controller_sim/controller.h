@@ -63,6 +63,7 @@ struct ControllerStats {
     std::vector<FrameResult> frames;  // closed frames, in order (when kept)
     uint64_t frames_closed = 0;       // closed frames, kept or not
     uint64_t frames_incomplete = 0;   // of those, closed by the next FRAME_BEGIN
+    bool frame_open = false;          // a frame begun and not yet closed (a cut stream's last)
     PerOpcode totals{};               // every command, in frames or not
     PerOpcode unframed{};             // commands outside any frame (before the first, between)
     double bus_busy_us = 0;           // every command

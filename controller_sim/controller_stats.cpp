@@ -92,6 +92,7 @@ nlohmann::json ControllerStats::to_json() const {
     return json{{"profile", profile.to_json()},
                 {"frames_closed", frames_closed},
                 {"frames_incomplete", frames_incomplete},
+                {"frame_open", frame_open},
                 {"totals", per_opcode_json(profile, totals)},
                 {"unframed", per_opcode_json(profile, unframed)},
                 {"bus_busy_us", bus_busy_us},
@@ -116,10 +117,11 @@ std::string ControllerStats::summary() const {
     append_row(out, "total", all, modelled_us(profile, all.cycles) / 1e3, all_bus_ms);
 
     out += fmt::format(
-        "frames: {} closed ({} incomplete); frame time {:.3f} ms (sum of frame end times), "
-        "controller busy {:.3f} ms, bus busy {:.3f} ms\n",
-        frames_closed, frames_incomplete, frames_end_us / 1e3, controller_busy_us / 1e3,
-        bus_busy_us / 1e3);
+        "frames: {} closed ({} incomplete){}; frame time {:.3f} ms (sum of closed frames' end "
+        "times), controller busy {:.3f} ms, bus busy {:.3f} ms\n",
+        frames_closed, frames_incomplete,
+        frame_open ? ", 1 still open (begun, never ended: its commands are counted above)" : "",
+        frames_end_us / 1e3, controller_busy_us / 1e3, bus_busy_us / 1e3);
     const OpcodeCounters loose = sum(unframed);
     if (loose.commands > 0)
         out +=

@@ -13,12 +13,13 @@
 //    a real screen could show a fill half done. We never show a command half executed.
 //  - VRAM shift-register transfers and the time they steal: not in the cost model either.
 //  - The host's screen: the window is sized to the framebuffer, never less than 640 pixels
-//    wide so the status text fits; there is no zoom or pan beyond the integer --scale.
+//    wide so the status text fits; there is no zoom or pan beyond --scale (1/8 to 8).
 #include "controller_sim/display.h"
 
 #include <SDL.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -86,13 +87,17 @@ struct Display::Impl {
     SDL_Renderer* renderer = nullptr;
     SDL_Texture* image = nullptr;
     SDL_Texture* font = nullptr;
-    int scale = 1;
+    double scale = 1;                      // window pixels per framebuffer pixel: 1/8 to 8
     uint32_t fb_width = 0, fb_height = 0;  // of the texture
     int status_lines = 0;
     int win_width = 0, win_height = 0;
     std::vector<uint8_t> rgb;
 
     int text_scale() const { return win_width >= 960 ? 2 : 1; }
+    // n framebuffer pixels in window pixels (at least 1 for n > 0)
+    int scaled(uint32_t n) const {
+        return n == 0 ? 0 : std::max(1, static_cast<int>(std::lround(n * scale)));
+    }
     void make_font();
     void fit(uint32_t width, uint32_t height, int lines);
     void draw_image(const Framebuffer& fb, const Recorder* overlay);
@@ -126,10 +131,10 @@ void Display::Impl::fit(uint32_t width, uint32_t height, int lines) {
         fb_width = width;
         fb_height = height;
     }
-    const int image_w = static_cast<int>(width) * scale;
+    const int image_w = scaled(width);
     const int w = std::max(image_w, kMinWindowWidth);
     const int ts = w >= 960 ? 2 : 1;
-    const int h = static_cast<int>(height) * scale + lines * kCellHeight * ts + 2 * kPad;
+    const int h = scaled(height) + lines * kCellHeight * ts + 2 * kPad;
     if (w != win_width || h != win_height) {
         SDL_SetWindowSize(window, w, h);
         // centre the window when it is first shown, or when it grew off the screen
@@ -155,8 +160,7 @@ void Display::Impl::draw_image(const Framebuffer& fb, const Recorder* overlay) {
     if (fb.width() == 0 || fb.height() == 0) return;
     compose_image(fb, overlay, rgb);
     SDL_UpdateTexture(image, nullptr, rgb.data(), static_cast<int>(fb.width() * 3));
-    const SDL_Rect dst{0, 0, static_cast<int>(fb.width()) * scale,
-                       static_cast<int>(fb.height()) * scale};
+    const SDL_Rect dst{0, 0, scaled(fb.width()), scaled(fb.height())};
     SDL_RenderCopy(renderer, image, nullptr, &dst);
 }
 
@@ -177,7 +181,7 @@ void Display::Impl::draw_hud(const Hud& hud) {
     const int ts = text_scale();
     const int line_h = kCellHeight * ts;
     // status bar under the image
-    int y = static_cast<int>(fb_height) * scale + kPad;
+    int y = scaled(fb_height) + kPad;
     for (const std::string& line : hud.status) {
         draw_text(kPad, y, line, SDL_Color{230, 230, 230, 255});
         y += line_h;
@@ -202,8 +206,8 @@ void Display::Impl::draw_hud(const Hud& hud) {
     }
 }
 
-Display::Display(const std::string& title, int scale) : m(std::make_unique<Impl>()) {
-    m->scale = std::max(scale, 1);
+Display::Display(const std::string& title, double scale) : m(std::make_unique<Impl>()) {
+    m->scale = std::clamp(scale, 0.125, 8.0);
     const bool driver_asked = set_in_environment("SDL_VIDEODRIVER");
 #if defined(__unix__) && !defined(__APPLE__)
     // X11 or Wayland: without either there is no screen. Say so before SDL probes its
@@ -273,8 +277,8 @@ std::vector<uint8_t> Display::capture(const Framebuffer& fb, const Recorder* ove
                                       uint32_t& width, uint32_t& height) {
     m->fit(fb.width(), fb.height(), m->status_lines);
     m->draw_image(fb, overlay);
-    width = fb.width() * static_cast<uint32_t>(m->scale);
-    height = fb.height() * static_cast<uint32_t>(m->scale);
+    width = static_cast<uint32_t>(m->scaled(fb.width()));
+    height = static_cast<uint32_t>(m->scaled(fb.height()));
     std::vector<uint8_t> rgb(std::size_t{width} * height * 3);
     const SDL_Rect area{0, 0, static_cast<int>(width), static_cast<int>(height)};
     if (width > 0 && height > 0 &&
@@ -287,7 +291,8 @@ std::vector<uint8_t> Display::capture(const Framebuffer& fb, const Recorder* ove
 
 std::optional<std::pair<uint32_t, uint32_t>> Display::pixel_at(int x, int y) const {
     if (x < 0 || y < 0) return std::nullopt;
-    const auto px = static_cast<uint32_t>(x / m->scale), py = static_cast<uint32_t>(y / m->scale);
+    const auto px = static_cast<uint32_t>(x / m->scale),
+               py = static_cast<uint32_t>(y / m->scale);  // floor
     if (px >= m->fb_width || py >= m->fb_height) return std::nullopt;
     return std::pair{px, py};
 }

@@ -59,12 +59,13 @@ struct Hud {
 
 class Display {
   public:
-    // Opens a window; the framebuffer is drawn `scale` x `scale` pixels per pixel.
+    // Opens a window; the framebuffer is drawn `scale` window pixels per pixel, from 1/8 (a
+    // large frame on a small screen, every eighth pixel) to 8.
     // Throws DisplayUnavailable when SDL cannot open one: on X11/Wayland systems, when
     // neither DISPLAY nor WAYLAND_DISPLAY is set (before SDL probes anything, so SDL prints
     // nothing of its own), and when SDL would fall back to its offscreen or dummy driver
     // without SDL_VIDEODRIVER asking for it. An SDL_VIDEODRIVER that is set is obeyed.
-    Display(const std::string& title, int scale);
+    Display(const std::string& title, double scale);
     ~Display();
     Display(const Display&) = delete;
     Display& operator=(const Display&) = delete;

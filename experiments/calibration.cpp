@@ -43,6 +43,28 @@ Calibration calibrate_hybrid(const ExperimentSettings& s, const std::vector<doub
     return c;
 }
 
+Calibration calibrate_stably(const ExperimentSettings& s,
+                             const std::function<Calibration()>& calibrate, int max_sweeps) {
+    Calibration c = calibrate();
+    std::vector<double> choices{c.chosen};
+    while (!s.period && static_cast<int>(choices.size()) < max_sweeps &&
+           (choices.size() < 2 || choices[choices.size() - 1] != choices[choices.size() - 2])) {
+        c = calibrate();
+        choices.push_back(c.chosen);
+    }
+    c.choices = choices;
+    c.stable = s.period || (choices.size() >= 2 && choices.back() == choices[choices.size() - 2]);
+    if (!c.stable) {
+        std::map<double, int> votes;
+        for (double t : choices)
+            ++votes[t];
+        int most = 0;
+        for (double t : choices)  // in order: the later wins a tie
+            if (votes[t] >= most) most = votes[t], c.chosen = t;
+    }
+    return c;
+}
+
 Calibration calibrate_beam(const ExperimentSettings& s) {
     Calibration c;
     c.sweep = experiment_beam_threshold(s, beam_threshold_ramp());

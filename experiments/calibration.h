@@ -8,6 +8,7 @@
 // time decides. `fb89 calibrate` prints the result and saves the choice.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -22,7 +23,20 @@ struct Calibration {
     std::map<double, double> worst;  // threshold -> the worst scene's ratio to the reference
     double reference_ms = 0;         // the pure Z-buffer's (hybrid) or ray tracer's (beam) total
     double chosen = 0;
+    // Stability against noise (calibrate_stably): each sweep's choice in order, and whether
+    // the last two agreed.
+    std::vector<double> choices;
+    bool stable = true;
 };
+
+// Timing is noisy: a busy moment can make a sweep choose otherwise. calibrate_stably()
+// repeats `calibrate` until two sweeps in a row choose the same threshold, at most
+// `max_sweeps` times; the last sweep's table and totals are kept, `choices` lists every
+// sweep's choice, and when no two in a row agreed, `chosen` is the threshold chosen most
+// often (the later on a tie) and `stable` is false. A 1989 host's counts are exact: one sweep
+// is enough there (settings.period set).
+Calibration calibrate_stably(const ExperimentSettings& settings,
+                             const std::function<Calibration()>& calibrate, int max_sweeps = 4);
 
 // The hybrid at 0, the paper's 0.04 and `thresholds`; `tolerance` as above.
 Calibration calibrate_hybrid(const ExperimentSettings& settings,

@@ -35,14 +35,28 @@ controller::Framebuffer ids_of(const host::Scene& scene, const host::MethodOptio
     return id_framebuffer(scene, *renderer);
 }
 
-uint64_t pixels_differing(const controller::Framebuffer& a, const controller::Framebuffer& b) {
+}  // namespace
+
+// Pixels whose face ids differ, split as the tests split them: coverage (one frame has a face
+// there, the other the background) apart from the other face (both covered, by different
+// faces: a shared edge or a depth tie decided the other way).
+IdDifferences id_differences(const controller::Framebuffer& a, const controller::Framebuffer& b) {
     const auto pa = a.pixels(), pb = b.pixels();
-    if (pa.size() != pb.size()) return std::max(pa.size(), pb.size()) / 3;
-    uint64_t n = 0;
-    for (size_t i = 0; i + 2 < pa.size(); i += 3)
-        n += pa[i] != pb[i] || pa[i + 1] != pb[i + 1] || pa[i + 2] != pb[i + 2];
-    return n;
+    IdDifferences d;
+    if (pa.size() != pb.size()) {
+        d.coverage = std::max(pa.size(), pb.size()) / 3;
+        return d;
+    }
+    for (size_t i = 0; i + 2 < pa.size(); i += 3) {
+        if (pa[i] == pb[i] && pa[i + 1] == pb[i + 1] && pa[i + 2] == pb[i + 2]) continue;
+        const bool covered_a = pa[i] || pa[i + 1] || pa[i + 2];  // id + 1; 0 = background
+        const bool covered_b = pb[i] || pb[i + 1] || pb[i + 2];
+        ++(covered_a && covered_b ? d.other_face : d.coverage);
+    }
+    return d;
 }
+
+namespace {
 
 // `frame` scaled to the thumbnail by point sampling, its top-left corner at (x0, y0).
 void draw_thumbnail(controller::Framebuffer& sheet, const controller::Framebuffer& frame,
@@ -65,7 +79,7 @@ std::vector<std::string> caption(const CompareRow& row) {
                         row.host_bound ? "host" : "controller"),
             fmt::format("{} commands: {} fills, {} spans", row.controller.commands,
                         row.controller.fills, row.controller.spans),
-            fmt::format("{} px differ from zbuffer", row.pixels_differing)};
+            fmt::format("{} px differ from zbuffer", row.ids.total())};
 }
 
 controller::Framebuffer draw_sheet(const Comparison& c) {
@@ -121,7 +135,7 @@ Comparison compare_methods(const std::string& file,
         row.controller = run.controller;
         row.frame_ms = run.split.frame_ms;
         row.host_bound = run.split.host_bounds;
-        row.pixels_differing = pixels_differing(truth, ids_of(r.scene, run.options));
+        row.ids = id_differences(truth, ids_of(r.scene, run.options));
         c.rows.push_back(row);
         c.frames.push_back(frame_of(run.commands));
     }
@@ -131,13 +145,15 @@ Comparison compare_methods(const std::string& file,
 
 Table comparison_table(const Comparison& c) {
     Table table({"scene", "method", "host", "host_ms", "commands", "fills", "spans",
-                 "controller_ms", "frame_ms", "bound_by", "pixels_differing"});
+                 "controller_ms", "frame_ms", "bound_by", "pixels_differing", "px_coverage",
+                 "px_other_face"});
     for (const CompareRow& r : c.rows)
         table.add({c.scene, r.method, c.host, fixed(r.host_ms, 3),
                    std::to_string(r.controller.commands), std::to_string(r.controller.fills),
                    std::to_string(r.controller.spans), fixed(r.controller.frame_ms, 3),
                    fixed(r.frame_ms, 3), r.host_bound ? "host" : "controller",
-                   std::to_string(r.pixels_differing)});
+                   std::to_string(r.ids.total()), std::to_string(r.ids.coverage),
+                   std::to_string(r.ids.other_face)});
     return table;
 }
 

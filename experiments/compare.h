@@ -17,6 +17,14 @@
 
 namespace fb89::experiments {
 
+// Face ids that differ from the Z-buffer's, pixel by pixel.
+struct IdDifferences {
+    uint64_t coverage = 0;    // one frame has a face there, the other the background
+    uint64_t other_face = 0;  // both have a face there, different ones
+    uint64_t total() const { return coverage + other_face; }
+};
+IdDifferences id_differences(const controller::Framebuffer& a, const controller::Framebuffer& b);
+
 // One method's figures. The host's time per frame is set-up (projection and the method's
 // own) plus hidden-surface, as in the split; the controller's is its modelled frame time;
 // the two-stage pipeline's frame time is the larger of them.
@@ -25,8 +33,8 @@ struct CompareRow {
     double host_ms = 0;
     ControllerFigures controller;  // commands, fills, spans; frame_ms is the controller's time
     double frame_ms = 0;
-    bool host_bound = false;        // the host's time bounds the frame, not the controller's
-    uint64_t pixels_differing = 0;  // face ids that differ from the Z-buffer's
+    bool host_bound = false;  // the host's time bounds the frame, not the controller's
+    IdDifferences ids;        // face ids that differ from the Z-buffer's
 };
 
 struct Comparison {
@@ -46,7 +54,7 @@ Comparison compare_methods(const std::string& file,
                            const ExperimentSettings& s);
 
 // The rows as a table: scene, method, host, host_ms, commands, fills, spans, controller_ms,
-// frame_ms, bound_by, pixels_differing.
+// frame_ms, bound_by, pixels_differing (px_coverage + px_other_face).
 Table comparison_table(const Comparison& c);
 
 // Where things go on the contact sheet: a title band, then `columns` x `rows` tiles, each

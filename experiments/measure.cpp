@@ -1,6 +1,7 @@
 #include "experiments/measure.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -54,21 +55,36 @@ std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
 
 std::vector<GuestOutcome> run_on_period_host(const std::string& file,
                                              const std::vector<host::MethodOptions>& settings,
-                                             ImageSize size, PeriodRuns& period, bool progress) {
+                                             ImageSize size, PeriodRuns& period, bool progress,
+                                             const std::string& label) {
     const std::string wh = size.width > 0 ? fmt::format("{}x{}", size.width, size.height) : "";
     std::vector<GuestJob> jobs;
     for (const host::MethodOptions& o : settings)
         jobs.push_back({file, guest_options(o, wh)});
-    period.set_progress(progress, file);
+    period.set_progress(progress, label.empty() ? file : label);
     return period.run_outcomes(jobs);
 }
+
+namespace {
+
+// "A.json (scene 3 of 14)": the scene's file name and, among several, where it stands.
+std::string progress_label(const ExperimentSettings& s, const std::string& file) {
+    std::string label = std::filesystem::path(file).filename().string();
+    const auto at = std::find(s.scenes.begin(), s.scenes.end(), file);
+    if (s.scenes.size() > 1 && at != s.scenes.end())
+        label += fmt::format(" (scene {} of {})", at - s.scenes.begin() + 1, s.scenes.size());
+    return label;
+}
+
+}  // namespace
 
 std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
                                        const std::vector<host::MethodOptions>& settings,
                                        const ExperimentSettings& s) {
+    const std::string label = progress_label(s, file);
     if (!s.period) {
         std::vector<Measured> out =
-            measure_interleaved(screen, settings, s.repeat, file, s.progress);
+            measure_interleaved(screen, settings, s.repeat, label, s.progress);
         // the set-up stage is the projection (timed once here) and the method's own
         if (screen.world) {
             host::Counters counters;
@@ -81,9 +97,9 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
         return out;
     }
     // commands and counts from one frame here, untimed
-    std::vector<Measured> out = measure_interleaved(screen, settings, 0, file, false);
+    std::vector<Measured> out = measure_interleaved(screen, settings, 0, label, false);
     const std::vector<GuestOutcome> runs =
-        run_on_period_host(file, settings, s.size, *s.period, s.progress);
+        run_on_period_host(file, settings, s.size, *s.period, s.progress, label);
     for (size_t m = 0; m < settings.size(); ++m) {
         const auto& phases = runs[m].cost.phases;
         const double ms = phases[static_cast<int>(period::Phase::HiddenSurface)].ms;

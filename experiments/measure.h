@@ -63,10 +63,12 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
                                        const ExperimentSettings& s);
 
 // Each setting of `file` (at `size`, 0 x 0 for the scene's own) emulated once on the 1989
-// host and priced, with progress shown as "FILE: i/n emulated runs".
+// host and priced, with progress shown as "LABEL: i/n emulated runs" (LABEL: `label`, else
+// the file).
 std::vector<GuestOutcome> run_on_period_host(const std::string& file,
                                              const std::vector<host::MethodOptions>& settings,
-                                             ImageSize size, PeriodRuns& period, bool progress);
+                                             ImageSize size, PeriodRuns& period, bool progress,
+                                             const std::string& label = {});
 
 // Every method, each with its default options.
 std::vector<host::MethodOptions> every_method();

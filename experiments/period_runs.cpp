@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,8 +14,10 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "experiments/progress.h"
+#include "host/scene/scene_loader.h"
 #include "protocol/output_file.h"
 
 namespace fb89::experiments {
@@ -67,6 +70,47 @@ std::string number(double v) {
     return std::isinf(v) ? "inf" : fmt::format("{}", v);
 }
 
+// `salt` (the guest's fingerprint, or the instruction set), the scene file's bytes and name,
+// and the options, hashed.
+uint64_t job_hash(std::string_view salt, const GuestJob& job) {
+    uint64_t h = fnv1a(salt);
+    h = fnv1a(slurp(job.scene), h);
+    h = fnv1a(fs::path(job.scene).filename().string(), h);
+    for (const std::string& o : job.options)
+        h = fnv1a(o + '\0', h);
+    return h;
+}
+
+// A job's work, whatever guest ran it: the scene, its options and the instruction set, hashed.
+// The results folder keeps, beside each run's counts, `work-KEY.json` with its instructions
+// and emulation time, so emitting the same job again (after the guest changed, say) can say
+// how much work it is.
+std::string work_key(const std::string& isa, const GuestJob& job) {
+    return fmt::format("work-{:016x}.json", job_hash(isa, job));
+}
+
+void write_work(const std::string& results, const std::string& isa, const GuestJob& job,
+                const period::GuestRun& run) {
+    const uint64_t instructions =
+        period::parse_guest_counts(run.counts_json, job.scene).instructions;
+    const nlohmann::json work = {{"instructions", instructions}, {"seconds", run.wall_s}};
+    write_whole(fs::path(results) / work_key(isa, job), work.dump() + "\n", protocol::Publish::Now);
+}
+
+// The value of `option` among a job's options, or "".
+std::string option_of(const GuestJob& job, std::string_view option) {
+    for (size_t i = 0; i + 1 < job.options.size(); ++i)
+        if (job.options[i] == option) return job.options[i + 1];
+    return "";
+}
+
+// "A.json zbuffer" or "G.json beam 512x390": a job as a person names it.
+std::string job_name(const GuestJob& job) {
+    std::string name = fs::path(job.scene).filename().string() + " " + option_of(job, "--method");
+    if (const std::string size = option_of(job, "--size"); !size.empty()) name += " " + size;
+    return name;
+}
+
 }  // namespace
 
 std::vector<std::string> guest_options(const host::MethodOptions& o, const std::string& size) {
@@ -85,12 +129,7 @@ std::vector<std::string> guest_options(const host::MethodOptions& o, const std::
 }
 
 std::string job_key(const std::string& guest_fingerprint, const GuestJob& job) {
-    uint64_t h = fnv1a(guest_fingerprint);
-    h = fnv1a(slurp(job.scene), h);
-    h = fnv1a(fs::path(job.scene).filename().string(), h);
-    for (const std::string& o : job.options)
-        h = fnv1a(o + '\0', h);
-    return fmt::format("{:016x}", h);
+    return fmt::format("{:016x}", job_hash(guest_fingerprint, job));
 }
 
 PeriodRuns::PeriodRuns(const std::string& host, int jobs, std::string results_dir,
@@ -112,6 +151,7 @@ std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key, G
     const fs::path cached = m_results.empty() ? fs::path() : fs::path(m_results) / (key + ".json");
     if (!m_results.empty() && fs::exists(cached)) return slurp(cached.string());
     if (!m_emit.empty()) {
+        estimate(job);
         std::string line = shell_quoted(m_fb89) + " host-run " + shell_quoted(job.scene) +
                            " --isa " + m_profile.isa + " --results " + shell_quoted(m_results) +
                            " --";
@@ -125,7 +165,10 @@ std::string PeriodRuns::counts_of(const GuestJob& job, const std::string& key, G
         return "";
     }
     period::GuestRun run = period::run_guest(m_parts, job.scene, job.options);
-    if (!m_results.empty()) write_whole(cached, run.counts_json, protocol::Publish::Now);
+    if (!m_results.empty()) {
+        write_whole(cached, run.counts_json, protocol::Publish::Now);
+        write_work(m_results, m_profile.isa, job, run);
+    }
     out.emulated = true;
     out.emulated_seconds = run.wall_s;
     out.stream = std::move(run.stream);
@@ -141,7 +184,55 @@ std::vector<period::HostCost> PeriodRuns::run(const std::vector<GuestJob>& jobs)
     return costs;
 }
 
+void PeriodRuns::estimate(const GuestJob& job) {
+    const fs::path work = fs::path(m_results) / work_key(m_profile.isa, job);
+    std::lock_guard lock(m_mutex);
+    std::error_code ec;
+    if (fs::exists(work, ec)) {
+        try {
+            const nlohmann::json j = nlohmann::json::parse(slurp(work.string()));
+            const auto instructions = j.at("instructions").get<uint64_t>();
+            const auto seconds = j.at("seconds").get<double>();
+            m_work.instructions += instructions;
+            m_work.seconds += seconds;
+            m_work.known += 1;
+            return;
+        } catch (const std::exception&) {  // unreadable: counted as unknown
+        }
+    }
+    m_work.unknown += 1;
+    m_work.unknown_names.push_back(job_name(job));
+    try {  // the scene's size: its faces and the image's pixels
+        const host::Scene scene = host::load_scene(job.scene);
+        uint64_t width = static_cast<uint64_t>(scene.width),
+                 height = static_cast<uint64_t>(scene.height);
+        if (const std::string size = option_of(job, "--size"); !size.empty())
+            std::sscanf(size.c_str(), "%lux%lu", &width, &height);
+        m_work.unknown_faces += scene.face_count;
+        m_work.unknown_pixels += width * height;
+    } catch (const std::exception&) {  // the run will say what is wrong with it
+    }
+}
+
+// Before a join runs anything itself: which of the jobs the results folder lacks.
+void PeriodRuns::announce_missing(const std::vector<GuestJob>& jobs) {
+    if (m_results.empty() || !m_emit.empty()) return;
+    std::vector<std::string> missing;
+    for (const GuestJob& job : jobs) {
+        std::error_code ec;
+        const fs::path cached = fs::path(m_results) / (job_key(m_guest_fingerprint, job) + ".json");
+        if (!fs::exists(cached, ec)) missing.push_back(job_name(job));
+    }
+    if (missing.empty() || missing.size() == jobs.size()) return;  // all found, or none: no join
+    std::string names;
+    for (const std::string& n : missing)
+        names += (names.empty() ? "" : ", ") + n;
+    std::cerr << fmt::format("fb89: {} of {} runs are not in {}; running them here: {}\n",
+                             missing.size(), jobs.size(), m_results, names);
+}
+
 std::vector<GuestOutcome> PeriodRuns::run_outcomes(const std::vector<GuestJob>& jobs) {
+    announce_missing(jobs);
     std::vector<GuestOutcome> out(jobs.size());
     std::vector<std::string> errors(jobs.size());
     std::atomic<size_t> next{0};
@@ -197,6 +288,7 @@ void run_one_job(const GuestJob& job, const std::string& isa, const std::string&
     const period::GuestRun run = period::run_guest(parts, job.scene, job.options);
     fs::create_directories(results_dir);
     write_whole(fs::path(results_dir) / (key + ".json"), run.counts_json, protocol::Publish::Now);
+    write_work(results_dir, isa, job, run);
 }
 
 }  // namespace fb89::experiments

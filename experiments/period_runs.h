@@ -57,14 +57,26 @@ class PeriodRuns {
         m_label = std::move(label);
     }
 
+    // What the emitted jobs amount to: those a results folder saw run before (by any guest of
+    // this instruction set), with their instructions and emulation time, and the others.
+    struct EmittedWork {
+        uint64_t known = 0, instructions = 0;
+        double seconds = 0;
+        uint64_t unknown = 0, unknown_faces = 0, unknown_pixels = 0;  // faces and pixels summed
+        std::vector<std::string> unknown_names;                       // "A.json zbuffer"
+    };
+
     const period::HostProfile& profile() const { return m_profile; }
     uint64_t emitted() const { return m_emitted; }
+    const EmittedWork& emitted_work() const { return m_work; }
     uint64_t emulated() const { return m_emulated; }
 
   private:
     std::string key(const GuestJob& job);
     // The job's counts (from the results folder, or emulated into `out`); "" when emitted.
     std::string counts_of(const GuestJob& job, const std::string& key, GuestOutcome& out);
+    void estimate(const GuestJob& job);                        // adds an emitted job to m_work
+    void announce_missing(const std::vector<GuestJob>& jobs);  // a join's own runs, on stderr
 
     period::HostProfile m_profile;
     int m_jobs = 1;
@@ -74,6 +86,7 @@ class PeriodRuns {
     std::string m_guest_fingerprint;
     std::mutex m_mutex;
     uint64_t m_emitted = 0, m_emulated = 0;
+    EmittedWork m_work;
     bool m_progress = false;
     std::string m_label;
 };

@@ -1,5 +1,9 @@
 #include "experiments/progress.h"
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <cstdlib>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -8,7 +12,39 @@ namespace fb89::experiments {
 
 namespace {
 constexpr uint64_t kEveryUnitUpTo = 1000;
+
+std::size_t code_points(std::string_view text) {
+    std::size_t n = 0;
+    for (const char c : text)
+        n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    return n;
+}
+
 }  // namespace
+
+std::string fit_to_width(const std::string& text, std::size_t columns) {
+    const std::size_t room = columns > 1 ? columns - 1 : 1;
+    if (code_points(text) <= room) return text;
+    const std::string mark = "...";
+    if (room <= mark.size()) return mark.substr(0, room);
+    // keep the last (room - 3) code points
+    std::size_t keep = room - mark.size(), start = text.size();
+    while (start > 0 && keep > 0) {
+        --start;
+        if ((static_cast<unsigned char>(text[start]) & 0xC0) != 0x80) --keep;
+    }
+    return mark + text.substr(start);
+}
+
+std::size_t terminal_columns() {
+    winsize size{};
+    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+    if (const char* columns = std::getenv("COLUMNS")) {
+        const long n = std::strtol(columns, nullptr, 10);
+        if (n > 0 && n < 100000) return static_cast<std::size_t>(n);
+    }
+    return 80;
+}
 
 void ProgressLine::start(std::string what) {
     m_what = std::move(what);
@@ -41,11 +77,13 @@ void ProgressLine::step(uint64_t done, uint64_t total, std::string_view unit) {
     show(text);
 }
 
-void ProgressLine::show(const std::string& text) {
+void ProgressLine::show(const std::string& full) {
+    const std::string text = fit_to_width(full, terminal_columns());
+    const std::size_t width = code_points(text);
     std::lock_guard lock(m_out);
-    const std::size_t pad = m_width > text.size() ? m_width - text.size() : 0;
+    const std::size_t pad = m_width > width ? m_width - width : 0;
     std::cerr << '\r' << text << std::string(pad, ' ') << std::flush;
-    m_width = text.size();
+    m_width = width;
 }
 
 void ProgressLine::clear() {

@@ -13,6 +13,14 @@
 
 namespace fb89::experiments {
 
+// `text` cut to fit `columns` terminal columns less one (so the cursor never wraps), counted in
+// UTF-8 code points: what is cut is the start of the text, marked by "...", since its end says
+// how far the work has got.
+std::string fit_to_width(const std::string& text, std::size_t columns);
+
+// The width of the terminal on stderr; else $COLUMNS; else 80.
+std::size_t terminal_columns();
+
 class ProgressLine {
   public:
     explicit ProgressLine(bool on) : m_on(on) {}
@@ -56,7 +64,7 @@ class ProgressLine {
     std::string m_what;
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point m_last_shown{};
-    std::size_t m_width = 0;  // of the text on the line now
+    std::size_t m_width = 0;  // of the text on the line now, in code points
     std::mutex m_out;
 };
 

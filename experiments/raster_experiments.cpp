@@ -106,8 +106,8 @@ host::ScreenScene ideal_screen(int e_s, int layers, uint64_t f_v) {
 // Eq. 2.4 against the counts. For A-F, as in the paper: E_s = sqrt(W H), D the measured
 // depth complexity, F_v = F / D. For ideal scenes the model is exact.
 Table experiment_fig2_4(const ExperimentSettings& s) {
-    Table table({"scene", "e_s", "faces", "depth_complexity", "f_v", "predicted", "measured_area",
-                 "measured_centres", "area_over_predicted", "sort_computations",
+    Table table({"scene", "e_s", "faces_on_screen", "depth_complexity", "f_v", "predicted",
+                 "measured_area", "measured_centres", "area_over_predicted", "sort_computations",
                  "predicted_sort_computations"});
     // the scenes given, then 3 depths x 7 F_v of ideal scenes (F_v = 4, 16, ..., 16384)
     const std::array<int, 3> all_layers = {1, 2, 4};

@@ -2,6 +2,7 @@
 // charts (scripts/plot_figures.py reads the CSV by column name).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,10 @@ class Table {
     std::string text() const;
     const std::vector<std::string>& columns() const { return m_columns; }
     const std::vector<std::vector<std::string>>& rows() const { return m_rows; }
+    // Rewrites every value of `column` (if the table has one) through `f`: how a command
+    // shows, say, scene files.
+    void map_column(const std::string& column,
+                    const std::function<std::string(const std::string&)>& f);
 
   private:
     std::vector<std::string> m_columns;

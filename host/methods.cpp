@@ -18,9 +18,11 @@ constexpr std::array<MethodInfo, 6> kMethods{{
     {Method::Hybrid, "hybrid",
      "Warnock/Z-buffer hybrid (§3): Expr. 3.1 hands windows to the Z-buffer",
      kWindowOptions | kHybridOptions},
-    {Method::RayTrace, "raytrace", "ray tracer: one ray per pixel through a two-level grid",
-     kTraceOptions},
-    {Method::Beam, "beam", "beam-ray hybrid (§4): beams fill windows, Expr. 2.7 hands to rays",
+    {Method::RayTrace, "raytrace",
+     "ray tracer: one ray per pixel, the nearest face found through a BVH", kTraceOptions},
+    {Method::Beam, "beam",
+     "beam-ray hybrid (§4): beams query a uniform grid and fill windows, Expr. 2.7 hands to rays "
+     "(BVH)",
      kTraceOptions | kBeamOptions},
 }};
 

@@ -97,8 +97,17 @@ std::string HostStats::summary() const {
         out += fmt::format("  * median of {} repeats; end to end uses it\n",
                            hidden_surface_samples.size());
     out += "host counted operations:\n";
-    for (const auto& [name, value] : counters.items())
-        out += fmt::format("  {:<24} {:>14}\n", name, value);
+    out += counters.lines();
+    return out;
+}
+
+std::string Counters::lines() const {
+    size_t width = 24;
+    for (const auto& [name, value] : m_items)
+        width = std::max(width, name.size());
+    std::string out;
+    for (const auto& [name, value] : m_items)
+        out += fmt::format("  {:<{}} {:>14}\n", name, width, value);
     return out;
 }
 

@@ -45,6 +45,9 @@ class Counters {
     void set(std::string_view name, uint64_t value);
     uint64_t get(std::string_view name) const;  // 0 when never counted
     const std::vector<std::pair<std::string, uint64_t>>& items() const { return m_items; }
+    // One "  name   value" line each, the names padded to the longest (24 at least) so the
+    // values line up whatever the names.
+    std::string lines() const;
 
   private:
     std::vector<std::pair<std::string, uint64_t>> m_items;

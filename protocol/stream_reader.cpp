@@ -376,8 +376,8 @@ void StreamReader::read_index(uint64_t at) {
     if (!footer) fail_index("footer", index_end, "magic \"FBIX\" missing");
     if (footer->index_offset != at || footer->command_count != m_next_command) {
         fail_index("footer", index_end,
-                   fmt::format("says index at byte {} after {} commands; it is at byte {} "
-                               "after {}",
+                   fmt::format("says the index is at byte {} after {} commands; it is at "
+                               "byte {} after {} commands",
                                footer->index_offset, footer->command_count, at, m_next_command));
     }
     if (auto problem = check_index(index, m_header_size, *footer)) {

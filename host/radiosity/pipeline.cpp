@@ -88,7 +88,8 @@ void solve_mesh(const RadiosityOptions& o, const RadiosityWorld& world, Radiosit
                        ? solve_progressive(run.mesh, F, o.tolerance, shots)
                        : solve_gauss_seidel(run.mesh, F, o.tolerance, o.max_iterations);
     run.times.solving += clock.elapsed();
-    run.max_row_sum = max_row_sum(F, run.mesh.patches.size());
+    run.rows = row_sums(F, run.mesh.patches.size());
+    run.max_row_sum = run.rows.largest;
 }
 
 // Refine where radiosity changes fast and solve again, pass by pass, until nothing is split

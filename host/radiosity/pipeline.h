@@ -67,6 +67,7 @@ struct RadiosityResult {
     VisibilityCounts counts;                 // summed over passes
     RadiositySolution solution;
     double max_row_sum = 0;  // of F; above 1 the point form over-estimates
+    RowSums rows;            // of F: the largest, its patch, how many exceed 1
     double exposure = 0;
     RadiosityTimes times;
     std::vector<std::string> notes;  // what a user should hear (refinement cut short)

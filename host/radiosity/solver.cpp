@@ -39,15 +39,23 @@ constexpr double kDiverged = 1e12;
 
 }  // namespace
 
-double max_row_sum(const std::vector<double>& F, size_t n) {
-    double best = 0;
+RowSums row_sums(const std::vector<double>& F, size_t n) {
+    RowSums out;
     for (size_t i = 0; i < n; ++i) {
         double sum = 0;
         for (size_t j = 0; j < n; ++j)
             sum += F[i * n + j];
-        best = std::max(best, sum);
+        if (sum > out.largest) {
+            out.largest = sum;
+            out.largest_patch = i;
+        }
+        out.above_one += sum > 1 + 1e-9;
     }
-    return best;
+    return out;
+}
+
+double max_row_sum(const std::vector<double>& F, size_t n) {
+    return row_sums(F, n).largest;
 }
 
 double radiosity_residual(const Mesh& mesh, const std::vector<double>& F,

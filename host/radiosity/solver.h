@@ -49,4 +49,13 @@ double radiosity_residual(const Mesh& mesh, const std::vector<double>& F,
 // (the centre form does, for close patches) and the iteration may diverge.
 double max_row_sum(const std::vector<double>& F, size_t n);
 
+// The rows of F: patch i's row sums the shares of what it sends that reach each other patch,
+// at most 1 in a closed room (less where the room is open). An estimate can exceed it.
+struct RowSums {
+    double largest = 0;
+    size_t largest_patch = 0;
+    size_t above_one = 0;  // rows summing to more than 1 + 1e-9
+};
+RowSums row_sums(const std::vector<double>& F, size_t n);
+
 }  // namespace fb89::host

@@ -159,7 +159,7 @@ GeneratedPolygons parts_from_json(const JsonFields& o, const Scene& scene) {
         std::optional<glm::dvec3> color;
         if (part.has("material")) {
             JsonFields m = part.child("material");
-            m.only_keys({"color"});
+            m.only_keys("part material");
             color = m.color("color");
         }
         for (GeneratedPolygon& g : generate_from_json(part, scene)) {
@@ -336,14 +336,13 @@ GeneratedPolygons generate_random_triangles(int width, int height, int count, do
 GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
     std::string kind = o.string("generator");
     if (kind == "box") {
-        o.only_keys({"generator", "min", "max", "material", "transform"});
+        o.only_keys("generator " + kind);
         glm::dvec3 lo = o.vec3("min"), hi = o.vec3("max");
         if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) o.fail("max", "every coordinate > min");
         return generate_box(lo, hi);
     }
     if (kind == "quad") {
-        o.only_keys({"generator", "origin", "u", "v", "divisions", "triangles", "checker",
-                     "material", "transform"});
+        o.only_keys("generator " + kind);
         int nu = 1, nv = 1;
         if (o.has("divisions")) {
             JsonFields d = o.child("divisions");
@@ -356,8 +355,7 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
             nu = d.node()[0].get<int>();
             nv = d.node()[1].get<int>();
         }
-        bool triangles = o.has("triangles") && o.node().at("triangles").is_boolean() &&
-                         o.node().at("triangles").get<bool>();
+        const bool triangles = boolean_or(o, "triangles", false);
         GeneratedPolygons quad =
             generate_quad(o.vec3("origin"), o.vec3("u"), o.vec3("v"), nu, nv, triangles);
         if (o.has("checker")) {  // two colours alternating cell by cell
@@ -374,11 +372,11 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
         return quad;
     }
     if (kind == "ideal") {
-        o.only_keys({"generator", "layers", "faces_per_layer", "cell", "gap", "material"});
+        o.only_keys("generator " + kind);
         return ideal_from_json(o, scene);
     }
     if (kind == "random_triangles") {
-        o.only_keys({"generator", "count", "area", "seed", "material"});
+        o.only_keys("generator " + kind);
         if (scene.projection != Projection::Screen)
             throw SceneError(o.where("generator") +
                              ": random triangles are built in screen space; set "
@@ -389,12 +387,11 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
             static_cast<uint64_t>(o.integer_or("seed", 1, 0, 1 << 30)));
     }
     if (kind == "lathe") {
-        o.only_keys({"generator", "profile", "segments", "caps", "material", "transform"});
+        o.only_keys("generator " + kind);
         return lathe_from_json(o);
     }
     if (kind == "sphere") {
-        o.only_keys(
-            {"generator", "center", "radius", "segments", "rings", "material", "transform"});
+        o.only_keys("generator " + kind);
         glm::dvec3 center = o.vec3_or("center", glm::dvec3(0));
         double radius = o.number_in("radius", 1e-12, 1e12);
         int segments = o.integer_or("segments", 16, 3, 4096);
@@ -404,22 +401,19 @@ GeneratedPolygons generate_from_json(const JsonFields& o, const Scene& scene) {
         return generate_sphere(center, radius, segments, rings);
     }
     if (kind == "array") {
-        o.only_keys({"generator", "count", "step", "colors", "parts", "material", "transform"});
+        o.only_keys("generator " + kind);
         return array_from_json(o, scene);
     }
     if (kind == "scatter") {
-        o.only_keys({"generator", "count", "seed", "min", "max", "min_distance", "scale",
-                     "random_yaw", "color_jitter", "parts", "material", "transform"});
+        o.only_keys("generator " + kind);
         return scatter_from_json(o, scene);
     }
     if (kind == "shell") {
-        o.only_keys({"generator", "turns", "segments_per_turn", "sides", "growth", "size", "tube",
-                     "translation", "aspect", "material", "transform"});
+        o.only_keys("generator " + kind);
         return shell_from_json(o);
     }
     if (kind == "terrain") {
-        o.only_keys(
-            {"generator", "cells", "size", "height", "octaves", "seed", "material", "transform"});
+        o.only_keys("generator " + kind);
         return terrain_from_json(o);
     }
     o.fail("generator",

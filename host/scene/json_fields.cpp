@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "host/scene/scene_error.h"
+#include "host/scene/scene_keys.h"
 
 namespace fb89::host {
 
@@ -109,15 +110,16 @@ glm::dvec3 JsonFields::color(const char* key) const {
     return c;
 }
 
-void JsonFields::only_keys(std::initializer_list<const char*> allowed) const {
+void JsonFields::only_keys(std::string_view section) const {
     if (!m_node.is_object()) fail(nullptr, "an object");
+    const std::vector<std::string_view>& allowed = scene_keys(section);
     for (const auto& item : m_node.items()) {
         bool known = false;
-        for (const char* k : allowed)
+        for (std::string_view k : allowed)
             known = known || item.key() == k;
         if (!known) {
             std::string list;
-            for (const char* k : allowed)
+            for (std::string_view k : allowed)
                 list += (list.empty() ? "" : ", ") + std::string(k);
             throw SceneError(fmt::format("{}: unknown field '{}' (expected one of: {})", where(),
                                          item.key(), list));

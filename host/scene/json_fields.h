@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
@@ -34,8 +35,9 @@ class JsonFields {
     glm::dvec3 color(const char* key) const;  // 3 numbers in [0, 1]
     glm::dvec3 vec3_of_node() const;          // this node itself as [x, y, z]
 
-    // Rejects keys not in the list, so a misspelt field is an error, not silently ignored.
-    void only_keys(std::initializer_list<const char*> allowed) const;
+    // Rejects keys not among the section's (scene_keys.h), so a misspelt field is an error,
+    // not silently ignored.
+    void only_keys(std::string_view section) const;
 
   private:
     const nlohmann::json& m_node;

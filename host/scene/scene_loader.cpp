@@ -54,13 +54,13 @@ void read_camera(const JsonFields& root, Scene& scene) {
     if (cam.has("projection")) {
         std::string p = cam.string("projection");
         if (p == "screen") {
-            cam.only_keys({"projection"});
+            cam.only_keys("camera screen");
             scene.projection = Projection::Screen;
             return;
         }
         if (p != "perspective") cam.fail("projection", "\"perspective\" or \"screen\"");
     }
-    cam.only_keys({"projection", "eye", "look_at", "up", "fovy", "near", "far"});
+    cam.only_keys("camera");
     Camera& c = scene.camera;
     c.eye = cam.vec3("eye");
     c.look_at = cam.vec3("look_at");
@@ -76,18 +76,18 @@ void read_camera(const JsonFields& root, Scene& scene) {
 }
 
 void read_globals(const JsonFields& root, Scene& scene) {
-    root.only_keys({"camera", "image", "background", "light", "objects", "name", "description"});
+    root.only_keys("scene");
     read_camera(root, scene);
     if (root.has("image")) {
         JsonFields image = root.child("image");
-        image.only_keys({"width", "height"});
+        image.only_keys("image");
         scene.width = image.integer_or("width", 1024, 1, 16384);
         scene.height = image.integer_or("height", 780, 1, 16384);
     }
     if (root.has("background")) scene.background = root.color("background");
     if (root.has("light")) {
         JsonFields light = root.child("light");
-        light.only_keys({"direction", "ambient"});
+        light.only_keys("light");
         scene.light.direction = light.vec3_or("direction", scene.light.direction);
         if (glm::length(scene.light.direction) == 0) light.fail("direction", "a non-zero vector");
         scene.light.direction = glm::normalize(scene.light.direction);
@@ -99,7 +99,7 @@ Material read_material(const JsonFields& o, std::vector<size_t>& mirror_faces) {
     Material m;
     if (!o.has("material")) return m;
     JsonFields mat = o.child("material");
-    mat.only_keys({"color", "mirror", "emission", "mirror_faces"});
+    mat.only_keys("material");
     if (mat.has("color")) m.color = mat.color("color");
     m.mirror = mat.number_or("mirror", 0, 0, 1);
     if (mat.has("emission")) {
@@ -122,7 +122,7 @@ glm::dmat4 read_transform(const JsonFields& o) {
     glm::dmat4 t(1.0);
     if (!o.has("transform")) return t;
     JsonFields tr = o.child("transform");
-    tr.only_keys({"scale", "rotate", "translate"});
+    tr.only_keys("transform");
     glm::dvec3 scale(1.0);
     if (tr.has("scale")) {
         scale =
@@ -132,7 +132,7 @@ glm::dmat4 read_transform(const JsonFields& o) {
     glm::dmat4 rotation(1.0);
     if (tr.has("rotate")) {
         JsonFields rot = tr.child("rotate");
-        rot.only_keys({"axis", "degrees"});
+        rot.only_keys("rotate");
         glm::dvec3 axis = rot.vec3("axis");
         if (glm::length(axis) == 0) rot.fail("axis", "a non-zero vector");
         rotation =
@@ -147,7 +147,7 @@ glm::dmat4 read_transform(const JsonFields& o) {
 GeneratedPolygons read_geometry(const JsonFields& o, Scene& scene,
                                 const std::filesystem::path& base_dir) {
     if (o.has("polygon") || o.has("polygons")) {
-        o.only_keys({"polygon", "polygons", "material", "transform"});
+        o.only_keys("object polygons");
         GeneratedPolygons out;
         auto read_one = [&](const JsonFields& poly) {
             GeneratedPolygon g;
@@ -165,11 +165,15 @@ GeneratedPolygons read_geometry(const JsonFields& o, Scene& scene,
         return out;
     }
     if (o.has("obj")) {
-        o.only_keys({"obj", "material", "transform"});
+        o.only_keys("object obj");
         try {
             return load_obj(base_dir / o.string("obj"), &scene.notes);
         } catch (const SceneError& e) {
-            throw SceneError(fmt::format("{}: {}", o.where("obj"), e.what()));
+            const bool relative = std::filesystem::path(o.string("obj")).is_relative();
+            throw SceneError(fmt::format("{}: {}{}", o.where("obj"), e.what(),
+                                         relative ? " (a relative \"obj\" is read from the "
+                                                    "scene file's folder)"
+                                                  : ""));
         }
     }
     if (o.has("generator")) return generate_from_json(o, scene);

@@ -1,7 +1,7 @@
 // Uniform-grid spatial enumeration (Fujimoto, Tanaka and Iwata's ARTS, 1986): the scene's
 // bounding box cut into equal cells, each listing the face pieces that may touch it, walked
-// along a ray by Amanatides and Woo's 3D-DDA (1987). The beam tracer and the ray tracer
-// share it: rays walk it, beam queries take the cells of a box.
+// along a ray by Amanatides and Woo's 3D-DDA (1987). The beam tracer's queries take the
+// cells of a box and radiosity's rays walk it; the ray tracer's rays use the BVH (bvh.h).
 //
 // How ours is built: about `density` cells per piece (0.5 by default: coarse, since
 // crowded cells are refined, below), cubic cells as far as the

@@ -102,7 +102,7 @@ TEST(AtomicOutput, ASuccessfulRenderReplacesEveryOutputAndLeavesNoTemporary) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(fb89::controller::read_png(dir / "out.png").width, 64u);
     EXPECT_EQ(fb89::controller::read_png(dir / "out.ids.png").height, 48u);
-    EXPECT_NO_THROW((void)nlohmann::json::parse(slurp(dir / "out.json")));
+    EXPECT_TRUE(nlohmann::json::parse(slurp(dir / "out.json"), nullptr, false).is_object());
     EXPECT_TRUE(temporaries(dir).empty());
 }
 

@@ -113,6 +113,30 @@ TEST(BadInputStream, TruncationWritesNothingAndSalvageKeepsCompleteFrames) {
     EXPECT_EQ(fb89("replay " + write_bytes("cut.fb89", b)).exit_code, 0);
 }
 
+// A stream cut inside a frame: the summary says the frame is open, beside those closed.
+TEST(BadInputStream, ACutStreamsSummarySaysItsLastFrameIsStillOpen) {
+    std::vector<uint8_t> b = two_frames();
+    b.resize(70);  // frame 0 whole, frame 1 begun, its FILL_RECT cut
+    const CliRun r = fb89("replay " + write_bytes("open.fb89", b));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.out.find("frames: 1 closed (0 incomplete), 1 still open (begun, never ended"),
+              std::string::npos)
+        << r.out;
+}
+
+// A footer that disagrees with the stream says both, in words, whole.
+TEST(BadInputStream, AFooterThatDisagreesSaysWhatItClaimsAndWhatIsSo) {
+    std::vector<uint8_t> b = two_frames();
+    ASSERT_EQ(b.size(), kStreamSize);
+    b[kStreamSize - 20 + 8] = 7;  // the footer's command count: 7, where there are 6
+    const CliRun r = fb89("info " + write_bytes("footer.fb89", b));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("says the index is at byte 86 after 7 commands; it is at byte 86 after "
+                         "6 commands"),
+              std::string::npos)
+        << r.err;
+}
+
 TEST(BadInputStream, CorruptOpcodesNameTheOffsetAndCommand) {
     for (const int opcode : {0x00, 0x06, 0x42, 0xFD, 0xFF}) {
         SCOPED_TRACE("opcode " + std::to_string(opcode));

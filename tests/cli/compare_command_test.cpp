@@ -76,19 +76,23 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
 
     const std::string text = slurp(csv);
     EXPECT_EQ(text.rfind("scene,method,host,host_ms,commands,fills,spans,controller_ms,frame_ms,"
-                         "bound_by,pixels_differing\n",
+                         "bound_by,pixels_differing,px_coverage,px_other_face\n",
                          0),
               0u)
         << text;
     const auto rows = read_csv(text);
     ASSERT_EQ(rows.size(), 6u);
     for (const auto& row : rows) {
-        EXPECT_EQ(row.at("scene"), "scenes/A.json");
+        EXPECT_EQ(row.at("scene"), "A");  // a bundled scene, by its name
         EXPECT_EQ(row.at("host"), "native");
         const std::string& m = row.at("method");
         if (m == "zbuffer" || m == "scanline" || m == "warnock" || m == "hybrid") {
             EXPECT_EQ(row.at("pixels_differing"), "0") << m;  // the exact methods
         }
+        // the two kinds of difference add up to all of them
+        EXPECT_EQ(std::stoull(row.at("pixels_differing")),
+                  std::stoull(row.at("px_coverage")) + std::stoull(row.at("px_other_face")))
+            << m;
     }
     EXPECT_EQ(rows[0].at("method"), "zbuffer");
 
@@ -100,15 +104,16 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
     EXPECT_GT(j[0]["commands"].get<uint64_t>(), 0u);
 }
 
-TEST(CompareCommand, SheetDefaultsToComparePngInTheCurrentFolder) {
-    const fs::path dir = test_dir();
-    fs::remove(dir / "compare.png");
-    CliRun r = fb89::testing::run_fb89(
-        "compare " + std::string(FB89_SCENES_DIR) + "/A.json --size 64x49 --repeat 1 -q",
-        "cd " + dir.string() + " && ");
+TEST(CompareCommand, SheetDefaultsToOutComparePngUnderTheCurrentFolder) {
+    const fs::path dir = test_dir() / "work";  // test_dir() holds the runner's own "out"
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    CliRun r = fb89::testing::run_fb89("compare A --size 64x49 --repeat 1 -q",
+                                       "cd " + dir.string() + " && ");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
-    EXPECT_TRUE(fs::exists(dir / "compare.png"));
+    EXPECT_TRUE(fs::exists(dir / "out" / "compare.png"));
+    EXPECT_FALSE(fs::exists(dir / "compare.png"));
 }
 
 TEST(CompareCommand, BadInputExitsTwo) {

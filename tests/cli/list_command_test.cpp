@@ -2,8 +2,13 @@
 // that work from any directory, and an installed prefix that runs on its own.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+
+#include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_runner.h"
 
@@ -17,13 +22,68 @@ using fb89::testing::test_dir;
 TEST(ListCommand, NamesEveryMethodProfileHostSceneAndExperiment) {
     CliRun r = run_fb89("list");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const char* name : {"zbuffer", "scanline", "warnock", "hybrid", "raytrace", "beam",
-                             "tms34010-50mhz", "ideal", "native", "sun3-60", "sun3-260", "A.json",
-                             "garish_room.json", "fig3.1", "split", "radiosity"})
+    for (const char* name :
+         {"zbuffer", "scanline", "warnock", "hybrid", "raytrace", "beam", "tms34010-50mhz", "ideal",
+          "native", "sun3-60", "sun3-260", "sun4-260", "sparcstation-1", "\n  A ",
+          "\n  garish_room ", "fig3.1", "split", "radiosity"})
         EXPECT_NE(r.out.find(name), std::string::npos) << name << "\n" << r.out;
     CliRun methods = run_fb89("list methods");
     EXPECT_EQ(methods.out.find("sun3-60"), std::string::npos) << "one kind only";
     EXPECT_EQ(run_fb89("list method").exit_code, 2);
+}
+
+// The structure each method says it uses is the one its render counts: a method that walks
+// the BVH counts bvh_nodes_visited, one whose beams query the grid counts query_cells.
+TEST(ListCommand, EachMethodNamesTheAccelerationStructureItUses) {
+    const CliRun list = run_fb89("list methods");
+    ASSERT_EQ(list.exit_code, 0) << list.err;
+    for (const char* method : {"zbuffer", "scanline", "warnock", "hybrid", "raytrace", "beam"}) {
+        const auto at = list.out.find(std::string("\n  ") + method + " ");
+        ASSERT_NE(at, std::string::npos) << method << "\n" << list.out;
+        const std::string line = list.out.substr(at + 1, list.out.find('\n', at + 1) - at - 1);
+        const CliRun r =
+            run_fb89(std::string("render G --size 96x73 -q --stats - --method ") + method);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const nlohmann::json counters = nlohmann::json::parse(r.out).at("host").at("counters");
+        auto counted = [&](const char* name) {
+            return counters.contains(name) && counters.at(name).get<uint64_t>() > 0;
+        };
+        EXPECT_EQ(line.find("BVH") != std::string::npos, counted("bvh_nodes_visited")) << line;
+        EXPECT_EQ(line.find("grid") != std::string::npos, counted("query_cells")) << line;
+    }
+}
+
+TEST(ListCommand, ScenesAreListedByNameWithWholeSentences) {
+    const CliRun r = run_fb89("list scenes");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string line;
+    std::getline(lines, line);  // the heading
+    int scenes = 0;
+    while (std::getline(lines, line)) {
+        ++scenes;
+        // "  NAME  description": a name that `render` takes, and a description not cut short
+        EXPECT_EQ(line.rfind("  ", 0), 0u) << line;
+        EXPECT_EQ(line.find(".json"), std::string::npos) << line;
+        EXPECT_NE(line.back(), ',') << line;
+        EXPECT_EQ(line.find("(§4, Fig."), std::string::npos) << line;
+        EXPECT_EQ(std::count(line.begin(), line.end(), '('),
+                  std::count(line.begin(), line.end(), ')'))
+            << line;
+    }
+    EXPECT_GE(scenes, 15);
+    const CliRun kind = run_fb89("list methodz");
+    EXPECT_EQ(kind.exit_code, 2);
+    EXPECT_NE(kind.err.find("unknown kind 'methodz'; did you mean 'methods'?"), std::string::npos)
+        << kind.err;
+    EXPECT_EQ(std::count(kind.err.begin(), kind.err.end(), '\n'), 1) << kind.err;
+}
+
+TEST(ListCommand, NoCommandSaysHowToStart) {
+    const CliRun r = run_fb89("");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("fb89 COMMAND [OPTIONS], e.g. `fb89 render demo`"), std::string::npos)
+        << r.err;
 }
 
 TEST(ListCommand, VersionAndUnknownCommandsSayWhatTheyShould) {
@@ -41,8 +101,11 @@ TEST(ListCommand, VersionAndUnknownCommandsSayWhatTheyShould) {
         << version.err;
     CliRun option = run_fb89("render scenes/A.json --thresold 0.1");
     EXPECT_EQ(option.exit_code, 2);
-    EXPECT_NE(option.err.find("--thresold: did you mean '--threshold'?"), std::string::npos)
+    EXPECT_NE(option.err.find("render: unknown option '--thresold'; did you mean '--threshold'? "
+                              "(fb89 render --help lists them)"),
+              std::string::npos)
         << option.err;
+    EXPECT_EQ(std::count(option.err.begin(), option.err.end(), '\n'), 1) << "one error, once";
     CliRun help = run_fb89("render --help");
     for (const char* named : {"zbuffer, scanline", "tms34010-50mhz", "sun3-60"})
         EXPECT_NE(help.out.find(named), std::string::npos) << named << "\n" << help.out;
@@ -57,7 +120,7 @@ TEST(ListCommand, DefaultScenesWorkFromAnyDirectory) {
                         "cd " + dir.string() + " && ");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string csv = slurp(dir / "out.csv");
-    EXPECT_NE(csv.find("F.json,warnock-centres"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\nF,warnock-centres,"), std::string::npos) << csv;
 }
 
 TEST(ListCommand, AnInstalledPrefixRunsOnItsOwn) {
@@ -69,10 +132,40 @@ TEST(ListCommand, AnInstalledPrefixRunsOnItsOwn) {
     const std::string fb89 = (prefix / "bin" / "fb89").string();
     ASSERT_TRUE(std::filesystem::exists(fb89));
     EXPECT_TRUE(std::filesystem::exists(prefix / "share/fb89/scenes/A.json"));
-    // the man page, made from the help at build time
+    // the man pages, made from the help at build time: fb89(1) and one per command, in
+    // UTF-8, each with the exit codes and the environment
     const std::string man = slurp(prefix / "share/man/man1/fb89.1");
     EXPECT_NE(man.find(".TH FB89"), std::string::npos) << man.substr(0, 200);
-    EXPECT_NE(man.find("render"), std::string::npos);
+    EXPECT_NE(man.find("the paper's §5"), std::string::npos) << "UTF-8, not question marks";
+    const CliRun help = run_fb89("--help");
+    const std::string commands = help.out.substr(help.out.find("Subcommands:"));
+    int pages = 0;
+    for (const char* command : {"render", "model", "experiment", "sweep", "compare", "calibrate",
+                                "replay", "dump", "info", "trim", "diff", "controller", "view",
+                                "radiosity", "host-run", "host-validate", "list"}) {
+        EXPECT_NE(commands.find(std::string("\n  ") + command + " "), std::string::npos) << command;
+        const std::string page =
+            slurp(prefix / "share/man/man1" / (std::string("fb89-") + command + ".1"));
+        ++pages;
+        std::string upper = std::string("FB89-") + command;
+        std::transform(upper.begin(), upper.end(), upper.begin(), ::toupper);
+        EXPECT_NE(page.find(".TH " + upper + " "), std::string::npos) << command;
+        for (const char* part : {".SH \"EXIT STATUS\"", ".SH ENVIRONMENT", "FB89_DATA_DIR",
+                                 "FB89_GUEST_TIME_LIMIT", "FB89_GUEST_MEMORY_LIMIT", ".SH OPTIONS"})
+            EXPECT_NE(page.find(part), std::string::npos) << command << ": " << part;
+        EXPECT_EQ(page.find("?"
+                            "?"),
+                  std::string::npos)
+            << command;
+    }
+    // every command fb89 --help lists has its page
+    int listed = 0;
+    for (size_t at = commands.find("\n  "); at != std::string::npos;
+         at = commands.find("\n  ", at + 1))
+        ++listed;
+    EXPECT_EQ(listed, pages) << commands;
+    const std::string render = slurp(prefix / "share/man/man1/fb89-render.1");
+    EXPECT_NE(render.find("\\-\\-method"), std::string::npos) << "the command's own options";
     const std::string out = (test_dir() / "installed.txt").string();
     // from another directory, the installed binary lists its own scenes and runs a default
     const std::string cmd = "cd / && " + fb89 + " list scenes > " + out + " && " + fb89 +

@@ -191,4 +191,23 @@ TEST(RadiosityCommand, OtherFormFactorsRunAndQuietPrintsNothing) {
     }
 }
 
+// Rows of F above 1 are flagged on stdout, counted, located and explained for the form used.
+TEST(RadiosityCommand, RowSumsAboveOneAreFlaggedAndExplained) {
+    const std::string png = (fb89::testing::test_dir() / "room.png").string();
+    CliRun point = fb89("radiosity cornell_box --patches 60 --size 128x98 --ff flux --png " + png);
+    ASSERT_EQ(point.exit_code, 0) << point.err;
+    EXPECT_NE(point.out.find("! 34 of 75 rows of F sum above 1, the largest by 26.7%"),
+              std::string::npos)
+        << point.out;
+    EXPECT_NE(point.out.find("point form over-counts patches close to one another"),
+              std::string::npos);
+    CliRun exact = fb89("radiosity cornell_box --patches 60 --size 128x98 --ff exact --png " + png);
+    ASSERT_EQ(exact.exit_code, 0) << exact.err;
+    EXPECT_NE(exact.out.find("all or nothing"), std::string::npos) << exact.out;
+    // the disk form keeps every row of this box below 1: nothing to flag
+    CliRun disk = fb89("radiosity cornell_box --patches 60 --size 128x98 --ff disk --png " + png);
+    ASSERT_EQ(disk.exit_code, 0) << disk.err;
+    EXPECT_EQ(disk.out.find("rows of F sum above 1"), std::string::npos) << disk.out;
+}
+
 }  // namespace

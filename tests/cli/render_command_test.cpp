@@ -61,6 +61,61 @@ TEST(RenderCommand, SizeOverridesTheScene) {
     EXPECT_EQ(image.height, 195u);
 }
 
+TEST(RenderCommand, ASizeOutOfRangeSaysTheRange) {
+    for (const char* size : {"100000x100000", "0x10", "99999999999x2"}) {
+        const CliRun r = fb89(std::string("render A --size ") + size);
+        EXPECT_EQ(r.exit_code, 2) << size;
+        EXPECT_NE(r.err.find("width and height must be in [1, 16384]"), std::string::npos) << r.err;
+    }
+    const CliRun shape = fb89("render A --size big");
+    EXPECT_EQ(shape.exit_code, 2);
+    EXPECT_NE(shape.err.find("expected WxH such as 1024x780, width and height in [1, 16384]"),
+              std::string::npos)
+        << shape.err;
+}
+
+// A bundled scene by name, from any folder; a name that is nowhere says where it looked.
+TEST(RenderCommand, BundledScenesAreFoundByNameFromAnyFolder) {
+    const fs::path png = scratch("by_name.png");
+    const CliRun r = fb89::testing::run_fb89("render demo -q --png " + png.string(), "cd / && ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(png));
+    const CliRun json =
+        fb89::testing::run_fb89("render G.json -q --size 32x24 --png " + png.string(), "cd / && ");
+    EXPECT_EQ(json.exit_code, 0) << json.err;
+    const CliRun missing =
+        fb89::testing::run_fb89("render nosuch --png " + png.string(), "cd / && ");
+    EXPECT_EQ(missing.exit_code, 2);
+    for (const std::string& said : std::vector<std::string>{
+             std::string("nosuch: cannot open the scene file (looked for \"nosuch\""),
+             kScenes + "/nosuch.json", "the bundled scenes are A B C", "(fb89 list scenes)"})
+        EXPECT_NE(missing.err.find(said), std::string::npos) << said << "\n" << missing.err;
+    // the table names it as the user did, or by its bundled name; never an absolute path
+    const CliRun shown =
+        fb89::testing::run_fb89("render " + kScenes + "/A.json --size 32x24 --png " + png.string());
+    EXPECT_EQ(shown.out.rfind("scene A: 24 faces", 0), 0u) << shown.out;
+}
+
+// Counter names of any length keep the values in one column.
+TEST(RenderCommand, CountedOperationsLineUp) {
+    const CliRun r = fb89("render F --size 128x98 --png " + scratch("f.png").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const size_t begin = r.out.find("host counted operations:\n");
+    ASSERT_NE(begin, std::string::npos) << r.out;
+    std::istringstream lines(r.out.substr(begin));
+    std::string line;
+    std::getline(lines, line);
+    size_t end_column = 0;
+    int counted = 0;
+    while (std::getline(lines, line) && line.rfind("  ", 0) == 0) {
+        if (end_column == 0) end_column = line.size();
+        EXPECT_EQ(line.size(), end_column) << line;
+        ++counted;
+    }
+    EXPECT_GE(counted, 5);
+    EXPECT_NE(r.out.find("faces_split_after_snapping"), std::string::npos);
+}
+
 TEST(RenderCommand, ReportsTriangulatedPolygons) {
     CliRun r = fb89("render " + kScenes + "/cornell_box.json --size 64x48");
     ASSERT_EQ(r.exit_code, 0) << r.err;

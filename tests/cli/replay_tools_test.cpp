@@ -383,12 +383,23 @@ uint64_t inside_a_span_after(const std::string& stream, uint64_t after) {
     return 0;
 }
 
-TEST(ReplayTools, TheStreamRecordsTheScenePathAsTheUserGaveIt) {
+TEST(ReplayTools, TheStreamRecordsABundledSceneByNameAndAnyOtherAsTheUserGaveIt) {
     const std::string stream = scratch("relative.fb89");
-    CliRun r = fb89("render A.json --size 64x48 -q --stream " + stream, "cd " + kScenes + " && ");
+    // a bundled scene, however it is given, is recorded by its name: the stream's bytes do
+    // not depend on where the checkout lives
+    for (const std::string& given : std::vector<std::string>{"A", "A.json", kScenes + "/A.json"}) {
+        CliRun r = fb89("render " + given + " --size 64x48 -q --stream " + stream,
+                        "cd " + kScenes + " && ");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(pr::StreamReader(stream).properties().at("scene"), "A") << given;
+    }
+    // another scene file: the path as given, relative staying relative
+    const fs::path mine = fs::path(scratch("mine.json"));
+    fs::copy_file(kScenes + "/A.json", mine, fs::copy_options::overwrite_existing);
+    CliRun r = fb89("render mine.json --size 64x48 -q --stream " + stream,
+                    "cd " + mine.parent_path().string() + " && ");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    pr::StreamReader reader(stream);
-    EXPECT_EQ(reader.properties().at("scene"), "A.json") << "relative stays relative";
+    EXPECT_EQ(pr::StreamReader(stream).properties().at("scene"), "mine.json");
 }
 
 TEST(ReplayTools, EveryToolReportsATruncatedStreamAndExitsTwo) {

@@ -1,7 +1,9 @@
 // `fb89 sweep`, `fb89 calibrate` and `fb89 experiment` as a user runs them: CSV with a
 // header row, the calibration saved where render picks it up, exit codes.
 #include <gtest/gtest.h>
+
 #include <sys/wait.h>
+#include <algorithm>
 
 #include <cstdlib>
 #include <filesystem>
@@ -40,7 +42,7 @@ TEST(SweepCommand, WritesOneCsvRowPerSceneAndThresholdWithTheReferences) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out.rfind("scene,threshold,hs_wall_ms,hs_cpu_ms", 0), 0u) << r.out;
     EXPECT_EQ(lines(r.out), 1u + 2u * (3u + 2u));  // header; per scene 0, 3 ramp, inf
-    EXPECT_NE(r.out.find("scenes/B.json,inf,"), std::string::npos);
+    EXPECT_NE(r.out.find("\nB,inf,"), std::string::npos) << r.out;  // bundled: by name
 }
 
 TEST(SweepCommand, BadArgumentsExitTwo) {
@@ -52,11 +54,18 @@ TEST(SweepCommand, BadArgumentsExitTwo) {
     EXPECT_NE(missing.err.find("nowhere.json"), std::string::npos) << missing.err;
 }
 
+// The number on calibrate's last line: "chosen threshold 0.0102: ...".
+double chosen_in(const std::string& out, const std::string& what = "chosen threshold ") {
+    const size_t at = out.rfind(what);
+    EXPECT_NE(at, std::string::npos) << out;
+    return at == std::string::npos ? -1 : std::stod(out.substr(at + what.size()));
+}
+
 TEST(CalibrateCommand, SavesTheChosenThresholdForRender) {
     fs::remove(test_dir() / "calibration.json");  // nothing left from a last run
     CliRun r = fb89("calibrate scenes/A.json scenes/C.json --steps 3 --repeat 1");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const double chosen = std::stod(r.out);
+    const double chosen = chosen_in(r.out);
     nlohmann::json saved = nlohmann::json::parse(slurp(test_dir() / "calibration.json"));
     EXPECT_DOUBLE_EQ(saved["threshold"].get<double>(), chosen);
     EXPECT_EQ(saved["hybrid"]["scenes"].size(), 2u);
@@ -70,12 +79,35 @@ TEST(CalibrateCommand, SavesTheChosenThresholdForRender) {
     EXPECT_DOUBLE_EQ(nlohmann::json::parse(paper.out)["threshold"].get<double>(), 0.04);
 }
 
-TEST(CalibrateCommand, WithoutCalibrationRenderUsesThePapersThreshold) {
-    CliRun render = fb89("render scenes/A.json --method hybrid --size 128x98 --stats -");
+TEST(CalibrateCommand, WithoutCalibrationRenderAndCompareUseThePapersThresholdAndSaySo) {
+    fs::remove(test_dir() / "calibration.json");
+    CliRun render = fb89("render scenes/A.json --method hybrid --size 128x98");
     ASSERT_EQ(render.exit_code, 0) << render.err;
-    EXPECT_NE(render.err.find("hybrid threshold 0.04 (paper (not calibrated yet))"),
-              std::string::npos)
-        << render.err;
+    EXPECT_EQ(render.out.rfind("hybrid threshold 0.04 (the paper's: not calibrated yet", 0), 0u)
+        << render.out;
+    CliRun compare = fb89("compare scenes/A.json --size 128x98 --repeat 1 --sheet " +
+                          (test_dir() / "sheet.png").string());
+    ASSERT_EQ(compare.exit_code, 0) << compare.err;
+    EXPECT_EQ(compare.out.rfind("hybrid threshold 0.04 (the paper's: not calibrated yet", 0), 0u)
+        << compare.out;
+}
+
+// calibrate's report is on stdout: the table, the sweeps' choices, and the chosen threshold
+// on the last line; -q leaves that line alone. Two sweeps at least: the choice must agree.
+TEST(CalibrateCommand, ReportsTheTableAndTheStableChoiceOnStdout) {
+    fs::remove(test_dir() / "calibration.json");
+    CliRun r = fb89("calibrate scenes/A.json --steps 2 --repeat 1 --dry-run");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("threshold      total ms  vs zbuffer"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" sweeps chose "), std::string::npos) << r.out;
+    const std::string last = r.out.substr(r.out.rfind("chosen threshold "));
+    EXPECT_NE(last.find("against the pure Z-buffer; not saved (--dry-run)\n"), std::string::npos)
+        << last;
+    CliRun quiet = fb89("calibrate scenes/A.json --steps 2 --repeat 1 --dry-run -q");
+    ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+    EXPECT_EQ(quiet.out.rfind("chosen threshold ", 0), 0u) << quiet.out;
+    EXPECT_EQ(std::count(quiet.out.begin(), quiet.out.end(), '\n'), 1) << quiet.out;
+    EXPECT_FALSE(fs::exists(test_dir() / "calibration.json"));
 }
 
 TEST(ExperimentCommand, UnknownExperimentExitsTwo) {
@@ -114,12 +146,14 @@ TEST(CalibrateCommand, KeepsBothThresholdsInOneFile) {
     CliRun beam = fb89("calibrate --method beam scenes/G.json --repeat 1");
     ASSERT_EQ(beam.exit_code, 0) << beam.err;
     nlohmann::json saved = nlohmann::json::parse(slurp(test_dir() / "calibration.json"));
-    EXPECT_DOUBLE_EQ(saved["threshold"].get<double>(), std::stod(hybrid.out));
+    EXPECT_DOUBLE_EQ(saved["threshold"].get<double>(), chosen_in(hybrid.out));
     // a number, or "inf" (JSON has no infinity)
     auto as_text = [](const nlohmann::json& v) {
         return v.is_string() ? v.get<std::string>() : fmt::format("{:.6g}", v.get<double>());
     };
-    const std::string chosen = beam.out.substr(0, beam.out.find('\n'));
+    const std::string after = "chosen beam threshold ";
+    const size_t at = beam.out.rfind(after) + after.size();
+    const std::string chosen = beam.out.substr(at, beam.out.find(':', at) - at);
     EXPECT_EQ(as_text(saved["beam_threshold"]), chosen);
     EXPECT_EQ(saved["beam"]["scenes"].size(), 1u);
     // render --method beam picks the beam threshold up

@@ -4,6 +4,8 @@
 // by the opcode overlay when it is on); and without any display, the one-line refusal.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -143,6 +145,31 @@ TEST(ViewCommand, ScreenshotWithTheOverlayIsTheTintedImage) {
 // As a person runs it on a machine with no screen: no DISPLAY, no SDL_VIDEODRIVER. One line
 // saying why and what to do instead, exit 2; no window on SDL's offscreen driver, no
 // complaint of SDL's own.
+// Below 1 the window shrinks the frame: every other pixel at 0.5, nearest sampled.
+TEST(ViewCommand, AScaleBelowOneShrinksTheFrame) {
+    if (!have_xvfb_run())
+        GTEST_SKIP() << "xvfb-run is not installed (scripts/bootstrap installs xvfb)";
+    const fs::path stream = record_stream("640x480");
+    const fs::path shot = test_dir() / "half.png";
+    fs::remove(shot);
+    const CliRun r = run_fb89("view " + stream.string() + " --scale 0.5 --screenshot " +
+                                  shot.string() + " --exit-at-end --speed 1000000",
+                              kUnderXvfb);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const controller::PngImage half = controller::read_png(shot);
+    EXPECT_EQ(half.width, 320u);
+    EXPECT_EQ(half.height, 240u);
+    // scene A is made of large faces: at the middle of a face the half-size window shows the
+    // frame's colour there
+    const controller::PngImage full = replayed_frame(stream);
+    auto at = [](const controller::PngImage& img, uint32_t x, uint32_t y) {
+        const size_t i = (size_t{y} * img.width + x) * 3;
+        return std::array<uint8_t, 3>{img.pixels[i], img.pixels[i + 1], img.pixels[i + 2]};
+    };
+    EXPECT_EQ(at(half, 160, 120), at(full, 320, 240));
+    EXPECT_EQ(run_fb89("view " + stream.string() + " --scale 0.1").exit_code, 2) << "below 1/8";
+}
+
 TEST(ViewCommand, WithNoDisplayAtAllExitsTwoInOneLine) {
     const fs::path stream = record_stream("64x48");
     const CliRun r = run_fb89("view " + stream.string(),

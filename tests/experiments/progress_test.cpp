@@ -82,5 +82,20 @@ TEST(ProgressLine, OffSaysNothing) {
     EXPECT_EQ(err.text.str(), "");
 }
 
+TEST(ProgressLine, ALineWiderThanTheTerminalLosesItsStartNotItsCount) {
+    const std::string text =
+        "experiment split: programmers_cell.json (scene 14 of 14): "
+        "3/6 emulated runs, about 12 s left";
+    EXPECT_EQ(fit_to_width(text, 200), text);
+    const std::string cut = fit_to_width(text, 40);
+    EXPECT_EQ(cut.size(), 39u) << cut;  // one column spare: the cursor never wraps
+    EXPECT_EQ(cut.rfind("...", 0), 0u) << cut;
+    EXPECT_EQ(cut.substr(cut.size() - 20), text.substr(text.size() - 20));
+    // counted in code points: a "§" is one column, never cut in half
+    const std::string cut_utf8 = fit_to_width("§§§§§§§§§§ 3/4", 10);
+    EXPECT_EQ(cut_utf8, "...§§ 3/4");
+    EXPECT_EQ(fit_to_width("abc", 1), ".");
+}
+
 }  // namespace
 }  // namespace fb89::experiments

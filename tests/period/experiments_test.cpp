@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "tests/cli/cli_runner.h"
 
@@ -26,7 +27,7 @@ TEST(PeriodExperiments, RunsFannedOutGiveTheTableOfOneProcess) {
     CliRun r = run_fb89(kSweep + two + " --jobs 2");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(slurp(one), slurp(two));
-    EXPECT_NE(slurp(one).find("scenes/A.json"), std::string::npos);
+    EXPECT_NE(slurp(one).find("\nA,"), std::string::npos) << "a bundled scene, by name";
 }
 
 TEST(PeriodExperiments, EmittedJobsRunByGnuParallelJoinIntoTheSameTable) {
@@ -55,12 +56,56 @@ TEST(PeriodExperiments, EmittedJobsRunByGnuParallelJoinIntoTheSameTable) {
     EXPECT_EQ(slurp(merged), slurp(single));
 }
 
+// Emitting says how much work the jobs are: runs seen before (their instructions and time,
+// kept beside the results), the others by their scenes' size; a join says which runs it is
+// about to make itself.
+TEST(PeriodExperiments, EmittedJobsComeWithTheirWorkAndAJoinSaysWhatItRunsItself) {
+    namespace fs = std::filesystem;
+    const auto dir = test_dir();
+    fs::remove_all(dir / "results");
+    const std::string csv = (dir / "t.csv").string(), jobs = (dir / "jobs.txt").string(),
+                      results = (dir / "results").string();
+    const std::string sweep = "sweep threshold " + kScenes +
+                              "/A.json --size 96x73 --steps 1 --host sun3-60 -q --csv " + csv +
+                              " --results " + results;
+    CliRun emit = run_fb89(sweep + " --emit-jobs " + jobs);
+    ASSERT_EQ(emit.exit_code, 0) << emit.err;
+    // 0, one ramp step, inf: 3 runs, never run before
+    EXPECT_NE(emit.err.find("3 emulated runs written to " + jobs), std::string::npos) << emit.err;
+    EXPECT_NE(emit.err.find("3 never ran with these results, so their work is known only by "
+                            "their size: 72 faces and 0.021 million pixels in all (A.json "),
+              std::string::npos)
+        << emit.err;
+    ASSERT_EQ(std::system(("sh " + jobs + " >/dev/null").c_str()), 0);
+    // as if the guest had changed: the counts gone, the work they took kept
+    std::vector<fs::path> counts;
+    for (const auto& e : fs::directory_iterator(results))
+        if (e.path().filename().string().rfind("work-", 0) != 0) counts.push_back(e.path());
+    ASSERT_EQ(counts.size(), 3u);
+    fs::remove(counts[0]);
+    fs::remove(counts[1]);
+    CliRun again = run_fb89(sweep + " --emit-jobs " + jobs);
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_NE(again.err.find("2 emulated runs written to"), std::string::npos) << again.err;
+    EXPECT_NE(again.err.find("2 of them ran before (by this or an earlier guest): "),
+              std::string::npos)
+        << again.err;
+    EXPECT_NE(again.err.find(" billion guest instructions, "), std::string::npos) << again.err;
+    // the join runs the two missing runs itself, and says so first
+    CliRun join = run_fb89(sweep);
+    ASSERT_EQ(join.exit_code, 0) << join.err;
+    EXPECT_NE(join.err.find("fb89: 2 of 3 runs are not in " + results +
+                            "; running them here: A.json hybrid 96x73"),
+              std::string::npos)
+        << join.err;
+}
+
 // The Sun-4 the same way: its jobs name the SPARC guest (host-run --isa sparc).
 TEST(PeriodExperiments, Sun4JobsNameTheirInstructionSetAndJoinIntoTheSameTable) {
     const auto dir = test_dir();
     std::filesystem::remove_all(dir / "results4");
-    const std::string sweep = "sweep threshold " + kScenes +
-                              "/A.json --size 96x73 --steps 1 --host sun4-260 -q --csv ";
+    const std::string sweep =
+        "sweep threshold " + kScenes + "/A.json --size 96x73 --steps 1 --host sun4-260 -q --csv ";
     const std::string single = (dir / "single4.csv").string(),
                       merged = (dir / "merged4.csv").string(), jobs = (dir / "jobs4.txt").string(),
                       results = (dir / "results4").string();

@@ -1,0 +1,240 @@
+// The README's commands, run as a newcomer would: in a scratch copy of the checkout, with
+// `fb89` on the PATH, one after another. Each must succeed; afterwards the copy's tree is
+// unchanged (`git status --porcelain` empty: everything went under out/, which git ignores);
+// and each sample session ("$ fb89 ..." followed by its output) still matches what the
+// command prints, in shape: the same lines with the same words and columns, numbers aside,
+// "..." standing for lines left out.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "period/isa.h"
+#include "tests/scratch.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSource = fs::path(FB89_SCENES_DIR).parent_path();
+
+struct Step {
+    std::string command;
+    bool session = false;               // from a "$ " session: its output is compared
+    std::vector<std::string> expected;  // the sample output, "..." for lines left out
+    int line = 0;                       // in README.md
+};
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);)
+        out.push_back(l);
+    return out;
+}
+
+std::string read(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+bool is_command(const std::string& text) {
+    for (const char* start : {"fb89 ", "scripts/", "parallel ", "cmake "})
+        if (text.rfind(start, 0) == 0) return true;
+    return false;
+}
+
+// A command line's trailing comment ("  # ..."), and the spaces before it, cut off.
+std::string without_comment(const std::string& line) {
+    const size_t hash = line.find("  #");
+    std::string out = hash == std::string::npos ? line : line.substr(0, hash);
+    out.erase(out.find_last_not_of(' ') + 1);
+    return out;
+}
+
+// The README's indented blocks: command blocks (every line a command) and sessions.
+std::vector<Step> steps_of(const std::string& readme, std::vector<std::string>& problems) {
+    std::vector<Step> steps;
+    const std::vector<std::string> lines = lines_of(readme);
+    for (size_t i = 0; i < lines.size();) {
+        if (lines[i].rfind("    ", 0) != 0 || (i > 0 && !lines[i - 1].empty())) {
+            ++i;
+            continue;
+        }
+        std::vector<std::pair<int, std::string>> block;  // an indented block after a blank line
+        for (; i < lines.size() && lines[i].rfind("    ", 0) == 0; ++i)
+            block.emplace_back(static_cast<int>(i + 1), lines[i].substr(4));
+        if (block.front().second.rfind("$ ", 0) == 0) {
+            for (const auto& [number, text] : block) {
+                if (text.rfind("$ ", 0) == 0)
+                    steps.push_back({without_comment(text.substr(2)), true, {}, number});
+                else
+                    steps.back().expected.push_back(text);
+            }
+        } else if (is_command(block.front().second)) {
+            for (size_t k = 0; k < block.size(); ++k) {
+                std::string command = without_comment(block[k].second);
+                while (!command.empty() && command.back() == '\\' && k + 1 < block.size())
+                    command.pop_back(), command += " " + without_comment(block[++k].second);
+                if (!command.empty() && command[0] == '#') continue;  // a comment line
+                if (!is_command(command))
+                    problems.push_back("line " + std::to_string(block[k].first) +
+                                       ": neither a command nor a comment: " + command);
+                steps.push_back({command, false, {}, block[k].first});
+            }
+        } else {
+            problems.push_back("line " + std::to_string(block.front().first) +
+                               ": an indented block that is neither commands nor a session "
+                               "(\"$ command\" and its output)");
+        }
+    }
+    return steps;
+}
+
+// Why a command is not run here, or "" to run it.
+std::string skip_reason(const std::string& command) {
+    if (command.rfind("scripts/run", 0) == 0 || command.rfind("scripts/test", 0) == 0)
+        return "the harness itself";
+    if (command.rfind("scripts/figures", 0) == 0)
+        return "an hour of the commands run here, at full size";
+    if (command.rfind("cmake --install", 0) == 0)
+        return "ListCommand.AnInstalledPrefixRunsOnItsOwn installs and runs a prefix";
+    if (command.rfind("parallel", 0) == 0 &&
+        std::system("command -v parallel >/dev/null 2>&1") != 0)
+        return "GNU parallel is not installed (scripts/bootstrap installs it)";
+    if (command.rfind("fb89 view", 0) == 0)
+        return "needs a display (ViewCommand.* run it under xvfb)";
+    const bool m68k = command.find("sun3-") != std::string::npos;
+    const bool sparc = command.find("sun4-") != std::string::npos;
+    const bool validate = command.rfind("fb89 host-validate", 0) == 0;
+    if ((m68k || validate) && fb89::period::instruction_set("m68k").guest_path.empty())
+        return "the m68k guest is not built here";
+    if ((sparc || validate) && fb89::period::instruction_set("sparc").guest_path.empty())
+        return "the SPARC guest is not built here";
+    return "";
+}
+
+struct Outcome {
+    int status = -1;
+    std::string output;  // stdout and stderr, as a terminal shows them
+};
+
+Outcome run(const std::string& command, const fs::path& dir, const fs::path& home) {
+    const fs::path log = home / "log";
+    const std::string shell =
+        "cd '" + dir.string() + "' && PATH='" + (fs::path(FB89_BUILD_DIR) / "cli").string() +
+        "':\"$PATH\" HOME='" + home.string() + "' XDG_CONFIG_HOME='" + (home / "config").string() +
+        "' FB89_CALIBRATION='" + (home / "calibration.json").string() + "' timeout 600 bash -c '" +
+        std::regex_replace(command, std::regex("'"), "'\\''") + "' >'" + log.string() +
+        "' 2>&1 </dev/null";
+    Outcome r;
+    const int status = std::system(shell.c_str());
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.output = read(log);
+    return r;
+}
+
+// A line's shape: numbers and checksums as '#', runs of spaces as one.
+std::string shape(const std::string& line) {
+    static const std::regex number(R"([0-9a-f]{16}|[-+]?[0-9][0-9,]*(\.[0-9]+)?(e[-+]?[0-9]+)?)");
+    std::string s = std::regex_replace(line, number, "#");
+    s = std::regex_replace(s, std::regex(" +"), " ");
+    const size_t a = s.find_first_not_of(' ');
+    return a == std::string::npos ? "" : s.substr(a, s.find_last_not_of(' ') - a + 1);
+}
+
+// "" when `actual` has the sample's lines in order, in shape, each "..." standing for any
+// number of lines, or what differs.
+std::string matches(const std::vector<std::string>& sample, const std::string& actual) {
+    std::vector<std::string> got;
+    for (const std::string& l : lines_of(actual))
+        got.push_back(shape(l));
+    size_t at = 0;
+    bool gap = false;
+    for (const std::string& want_line : sample) {
+        if (shape(want_line) == "...") {
+            gap = true;
+            continue;
+        }
+        const std::string want = shape(want_line);
+        size_t k = at;
+        if (gap)
+            while (k < got.size() && got[k] != want)
+                ++k;
+        if (k >= got.size() || got[k] != want)
+            return "expected, " + std::string(gap ? "somewhere after" : "right after") +
+                   " output line " + std::to_string(at) + ": '" + want_line + "'";
+        at = k + 1;
+        gap = false;
+    }
+    if (!gap && at != got.size())
+        return "output goes on after the sample's last line: '" + lines_of(actual)[at] + "'";
+    return "";
+}
+
+TEST(ReadmeTourLong, TheCommandsRunInACopyLeaveItCleanAndPrintWhatTheSamplesShow) {
+    std::vector<std::string> problems;
+    const std::vector<Step> steps = steps_of(read(kSource / "README.md"), problems);
+    for (const std::string& p : problems)
+        ADD_FAILURE() << "README.md " << p;
+    ASSERT_GE(steps.size(), 20u);
+
+    // the copy: the checkout's files as git sees them, in a repository of their own
+    const fs::path home = fb89::testing::scratch_path("readme-home");
+    const fs::path copy = fb89::testing::scratch_path("readme-checkout");
+    fs::remove_all(home);
+    fs::remove_all(copy);
+    fs::create_directories(home);
+    fs::create_directories(copy);
+    if (!fs::exists(kSource / ".git")) GTEST_SKIP() << "not a git checkout: " << kSource;
+    const std::string make_copy =
+        "cd '" + kSource.string() +
+        "' && git ls-files -z --cached --others --exclude-standard | tar --null -T - "
+        "--ignore-failed-read -cf - 2>/dev/null | tar -xf - -C '" +
+        copy.string() + "' && cd '" + copy.string() +
+        "' && git init -q && git add -A && git -c user.name=t -c user.email=t@t commit -qm copy";
+    ASSERT_EQ(std::system(make_copy.c_str()), 0) << make_copy;
+
+    for (const Step& step : steps) {
+        const std::string why = skip_reason(step.command);
+        if (!why.empty()) {
+            std::printf("README.md:%d: not run (%s): %s\n", step.line, why.c_str(),
+                        step.command.c_str());
+            continue;
+        }
+        const Outcome r = run(step.command, copy, home);
+        EXPECT_EQ(r.status, 0) << "README.md:" << step.line << ": " << step.command << "\n"
+                               << r.output;
+        if (step.session) {
+            const std::string differs = matches(step.expected, r.output);
+            EXPECT_EQ(differs, "")
+                << "README.md:" << step.line << ": " << step.command << "\nprinted:\n"
+                << r.output;
+        }
+    }
+    const Outcome status = run("git status --porcelain", copy, home);
+    EXPECT_EQ(status.output, "") << "the tour left the checkout changed";
+}
+
+// The matcher itself: it accepts other numbers, and catches a changed word, a missing
+// column, a missing line and an extra one.
+TEST(ReadmeTour, TheShapeMatcherSeesWhatChanged) {
+    const std::vector<std::string> sample = {"frame  size  commands", "    0  1024x780  7,667",
+                                             "...", "total 12.5 ms"};
+    EXPECT_EQ(matches(sample, "frame  size  commands\n 0   640x480  99\nx\ny\ntotal 3.25 ms\n"),
+              "");
+    EXPECT_NE(matches(sample, "frame  size  cmds\n 0   640x480  99\ntotal 3.25 ms\n"), "");
+    EXPECT_NE(matches(sample, "frame  size  commands\n 0   640x480\ntotal 3.25 ms\n"), "");
+    EXPECT_NE(matches(sample, "frame  size  commands\n 0   640x480  99\n"), "");
+    EXPECT_NE(matches(sample, "frame  size  commands\n 0  1x1  9\ntotal 1 ms\nmore\n"), "");
+}
+
+}  // namespace
