@@ -222,6 +222,7 @@ void register_calibrate(CLI::App& app, int& exit_code) {
     sub->add_flag("--dry-run", a->dry_run, "Print the choice without saving it");
     sub->add_flag("--quiet,-q", a->quiet,
                   "Print only the line with the chosen threshold (no table, no progress)");
+    add_isa_option(sub);
     sub->callback([a, &exit_code] {
         for (std::string& scene : a->scenes)
             scene = resolve_scene(scene);

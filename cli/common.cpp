@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "controller_sim/profile.h"
+#include "host/trace/kernel_level.h"
 #include "protocol/output_file.h"
 
 namespace fb89::cli {
@@ -87,6 +88,25 @@ std::string nearest_hint(const std::string& word, const std::vector<std::string>
         if (d < best_distance) best = k, best_distance = d;
     }
     return best.empty() ? "" : "; did you mean '" + best + "'?";
+}
+
+void add_isa_option(CLI::App* sub) {
+    std::string levels;
+    for (host::KernelLevel l : host::supported_kernel_levels())
+        levels += (levels.empty() ? "" : ", ") + std::string(host::kernel_level_name(l)) + " " +
+                  std::string(host::kernel_level_description(l));
+    sub->add_option_function<std::string>(
+        "--isa",
+        [](const std::string& name) {
+            try {
+                host::set_kernel_level(host::parse_kernel_level(name));
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("--isa: ") + e.what());
+            }
+        },
+        "Raytrace and beam: the instruction set their kernels run with, for comparison; every "
+        "one gives the same frame and counts (this machine: " +
+            levels + "; default the last, or $FB89_ISA)");
 }
 
 std::string profile_option_help() {

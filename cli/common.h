@@ -52,6 +52,10 @@ std::string nearest_hint(const std::string& word, const std::vector<std::string>
 // The help of every --profile option: the built-in controller profiles by name.
 std::string profile_option_help();
 
+// --isa baseline|v3|v4: the instruction set the tracing kernels run with, for comparison
+// (host/trace/kernel_level.h; default the best this CPU runs, or $FB89_ISA).
+void add_isa_option(CLI::App* sub);
+
 // Messages for humans go to stderr; --quiet silences them.
 struct Console {
     bool quiet = false;

@@ -144,6 +144,7 @@ void register_compare(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     add_host_options(sub, a->host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
+    add_isa_option(sub);
     sub->callback([a, &exit_code] {
         a->scene = resolve_scene(a->scene);
         exit_code = run_compare(*a);

@@ -48,6 +48,7 @@ struct ExperimentArgs {
     std::string beam_threshold = "calibrated";
     std::vector<std::string> sizes;
     std::string out_dir = "out/masks";
+    std::string accel = "bvh";
     int patches = 0;
     int reference_rays = 4;
     bool quiet = false;
@@ -81,6 +82,7 @@ int run_experiment(const ExperimentArgs& args) {
     settings.repeat = args.repeat;
     settings.profile = args.profile;
     settings.progress = !args.quiet && isatty(STDERR_FILENO);
+    settings.accel = host::parse_accel(args.accel);
     if (!args.size.empty()) settings.size = parse_size(args.size);
     settings.period = make_period_runs(args.host);
     if (settings.period) settings.repeat = 1;
@@ -173,6 +175,12 @@ void register_experiment(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     add_host_options(sub, args->host);
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+    sub->add_option("--accel", args->accel,
+                    "fig4.*, beam-threshold, split: what the rays of raytrace and beam walk: bvh, "
+                    "or grid (the paper's uniform grid)")
+        ->check(CLI::IsMember({"bvh", "grid"}))
+        ->capture_default_str();
+    add_isa_option(sub);
     sub->callback([args, &exit_code] {
         for (std::string& scene : args->scenes)
             scene = resolve_scene(scene);

@@ -27,6 +27,7 @@
 #include "host/raster/scene_measures.h"
 #include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
+#include "host/trace/kernel_level.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/socket_stream.h"
 #include "protocol/stream_writer.h"
@@ -44,6 +45,7 @@ struct RenderArgs {
     std::string beam_threshold = "calibrated";
     int reflections = host::TraceOptions{}.max_reflections;
     double grid_density = host::BeamOptions{}.grid_density;
+    std::string accel = "bvh";
     std::string mask;
     int approx_min_side = 0;
     double approx_epsilon = 0;
@@ -70,6 +72,7 @@ void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& m
         {"--threshold", host::kHybridOptions, "hybrid"},
         {"--depth-estimate", host::kHybridOptions, "hybrid"},
         {"--reflections", host::kTraceOptions, "raytrace and beam"},
+        {"--accel", host::kTraceOptions, "raytrace and beam"},
         {"--grid-density", host::kBeamOptions, "beam"},
         {"--beam-threshold", host::kBeamOptions, "beam"},
     };
@@ -194,7 +197,11 @@ nlohmann::json stats_json(const RenderArgs& args, const experiments::RenderResul
         const double t = resolve_beam_threshold(args.beam_threshold, nullptr, args.host);
         j["beam_threshold"] = std::isinf(t) ? nlohmann::json("inf") : nlohmann::json(t);
     }
-    if (args.method == "beam" || args.method == "raytrace") j["reflections"] = args.reflections;
+    if (args.method == "beam" || args.method == "raytrace") {
+        j["reflections"] = args.reflections;
+        j["kernels"] = std::string(host::kernel_level_name(host::kernel_level()));
+        j["accel"] = args.accel;
+    }
     j["host"] = run.stats.to_json();
     j["host"]["commands"] = run.commands.size();
     host::SceneMeasures m = host::measure_scene(job.screen);
@@ -231,6 +238,7 @@ int run_render(const RenderArgs& args) {
             resolve_beam_threshold(args.beam_threshold, &beam_source, args.host);
         options.trace.max_reflections = args.reflections;
         options.beam.grid_density = args.grid_density;
+        options.trace.accel = host::parse_accel(args.accel);
         host::make_renderer(options);  // refuses options no renderer can take
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
@@ -346,8 +354,14 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option(
            "--grid-density", args->grid_density,
            "Beam: top-level cells per face piece of the grid the beam queries scan (crowded "
-           "cells get a grid of their own; rays use a BVH)")
+           "cells get a grid of their own; rays walk it too with --accel grid)")
         ->check(CLI::Range(host::kMinGridDensity, host::kMaxGridDensity))
+        ->capture_default_str();
+    sub->add_option("--accel", args->accel,
+                    "Raytrace and beam: what rays find their nearest face through: bvh, or grid "
+                    "(the paper's: a uniform grid walked by 3DDDA, Fujimoto et al.); the same "
+                    "frame either way")
+        ->check(CLI::IsMember({"bvh", "grid"}))
         ->capture_default_str();
     sub->add_option("--mask", args->mask,
                     "Beam: write the image with every pixel the ray tracer decided blacked out "
@@ -386,6 +400,7 @@ void register_render(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 10000))
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+    add_isa_option(sub);
     sub->callback([args, sub, &exit_code] {
         refuse_options_the_method_ignores(*sub, args->method);
         args->scene = resolve_scene(args->scene);

@@ -92,6 +92,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
     sub->add_option("--profile", a->profile, profile_option_help())->capture_default_str();
     add_host_options(sub, a->host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
+    add_isa_option(sub);
     sub->callback([a, &exit_code] {
         for (std::string& scene : a->scenes)
             scene = resolve_scene(scene);

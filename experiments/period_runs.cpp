@@ -124,6 +124,9 @@ std::vector<std::string> guest_options(const host::MethodOptions& o, const std::
         "--beam-threshold", number(o.beam.threshold),
         "--reflections",    std::to_string(o.trace.max_reflections),
         "--grid-density",   number(o.beam.grid_density)};
+    // only when not the default, so that the runs kept from before --accel keep their keys
+    if (o.trace.accel != host::Accel::Bvh)
+        args.insert(args.end(), {"--accel", std::string(host::accel_name(o.trace.accel))});
     if (!size.empty()) args.insert(args.end(), {"--size", size});
     return args;
 }

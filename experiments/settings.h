@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "host/trace/ray_tracer.h"
+
 namespace fb89::experiments {
 
 class PeriodRuns;
@@ -20,6 +22,8 @@ struct ExperimentSettings {
     int repeat = 7;
     std::string profile = "tms34010-50mhz";
     bool progress = false;
+    // what the ray tracer and the beam-ray hybrid's rays walk (ray_tracer.h)
+    host::Accel accel = host::Accel::Bvh;
     // A 1989 host (period_runs.h): host times are modelled from emulated runs, once each,
     // instead of timed here in repeated rounds. Null: this machine.
     std::shared_ptr<PeriodRuns> period;

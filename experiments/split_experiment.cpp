@@ -18,7 +18,9 @@ Table experiment_split(const ExperimentSettings& s) {
                  "controller_ms", "frame_ms", "bound_by", "ratio", "commands"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
     const std::string host = s.period ? s.period->profile().name : "native";
-    const std::vector<host::MethodOptions> settings = every_method();
+    std::vector<host::MethodOptions> settings = every_method();
+    for (host::MethodOptions& o : settings)
+        o.trace.accel = s.accel;
     for (const auto& file : s.scenes) {
         host::Scene scene;
         const host::ScreenScene screen = load_screen(file, s, scene);

@@ -79,9 +79,10 @@ std::vector<EndToEndMedians> measure_end_to_end(const std::string& file, ImageSi
     return out;
 }
 
-host::MethodOptions trace_setting(host::Method method, double threshold) {
+host::MethodOptions trace_setting(host::Method method, double threshold, host::Accel accel) {
     host::MethodOptions o(method);
     o.beam.threshold = threshold;
+    o.trace.accel = accel;
     return o;
 }
 
@@ -107,8 +108,8 @@ Table experiment_beam_resolution(const ExperimentSettings& s, const std::vector<
     for (const auto& file : s.scenes)
         for (const ImageSize& size : sizes) {
             const std::vector<host::MethodOptions> methods{
-                trace_setting(host::Method::RayTrace, 0),
-                trace_setting(host::Method::Beam, threshold)};
+                trace_setting(host::Method::RayTrace, 0, s.accel),
+                trace_setting(host::Method::Beam, threshold, s.accel)};
             auto r = measure_end_to_end(file, size, methods, s.period ? 0 : s.repeat,
                                         s.progress && !s.period);
             if (s.period) {
@@ -151,7 +152,8 @@ Table experiment_beam_masks(const ExperimentSettings& s, double threshold,
                  "windows_to_rays", "image", "mask"});
     std::filesystem::create_directories(out_dir);
     for (const auto& file : s.scenes) {
-        EndToEnd run = run_end_to_end(file, s.size, trace_setting(host::Method::Beam, threshold));
+        EndToEnd run =
+            run_end_to_end(file, s.size, trace_setting(host::Method::Beam, threshold, s.accel));
         controller::Controller ctl(controller::load_profile("ideal"));
         run.commands.replay_into(ctl);
         const std::string stem = std::filesystem::path(file).stem().string();
@@ -183,9 +185,10 @@ Table experiment_beam_threshold(const ExperimentSettings& s, const std::vector<d
     for (const auto& file : s.scenes) {
         host::Scene scene;
         host::ScreenScene screen = load_screen(file, s, scene);
-        std::vector<host::MethodOptions> settings{trace_setting(host::Method::RayTrace, 0)};
+        std::vector<host::MethodOptions> settings{
+            trace_setting(host::Method::RayTrace, 0, s.accel)};
         for (double t : ramp)
-            settings.push_back(trace_setting(host::Method::Beam, t));
+            settings.push_back(trace_setting(host::Method::Beam, t, s.accel));
         auto r = measure_settings(file, screen, settings, s);
         const double rays_ms = r[0].median.cpu_ms;
         const uint64_t rays_frame = frame_checksum(r[0].commands);

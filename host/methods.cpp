@@ -19,10 +19,12 @@ constexpr std::array<MethodInfo, 6> kMethods{{
      "Warnock/Z-buffer hybrid (§3): Expr. 3.1 hands windows to the Z-buffer",
      kWindowOptions | kHybridOptions},
     {Method::RayTrace, "raytrace",
-     "ray tracer: one ray per pixel, the nearest face found through a BVH", kTraceOptions},
+     "ray tracer: one ray per pixel, the nearest face found through a BVH "
+     "[--accel grid: a uniform grid, as in 1989]",
+     kTraceOptions},
     {Method::Beam, "beam",
      "beam-ray hybrid (§4): beams query a uniform grid and fill windows, Expr. 2.7 hands to rays "
-     "(BVH)",
+     "(BVH) [--accel grid: the rays walk the grid too]",
      kTraceOptions | kBeamOptions},
 }};
 

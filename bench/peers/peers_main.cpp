@@ -13,6 +13,7 @@
 #include "bench/peers/ray_side_by_side.h"
 #include "bench/peers/side_by_side.h"
 #include "host/trace/beam_ray_hybrid.h"
+#include "host/trace/kernel_level.h"
 #include "protocol/output_file.h"
 
 namespace {
@@ -21,6 +22,8 @@ using namespace fb89::peers;
 
 struct Args {
     int repeat = 21, warmup = 2;
+    double warmup_seconds = 1.0;
+    std::vector<std::string> isa;  // --rays: our kernel levels; empty: every one supported
     bool repeat_given = false;
     std::string scenes_dir = FB89_SCENES_DIR, csv, size = "1024x780", quality = "high";
     bool quick = false;
@@ -33,7 +36,18 @@ int run_rays(const Args& args) {
     RaySideBySideOptions options;
     options.repeat = args.repeat_given ? args.repeat : 9;
     options.warmup = args.warmup;
+    options.warmup_seconds = args.warmup_seconds;
     options.beam_threshold = args.beam_threshold;
+    for (const std::string& name : args.isa)
+        options.levels.push_back(fb89::host::parse_kernel_level(name));
+    if (options.levels.empty()) options.levels = fb89::host::supported_kernel_levels();
+    for (fb89::host::KernelLevel level : options.levels)
+        fb89::host::set_kernel_level(level);  // refused here, before any work, if unsupported
+    std::cerr << "our kernels:";
+    for (fb89::host::KernelLevel level : options.levels)
+        std::cerr << " " << fb89::host::kernel_level_name(level) << " ("
+                  << fb89::host::kernel_level_description(level) << ")";
+    std::cerr << "\n";
     options.quality = parse_embree_quality(args.quality);
     int w = 0, h = 0;
     if (std::sscanf(args.size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1)
@@ -43,7 +57,8 @@ int run_rays(const Args& args) {
     std::vector<RayRow> rows;
     auto run = [&](const RayScene& scene) {
         std::cerr << "  " << scene.name << "...\n";
-        rows.push_back(measure_ray_side_by_side(scene, options));
+        for (RayRow& row : measure_ray_side_by_side(scene, options))
+            rows.push_back(std::move(row));
         if (rows.size() == 1) std::cerr << "peer: " << rows.front().embree << "\n";
     };
     for (const char* name : {"G", "H", "I", "cornell_box", "cornell_mirror"}) {
@@ -73,6 +88,11 @@ int run_rays(const Args& args) {
                       << r.vs_robust.first_interior << "\n";
         if (r.vs_robust.interior || r.beam_vs_raytrace) {
             std::cerr << "fb89_peers: " << r.scene << " disagrees off id boundaries\n";
+            status = 1;
+        }
+        if (r.level_vs_first) {
+            std::cerr << "fb89_peers: " << r.scene << ": level " << r.isa
+                      << " made another frame or other counts than the first level\n";
             status = 1;
         }
     }
@@ -150,7 +170,14 @@ int main(int argc, char** argv) {
     app.add_flag("--rays", rays, "Embree against our raytrace and beam instead of llvmpipe");
     app.add_option("--repeat", args.repeat, "timed rounds per scene (median; 21, with --rays 9)")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--warmup", args.warmup, "untimed rounds first")->check(CLI::Range(0, 100));
+    app.add_option("--warmup", args.warmup, "untimed rounds first, at least")
+        ->check(CLI::Range(0, 100));
+    app.add_option("--warmup-seconds", args.warmup_seconds,
+                   "--rays: untimed rounds until this many seconds have passed, at least")
+        ->check(CLI::Range(0.0, 600.0));
+    app.add_option("--isa", args.isa,
+                   "--rays: our kernels' instruction sets, each its own row: baseline, v3, v4 "
+                   "(default: every one this machine runs)");
     app.add_option("--scenes-dir", args.scenes_dir, "where the scene files are");
     app.add_option("--csv", args.csv, "write the rows as CSV to this file");
     app.add_flag("--quick", args.quick, "a few small scenes, for tests");

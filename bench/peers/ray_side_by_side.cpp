@@ -13,6 +13,7 @@
 #include "host/methods.h"
 #include "host/stats.h"
 #include "protocol/memory_buffer.h"
+#include "protocol/stream_writer.h"
 
 namespace fb89::peers {
 
@@ -64,67 +65,104 @@ std::vector<uint32_t> our_ray_face_ids(const RayScene& scene, const std::string&
     return controller_face_ids(ours.frame);
 }
 
-RayRow measure_ray_side_by_side(const RayScene& scene, const RaySideBySideOptions& options) {
+std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
+                                             const RaySideBySideOptions& options) {
     const host::ScreenScene& s = scene.screen;
-    // set-up, untimed: Embree's BVHs and our grids
+    // set-up, untimed: Embree's BVHs, and ours at each level (a tracer keeps the level it was
+    // made at)
     EmbreeOptions eo;
     eo.quality = options.quality;
     EmbreeTracer embree(*scene.world, eo);
     eo.robust = true;
     EmbreeTracer robust(*scene.world, eo);
-    Ours raytrace(s, primary("raytrace", options.beam_threshold));
-    Ours beam(s, primary("beam", options.beam_threshold));
+    const std::vector<host::KernelLevel> levels =
+        options.levels.empty() ? std::vector<host::KernelLevel>{host::kernel_level()}
+                               : options.levels;
+    const host::KernelLevel was = host::kernel_level();
+    std::vector<std::unique_ptr<Ours>> raytrace, beam;
+    for (host::KernelLevel level : levels) {
+        host::set_kernel_level(level);
+        raytrace.push_back(std::make_unique<Ours>(s, primary("raytrace", options.beam_threshold)));
+        beam.push_back(std::make_unique<Ours>(s, primary("beam", options.beam_threshold)));
+    }
+    host::set_kernel_level(was);
 
-    // warm-up, then interleaved rounds: Embree single, raytrace, packets, beam, robust, ...
+    // warm-up (at least `warmup` rounds and `warmup_seconds`: the first scene of a run meets
+    // cold pages and clocks), then interleaved rounds
     std::vector<uint32_t> single_ids, packet_ids, robust_ids;
     std::vector<double> single_t, packet_t, robust_t;
-    for (int round = 0; round < options.warmup + options.repeat; ++round) {
-        const bool timed = round >= options.warmup;
+    const auto start = std::chrono::steady_clock::now();
+    auto warm = [&](int round) {
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return round < options.warmup || seconds < options.warmup_seconds;
+    };
+    int timed_rounds = 0;
+    for (int round = 0; timed_rounds < options.repeat; ++round) {
+        const bool timed = !warm(round);
         const double t1 = time_embree([&] { embree.trace_single(single_ids); });
-        const double t_ray = raytrace.render(s);
+        std::vector<double> t_ray, t_beam;
+        for (auto& r : raytrace)
+            t_ray.push_back(r->render(s));
         const double t16 = time_embree([&] { embree.trace_packets(packet_ids); });
-        const double t_beam = beam.render(s);
+        for (auto& b : beam)
+            t_beam.push_back(b->render(s));
         const double t_robust = time_embree([&] { robust.trace_single(robust_ids); });
         if (!timed) continue;
+        ++timed_rounds;
         single_t.push_back(t1);
-        raytrace.samples.push_back(t_ray);
         packet_t.push_back(t16);
-        beam.samples.push_back(t_beam);
         robust_t.push_back(t_robust);
+        for (size_t l = 0; l < levels.size(); ++l) {
+            raytrace[l]->samples.push_back(t_ray[l]);
+            beam[l]->samples.push_back(t_beam[l]);
+        }
     }
 
-    RayRow row;
-    row.scene = scene.name;
-    row.width = s.width;
-    row.height = s.height;
-    row.faces = s.face_count;
-    row.triangles = embree.triangles();
-    row.embree = embree.description();
-    row.embree_single_ms = median_of(single_t);
-    row.embree_packets_ms = median_of(packet_t);
-    row.embree_robust_ms = median_of(robust_t);
-    row.raytrace_ms = median_of(raytrace.samples);
-    row.beam_ms = median_of(beam.samples);
+    std::vector<RayRow> rows;
+    for (size_t l = 0; l < levels.size(); ++l) {
+        RayRow row;
+        row.scene = scene.name;
+        row.isa = std::string(host::kernel_level_name(levels[l]));
+        row.width = s.width;
+        row.height = s.height;
+        row.faces = s.face_count;
+        row.triangles = embree.triangles();
+        row.embree = embree.description();
+        row.embree_single_ms = median_of(single_t);
+        row.embree_packets_ms = median_of(packet_t);
+        row.embree_robust_ms = median_of(robust_t);
+        row.raytrace_ms = median_of(raytrace[l]->samples);
+        row.beam_ms = median_of(beam[l]->samples);
 
-    // agreement, off the clock, from the last frames
-    const std::vector<uint32_t> ours = controller_face_ids(raytrace.frame);
-    row.vs_robust = compare_with_boundaries(s.width, s.height, ours, robust_ids);
-    row.vs_default = compare_with_boundaries(s.width, s.height, ours, single_ids);
-    row.packets_vs_single = differing_pixels(packet_ids, single_ids);
-    row.beam_vs_raytrace = differing_pixels(controller_face_ids(beam.frame), ours);
+        // agreement, off the clock, from the last frames
+        const std::vector<uint32_t> ours = controller_face_ids(raytrace[l]->frame);
+        row.vs_robust = compare_with_boundaries(s.width, s.height, ours, robust_ids);
+        row.vs_default = compare_with_boundaries(s.width, s.height, ours, single_ids);
+        row.packets_vs_single = differing_pixels(packet_ids, single_ids);
+        row.beam_vs_raytrace = differing_pixels(controller_face_ids(beam[l]->frame), ours);
+        // every level makes the same frame, to the byte
+        auto bytes = [](const Ours& o) { return protocol::encode_stream(o.frame.commands()); };
+        row.level_vs_first =
+            bytes(*raytrace[l]) != bytes(*raytrace[0]) || bytes(*beam[l]) != bytes(*beam[0]);
 
-    // our counters, from the last frames
-    const host::Counters& rc = raytrace.stats.counters;
-    row.rays = rc.get("rays");
-    row.nodes = rc.get("bvh_nodes_visited");
-    row.face_tests = rc.get("ray_face_tests");
-    row.beam_rays = beam.stats.counters.get("rays");
-    row.pixels_by_beams = beam.stats.counters.get("pixels_by_beams");
-    return row;
+        // our counters, from the last frames
+        const host::Counters& rc = raytrace[l]->stats.counters;
+        row.rays = rc.get("rays");
+        row.nodes = rc.get("bvh_nodes_visited");
+        row.face_tests = rc.get("ray_face_tests");
+        row.beam_rays = beam[l]->stats.counters.get("rays");
+        row.pixels_by_beams = beam[l]->stats.counters.get("pixels_by_beams");
+        row.level_vs_first =
+            row.level_vs_first ||
+            rc.get("bvh_nodes_visited") != raytrace[0]->stats.counters.get("bvh_nodes_visited");
+        rows.push_back(std::move(row));
+    }
+    return rows;
 }
 
 std::string ray_csv_header() {
-    return "scene,width,height,faces,triangles,embree_single_ms,embree_packets_ms,"
+    return "scene,isa,width,height,faces,triangles,embree_single_ms,embree_packets_ms,"
            "embree_robust_ms,raytrace_ms,beam_ms,embree_single_mrays,embree_packets_mrays,"
            "embree_robust_mrays,raytrace_mrays,beam_mpixels,raytrace_over_embree_single,"
            "raytrace_over_embree_robust,beam_over_embree_single,beam_over_embree_packets,"
@@ -140,40 +178,43 @@ std::string ray_csv_row(const RayRow& r) {
     const IdAgreement &a = r.vs_robust, &b = r.vs_default;
     const double rays = r.rays ? double(r.rays) : 1.0;
     return fmt::format(
-        "\"{}\",{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.2f},{:.2f},{:.2f},"
+        "\"{}\",{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.2f},{:.2f},{:."
+        "2f},"
         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.2f},{},{}",
-        r.scene, r.width, r.height, r.faces, r.triangles, r.embree_single_ms, r.embree_packets_ms,
-        r.embree_robust_ms, r.raytrace_ms, r.beam_ms, mrays(px, r.embree_single_ms),
-        mrays(px, r.embree_packets_ms), mrays(px, r.embree_robust_ms), mrays(px, r.raytrace_ms),
-        mrays(px, r.beam_ms), ratio(r.embree_single_ms, r.raytrace_ms),
-        ratio(r.embree_robust_ms, r.raytrace_ms), ratio(r.embree_single_ms, r.beam_ms),
-        ratio(r.embree_packets_ms, r.beam_ms), a.differ, a.coverage, a.on_boundary, a.diagonal,
-        a.interior, b.differ, b.coverage, b.on_boundary, b.diagonal, b.interior,
-        r.packets_vs_single, r.beam_vs_raytrace, r.rays, double(r.nodes) / rays,
-        double(r.face_tests) / rays, r.beam_rays, r.pixels_by_beams);
+        r.scene, r.isa, r.width, r.height, r.faces, r.triangles, r.embree_single_ms,
+        r.embree_packets_ms, r.embree_robust_ms, r.raytrace_ms, r.beam_ms,
+        mrays(px, r.embree_single_ms), mrays(px, r.embree_packets_ms),
+        mrays(px, r.embree_robust_ms), mrays(px, r.raytrace_ms), mrays(px, r.beam_ms),
+        ratio(r.embree_single_ms, r.raytrace_ms), ratio(r.embree_robust_ms, r.raytrace_ms),
+        ratio(r.embree_single_ms, r.beam_ms), ratio(r.embree_packets_ms, r.beam_ms), a.differ,
+        a.coverage, a.on_boundary, a.diagonal, a.interior, b.differ, b.coverage, b.on_boundary,
+        b.diagonal, b.interior, r.packets_vs_single, r.beam_vs_raytrace, r.rays,
+        double(r.nodes) / rays, double(r.face_tests) / rays, r.beam_rays, r.pixels_by_beams);
 }
 
 std::string ray_human_table(const std::vector<RayRow>& rows) {
-    std::string out = fmt::format(
-        "{:<32} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>6}\n", "scene", "faces",
-        "embree1", "embree16", "robust1", "raytrace", "beam", "rt/e1", "rt/rb", "bm/e1", "bm/e16");
+    std::string out =
+        fmt::format("{:<32} {:<8} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>6}\n",
+                    "scene", "isa", "faces", "embree1", "embree16", "robust1", "raytrace", "beam",
+                    "rt/e1", "rt/rb", "bm/e1", "bm/e16");
     for (const RayRow& r : rows)
         out += fmt::format(
-            "{:<32} {:>6} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>6} {:>6} {:>6} {:>6}\n",
-            r.scene, r.faces, r.embree_single_ms, r.embree_packets_ms, r.embree_robust_ms,
+            "{:<32} {:<8} {:>6} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>6} {:>6} {:>6} "
+            "{:>6}\n",
+            r.scene, r.isa, r.faces, r.embree_single_ms, r.embree_packets_ms, r.embree_robust_ms,
             r.raytrace_ms, r.beam_ms, ratio(r.embree_single_ms, r.raytrace_ms),
             ratio(r.embree_robust_ms, r.raytrace_ms), ratio(r.embree_single_ms, r.beam_ms),
             ratio(r.embree_packets_ms, r.beam_ms));
     out += "ms: median wall-clock per frame; ratios: Embree time / ours (> 1: ours is faster)\n\n";
 
-    out += fmt::format("{:<32} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "Mrays/s",
-                       "embree1", "embree16", "robust1", "raytrace", "beam*", "nodes/r", "tests/r",
-                       "beam rays");
+    out += fmt::format("{:<32} {:<8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "Mrays/s",
+                       "isa", "embree1", "embree16", "robust1", "raytrace", "beam*", "nodes/r",
+                       "tests/r", "beam rays");
     for (const RayRow& r : rows) {
         const double px = r.pixels(), rays = r.rays ? double(r.rays) : 1.0;
         out += fmt::format(
-            "{:<32} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.2f} {:>9}\n",
-            r.scene, mrays(px, r.embree_single_ms), mrays(px, r.embree_packets_ms),
+            "{:<32} {:<8} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>7.2f} {:>7.2f} {:>9}\n",
+            r.scene, r.isa, mrays(px, r.embree_single_ms), mrays(px, r.embree_packets_ms),
             mrays(px, r.embree_robust_ms), mrays(px, r.raytrace_ms), mrays(px, r.beam_ms),
             double(r.nodes) / rays, double(r.face_tests) / rays, r.beam_rays);
     }
@@ -181,15 +222,18 @@ std::string ray_human_table(const std::vector<RayRow>& rows) {
         "beam*: Mpixels/s (it traces fewer rays than pixels); nodes/r, tests/r: our raytrace's\n"
         "BVH nodes visited and ray-face tests per ray\n\n";
 
-    out += fmt::format("{:<32} {:<46} {:<46} {:>9} {:>9}\n", "agreement (our raytrace)",
-                       "vs Embree robust", "vs Embree default", "e16!=e1", "beam!=rt");
+    out += fmt::format("{:<32} {:<8} {:<46} {:<46} {:>9} {:>9} {:>9}\n", "agreement (our raytrace)",
+                       "isa", "vs Embree robust", "vs Embree default", "e16!=e1", "beam!=rt",
+                       "levels");
     for (const RayRow& r : rows)
-        out +=
-            fmt::format("{:<32} {:<46} {:<46} {:>9} {:>9}\n", r.scene, agreement_cell(r.vs_robust),
-                        agreement_cell(r.vs_default), r.packets_vs_single, r.beam_vs_raytrace);
+        out += fmt::format("{:<32} {:<8} {:<46} {:<46} {:>9} {:>9} {:>9}\n", r.scene, r.isa,
+                           agreement_cell(r.vs_robust), agreement_cell(r.vs_default),
+                           r.packets_vs_single, r.beam_vs_raytrace,
+                           r.level_vs_first ? "DIFFER" : "same");
     out +=
         "edge: on an id boundary of ours (a 4-neighbour with another id); diag: another id\n"
-        "only diagonally; inside: all 8 neighbours have ours' id\n";
+        "only diagonally; inside: all 8 neighbours have ours' id; levels: our frames (commands,\n"
+        "byte for byte) and counts against the first level's\n";
     return out;
 }
 

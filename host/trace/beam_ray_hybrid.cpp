@@ -36,7 +36,8 @@ void corner_pixels(const PixelRect& w, int xs[4], int ys[4]) {
 }  // namespace
 
 void BeamRayHybrid::setup(const ScreenScene& scene) {
-    m_trace.build(scene, m_trace_options.max_reflections, m_options.grid_density);
+    m_trace.build(scene, m_trace_options.max_reflections, m_options.grid_density,
+                  m_trace_options.accel);
     m_beams = std::make_unique<BeamTracer>(*m_trace.scene, *m_trace.grid);
     m_depth = std::max(1.0, measure_scene(scene).depth_complexity);
     m_width = scene.width;

@@ -131,6 +131,55 @@ RayBvh::RayBvh(const TraceScene& scene) {
     const double pad = kPad * std::max(extent, 1e-30);
 
     m_depth = build(items, 0, items.size(), 1, pad);
+    if (kWide && m_nodes[0].count == 0) collapse(0);
+}
+
+uint32_t RayBvh::collapse(uint32_t node) {
+    const auto wide = static_cast<uint32_t>(m_wide.size());
+    m_wide.emplace_back();
+    // the node's children, then again and again the largest inner one opened into its two,
+    // until the slots are full or every child is a leaf
+    auto area = [&](uint32_t i) {
+        const Node& n = m_nodes[i];
+        const double dx = double(n.bounds[3]) - n.bounds[0], dy = double(n.bounds[4]) - n.bounds[1],
+                     dz = double(n.bounds[5]) - n.bounds[2];
+        return dx * dy + dy * dz + dz * dx;
+    };
+    std::vector<uint32_t> slots = {node + 1, m_nodes[node].index};
+    while (slots.size() < static_cast<size_t>(kWidth)) {
+        int open = -1;
+        for (size_t k = 0; k < slots.size(); ++k)
+            if (m_nodes[slots[k]].count == 0 && (open < 0 || area(slots[k]) > area(slots[open])))
+                open = static_cast<int>(k);
+        if (open < 0) break;
+        const uint32_t inner = slots[open];
+        slots[open] = inner + 1;
+        slots.insert(slots.begin() + open + 1, m_nodes[inner].index);
+    }
+    WideNode w{};
+    for (int k = 0; k < kWidth; ++k) {
+        for (int a = 0; a < 3; ++a) {
+            w.lo[a][k] = INFINITY;  // an empty slot: a box no ray enters
+            w.hi[a][k] = -INFINITY;
+        }
+        w.child[k] = UINT32_MAX;
+    }
+    for (size_t k = 0; k < slots.size(); ++k) {
+        const Node& n = m_nodes[slots[k]];
+        for (int a = 0; a < 3; ++a) {
+            w.lo[a][k] = n.bounds[a];
+            w.hi[a][k] = n.bounds[3 + a];
+        }
+        w.count[k] = n.count;
+        w.child[k] = n.count > 0 ? n.index : 0;  // inner: set below, once collapsed
+    }
+    m_wide[wide] = w;
+    for (size_t k = 0; k < slots.size(); ++k)
+        if (m_nodes[slots[k]].count == 0) {
+            const uint32_t child = collapse(slots[k]);
+            m_wide[wide].child[k] = child;
+        }
+    return wide;
 }
 
 int RayBvh::build(std::vector<Item>& items, size_t first, size_t last, int depth, double pad) {

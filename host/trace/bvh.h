@@ -13,12 +13,21 @@
 //
 // The uniform grid (grid.h) stays for what rays do not do: beam and decahedral volume
 // queries scan cells.
+//
+// On x86-64 the walk runs on an 8-wide tree collapsed from the binary one (each node holds up
+// to 8 children's boxes side by side, Wald et al. 2008's multi-BVH), its eight slab tests one
+// vector operation each (8 floats: two SSE registers at the baseline level, one AVX register
+// at x86-64-v3 and up; kernel_level.h). Every lane computes what the scalar test computes,
+// in the same order, so the walk's hits and its node count are the same at every level. The
+// period guests keep the binary walk, their portable path.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -41,10 +50,35 @@ class RayBvh {
     static float lo(const Node& n, int axis) { return n.bounds[axis]; }
     static float hi(const Node& n, int axis) { return n.bounds[3 + axis]; }
 
-    const std::vector<Node>& nodes() const { return m_nodes; }
-    const std::vector<uint32_t>& pieces() const { return m_pieces; }
+    // The 8-wide tree: each slot a child's box (empty slots hold an inverted box no ray
+    // enters), and the child: an inner node's index in wide(), or a leaf's first entry in
+    // pieces() and its count.
+    static constexpr int kWidth = 8;
+    struct alignas(32) WideNode {
+        float lo[3][kWidth], hi[3][kWidth];
+        uint32_t child[kWidth];
+        uint16_t count[kWidth];  // pieces in a leaf slot; 0 for an inner or empty slot
+    };
+    static constexpr bool kWide =
+#if defined(__x86_64__) && !defined(FB89_PORTABLE_KERNELS)
+        true;
+#else
+        false;
+#endif
+
+    const std::vector<Node>& nodes() const {
+        return m_nodes;
+    }
+    const std::vector<WideNode>& wide() const {
+        return m_wide;
+    }
+    const std::vector<uint32_t>& pieces() const {
+        return m_pieces;
+    }
     // The deepest level from the root (1); the walk's stack is sized for kMaxDepth.
-    int depth() const { return m_depth; }
+    int depth() const {
+        return m_depth;
+    }
     static constexpr int kMaxDepth = 64;
     static constexpr size_t kMaxLeaf = 1;  // pieces in a leaf at most, unless they cannot split
     static constexpr double kPad = 1e-5;   // of the scene's extent, around every box
@@ -62,8 +96,9 @@ class RayBvh {
 
     // Walks the leaves whose boxes the ray crosses for tmin < t <= tmax, nearer boxes first;
     // test(piece) tests one piece; best() is the distance of the best hit so far, which
-    // prunes boxes entered beyond it. Returns the nodes whose boxes were tested.
-    template <class Test, class Best>
+    // prunes boxes entered beyond it. Returns the nodes whose boxes were tested. `Lanes`: the
+    // wide walk's vectors, 4 floats (SSE) or 8 (AVX); the same hits and count either way.
+    template <int Lanes = 4, class Test, class Best>
     uint64_t walk(const Ray& ray, double tmin, double tmax, Test&& test, Best&& best) const;
 
     struct Box;
@@ -72,11 +107,25 @@ class RayBvh {
   private:
     // Makes the node of items [first, last) and its subtrees; returns the deepest level.
     int build(std::vector<Item>& items, size_t first, size_t last, int depth, double pad);
+    // The wide node of binary inner node `node`'s subtree; returns its index in m_wide.
+    uint32_t collapse(uint32_t node);
+    template <class Test, class Best>
+    uint64_t walk_binary(const FloatRay& r, float t0, float t1, Test&& test, Best&& best) const;
+    template <int Lanes, class Test, class Best>
+    uint64_t walk_wide(const FloatRay& r, float t0, float t1, Test&& test, Best&& best) const;
 
     std::vector<Node> m_nodes;
+    std::vector<WideNode> m_wide;
     std::vector<uint32_t> m_pieces;
     int m_depth = 0;
 };
+
+// 4 and 8 floats as one value, for the wide walk (GCC's vector extension: each operation
+// compiled to the widest registers the calling function's instruction set has)
+using Float4 = float __attribute__((vector_size(16)));
+using Float8 = float __attribute__((vector_size(32)));
+using Int4 = int32_t __attribute__((vector_size(16)));
+using Int8 = int32_t __attribute__((vector_size(32)));
 
 // A distance t >= 0 as a float no smaller than it, and one no larger (for pruning and box
 // tests, where a float on the wrong side would lose a hit): the float nearest t is within
@@ -116,20 +165,35 @@ inline RayBvh::FloatRay::FloatRay(const Ray& ray) {
     }
 }
 
-template <class Test, class Best>
+template <int Lanes, class Test, class Best>
 uint64_t RayBvh::walk(const Ray& ray, double tmin, double tmax, Test&& test, Best&& best) const {
     if (m_nodes.empty()) return 0;
     const FloatRay r(ray);
     const float t0 = float_down(tmin), t1 = float_up(tmax);
+    float t_enter;
+    // the root's box first: a ray that misses the scene costs one test
+    if (!enters(m_nodes[0], r, t0, t1, t_enter)) return 1;
+    if (m_nodes[0].count > 0) {  // the whole tree one leaf
+        for (uint32_t i = m_nodes[0].index; i < m_nodes[0].index + m_nodes[0].count; ++i)
+            test(m_pieces[i]);
+        return 1;
+    }
+    if constexpr (kWide)
+        return 1 + walk_wide<Lanes>(r, t0, t1, test, best);
+    else
+        return 1 + walk_binary(r, t0, t1, test, best);
+}
+
+template <class Test, class Best>
+uint64_t RayBvh::walk_binary(const FloatRay& r, float t0, float t1, Test&& test,
+                             Best&& best) const {
     struct Pending {
         uint32_t node;
         float t_enter;
     };
     Pending stack[kMaxDepth];
     int top = 0;
-    uint64_t visited = 1;
-    float t_enter;
-    if (!enters(m_nodes[0], r, t0, t1, t_enter)) return visited;
+    uint64_t visited = 0;
     uint32_t at = 0;
     for (;;) {
         const Node& n = m_nodes[at];
@@ -164,6 +228,80 @@ uint64_t RayBvh::walk(const Ray& ray, double tmin, double tmax, Test&& test, Bes
                 at = p.node;
                 break;
             }
+        }
+    }
+}
+
+template <int Lanes, class Test, class Best>
+uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, Best&& best) const {
+    // `Lanes` floats as one value, the node's 8 slots in kWidth / Lanes of them: the compiler
+    // keeps each in one register of the function's instruction set, lane by lane the same
+    // arithmetic as enters()
+    static_assert(kWidth % Lanes == 0);
+    using fv = std::conditional_t<Lanes == 4, Float4, Float8>;
+    using iv = std::conditional_t<Lanes == 4, Int4, Int8>;
+    constexpr float kWiden = 1.0f + 8.0f * 0x1p-24f;
+    struct Pending {
+        uint32_t child;
+        uint32_t count;  // pieces of a leaf; 0: an inner node
+        float t_enter;
+    };
+    Pending stack[kMaxDepth * (kWidth - 1) + kWidth];
+    int top = 0;
+    uint64_t visited = 0;
+    uint32_t at = 0;
+    for (;;) {
+        // the node's slots: where the ray enters each box, within [t0, the best hit so far]
+        const WideNode& n = m_wide[at];
+        const float limit = std::min(t1, float_up(best()));
+        constexpr int kChunks = kWidth / Lanes;
+        fv tn[kChunks];
+        iv hit[kChunks];
+        for (int c = 0; c < kChunks; ++c) {
+            fv near_t = fv{} + t0, far_t = fv{} + limit;
+            for (int a = 0; a < 3; ++a) {
+                fv lo, hi;
+                std::memcpy(&lo, &n.lo[a][c * Lanes], sizeof lo);
+                std::memcpy(&hi, &n.hi[a][c * Lanes], sizeof hi);
+                const bool negative = r.near[a] != a;
+                const fv near = ((negative ? hi : lo) - r.origin[a]) * r.inv[a];
+                const fv far = ((negative ? lo : hi) - r.origin[a]) * r.inv[a] * kWiden;
+                near_t = near > near_t ? near : near_t;
+                far_t = far < far_t ? far : far_t;
+            }
+            tn[c] = near_t;
+            hit[c] = near_t <= far_t;
+        }
+        auto t_of = [&](int k) { return tn[k / Lanes][k % Lanes]; };
+        // the boxes entered, the nearest pushed last (of equal entries, the lower slot)
+        int order[kWidth], hits = 0;
+        for (int k = 0; k < kWidth; ++k) {
+            visited += n.child[k] != UINT32_MAX;
+            if (!hit[k / Lanes][k % Lanes]) continue;
+            int i = hits++;
+            const float t = t_of(k);
+            while (i > 0 && t_of(order[i - 1]) < t) {
+                order[i] = order[i - 1];
+                --i;
+            }
+            order[i] = k;
+        }
+        for (int i = 0; i < hits; ++i) {
+            const int k = order[i];
+            stack[top++] = Pending{n.child[k], n.count[k], t_of(k)};
+        }
+        // the next pending box not entered beyond the best hit found since it was pushed:
+        // a leaf's pieces are tested, an inner node's slots next
+        for (;;) {
+            if (top == 0) return visited;
+            const Pending p = stack[--top];
+            if (!(p.t_enter <= float_up(best()))) continue;
+            if (p.count == 0) {
+                at = p.child;
+                break;
+            }
+            for (uint32_t i = p.child; i < p.child + p.count; ++i)
+                test(m_pieces[i]);
         }
     }
 }

@@ -1,33 +1,54 @@
 #include "host/trace/ray_tracer.h"
 
+#include "host/trace/kernel_level.h"
+
 #include <algorithm>
+#include <span>
 #include <stdexcept>
+#include <string>
 
 #include <glm/geometric.hpp>
 
 namespace fb89::host {
 
+std::string_view accel_name(Accel accel) {
+    return accel == Accel::Grid ? "grid" : "bvh";
+}
+
+Accel parse_accel(std::string_view name) {
+    if (name == "bvh") return Accel::Bvh;
+    if (name == "grid") return Accel::Grid;
+    throw std::invalid_argument("expected bvh or grid, got '" + std::string(name) + "'");
+}
+
 void TraceCounts::publish(Counters& counters) const {
     counters.add("rays", rays);
-    counters.add("bvh_nodes_visited", nodes);
+    if (cells > 0)
+        counters.add("cells_visited", cells);
+    else
+        counters.add("bvh_nodes_visited", nodes);
     counters.add("ray_face_tests", face_tests);
     counters.add("ray_ties", ties);
 }
 
-RayTracer::RayTracer(const TraceScene& scene) : m_scene(scene), m_bvh(scene) {}
+namespace {
 
-Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
-                           double tmax) const {
+// The nearest piece with tmin < t <= tmax, never `skip`: the BVH walk and the watertight test.
+// Inlined whole into each level's entry point below (flatten), so that each is compiled for
+// its instruction set; the floating-point operations are the same at every level.
+template <int Lanes>
+inline Hit closest_hit_body(const RayBvh& bvh, const TraceScene& scene, const Ray& ray, double tmin,
+                            uint32_t skip, TraceCounts& counts, double tmax) {
     const RaySpace space(ray);
     Hit best{INFINITY, kNoFace};
     uint64_t tests = 0, ties = 0;
-    const uint64_t nodes = m_bvh.walk(
+    const uint64_t nodes = bvh.walk<Lanes>(
         ray, tmin, tmax,
         [&](uint32_t piece) {
             if (piece == skip) return;
             ++tests;
             double t;
-            if (!m_scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) ||
+            if (!scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) ||
                 t > best.t || t > tmax)
                 return;
             if (t == best.t) {
@@ -38,6 +59,83 @@ Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCoun
         },
         [&] { return best.t; });
     counts.nodes += nodes;
+    counts.face_tests += tests;
+    counts.ties += ties;
+    return best;
+}
+
+using ClosestHit = Hit (*)(const RayBvh&, const TraceScene&, const Ray&, double, uint32_t,
+                           TraceCounts&, double);
+
+[[gnu::flatten]] Hit closest_hit_baseline(const RayBvh& bvh, const TraceScene& scene,
+                                          const Ray& ray, double tmin, uint32_t skip,
+                                          TraceCounts& counts, double tmax) {
+    return closest_hit_body<4>(bvh, scene, ray, tmin, skip, counts, tmax);
+}
+
+#if defined(__x86_64__) && !defined(FB89_PORTABLE_KERNELS)
+[[gnu::flatten, gnu::target("arch=x86-64-v3")]] Hit closest_hit_v3(
+    const RayBvh& bvh, const TraceScene& scene, const Ray& ray, double tmin, uint32_t skip,
+    TraceCounts& counts, double tmax) {
+    return closest_hit_body<8>(bvh, scene, ray, tmin, skip, counts, tmax);
+}
+
+[[gnu::flatten, gnu::target("arch=x86-64-v4")]] Hit closest_hit_v4(
+    const RayBvh& bvh, const TraceScene& scene, const Ray& ray, double tmin, uint32_t skip,
+    TraceCounts& counts, double tmax) {
+    return closest_hit_body<8>(bvh, scene, ray, tmin, skip, counts, tmax);
+}
+#endif
+
+ClosestHit closest_hit_for(KernelLevel level) {
+#if defined(__x86_64__) && !defined(FB89_PORTABLE_KERNELS)
+    if (level == KernelLevel::V4) return closest_hit_v4;
+    if (level == KernelLevel::V3) return closest_hit_v3;
+#endif
+    (void)level;
+    return closest_hit_baseline;
+}
+
+}  // namespace
+
+RayTracer::RayTracer(const TraceScene& scene, const UniformGrid* grid)
+    : m_scene(scene),
+      m_grid(grid),
+      m_bvh(grid ? std::nullopt : std::optional<RayBvh>(std::in_place, scene)),
+      m_level(host::kernel_level()),
+      m_mailbox(grid ? scene.faces().size() : 0) {}
+
+Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
+                           double tmax) const {
+    if (m_grid) return closest_hit_grid(ray, tmin, skip, counts, tmax);
+    return closest_hit_for(m_level)(*m_bvh, m_scene, ray, tmin, skip, counts, tmax);
+}
+
+Hit RayTracer::closest_hit_grid(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
+                                double tmax) const {
+    const Mailbox::Round mailbox = m_mailbox.begin();
+    const RaySpace space(ray);
+    Hit best{INFINITY, kNoFace};
+    uint64_t tests = 0, ties = 0;
+    auto test_list = [&, mailbox](std::span<const uint32_t> pieces) {
+        for (uint32_t piece : pieces) {
+            if (!mailbox.first_visit(piece) || piece == skip) continue;
+            ++tests;
+            double t;
+            if (!m_scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) ||
+                t > best.t || t > tmax)
+                continue;
+            if (t == best.t) {
+                ++ties;
+                if (piece > best.piece) continue;
+            }
+            best = {t, piece};
+        }
+    };
+    // a hit beyond a cell may yet be beaten by a piece in a later cell: stop only past it
+    const auto walked = m_grid->walk_levels(ray, tmin, tmax, test_list,
+                                            [&](double t_exit) { return best.t <= t_exit; });
+    counts.cells += walked.cells + walked.sub_cells;
     counts.face_tests += tests;
     counts.ties += ties;
     return best;
@@ -113,16 +211,21 @@ uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::C
     return spans;
 }
 
-void TraceSetup::build(const ScreenScene& screen, int max_reflections, double grid_density) {
+void TraceSetup::build(const ScreenScene& screen, int max_reflections, double grid_density,
+                       Accel accel) {
     if (!screen.world)
         throw std::logic_error("tracing needs the world scene the screen scene came from");
     scene = std::make_unique<TraceScene>(*screen.world, screen.id_colors, max_reflections);
-    if (grid_density > 0) grid = std::make_unique<UniformGrid>(*scene, grid_density);
-    tracer = std::make_unique<RayTracer>(*scene);
+    grid.reset();
+    if (grid_density > 0 || accel == Accel::Grid)
+        grid = std::make_unique<UniformGrid>(*scene,
+                                             grid_density > 0 ? grid_density : kDefaultGridDensity);
+    tracer = std::make_unique<RayTracer>(*scene, accel == Accel::Grid ? grid.get() : nullptr);
 }
 
 void RayTraceRenderer::setup(const ScreenScene& scene) {
-    m_trace.build(scene, m_options.max_reflections, 0);  // rays need no grid
+    // rays need no grid, unless they walk it
+    m_trace.build(scene, m_options.max_reflections, 0, m_options.accel);
     m_row.assign(static_cast<size_t>(scene.width), 0);
 }
 

@@ -11,21 +11,33 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 #include "host/raster/renderer.h"
 #include "host/trace/bvh.h"
 #include "host/trace/grid.h"
+#include "host/trace/kernel_level.h"
+#include "host/trace/mailbox.h"
 #include "host/trace/trace_scene.h"
 
 namespace fb89::host {
 
 inline constexpr int kMaxReflections = 16;
 
+// The structure rays find their nearest piece through: the BVH (bvh.h), or the paper's: the
+// uniform grid of Fujimoto et al. walked by 3DDDA, its crowded cells gridded again (grid.h),
+// pieces met twice skipped by a mailbox. The same hits either way.
+enum class Accel { Bvh, Grid };
+std::string_view accel_name(Accel accel);  // "bvh", "grid"
+Accel parse_accel(std::string_view name);  // throws std::invalid_argument
+
 // Counted in locals by kernels, published once per frame.
 struct TraceCounts {
     uint64_t rays = 0;        // every ray traced: primary and reflected
     uint64_t nodes = 0;       // BVH nodes visited
+    uint64_t cells = 0;       // grid cells visited (Accel::Grid: both levels)
     uint64_t face_tests = 0;  // ray-piece tests
     uint64_t ties = 0;        // a piece hit at exactly the best distance so far
     void publish(Counters& counters) const;
@@ -45,7 +57,8 @@ struct RayTrace {
 
 class RayTracer {
   public:
-    explicit RayTracer(const TraceScene& scene);
+    // With Accel::Grid, `grid` is the grid its rays walk (kept by the caller); else null.
+    explicit RayTracer(const TraceScene& scene, const UniformGrid* grid = nullptr);
 
     // Nearest piece with tmin < t <= tmax, never `skip`.
     Hit closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
@@ -60,7 +73,9 @@ class RayTracer {
     uint32_t pixel_color(int x, int y, RayTrace& scratch, TraceCounts& counts) const;
 
     const TraceScene& scene() const { return m_scene; }
-    const RayBvh& bvh() const { return m_bvh; }
+    const RayBvh& bvh() const { return *m_bvh; }  // with the BVH (no grid) only
+    // The instruction set its inner loop runs with (kernel_level.h), fixed at construction.
+    KernelLevel kernel_level() const { return m_level; }
 
   private:
     // A primary ray's nearest hit: from its start on the near plane to the far plane.
@@ -68,8 +83,15 @@ class RayTracer {
     // The path on from the primary ray's hit.
     void follow(const Ray& primary, Hit hit, RayTrace& out, TraceCounts& counts) const;
 
+    // The grid's closest hit (Accel::Grid): both levels, a mailbox against repeats.
+    Hit closest_hit_grid(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
+                         double tmax) const;
+
     const TraceScene& m_scene;
-    RayBvh m_bvh;
+    const UniformGrid* m_grid;    // rays walk it when set; else the BVH
+    std::optional<RayBvh> m_bvh;  // built unless rays walk the grid
+    KernelLevel m_level;
+    mutable Mailbox m_mailbox;
 };
 
 // A pixel as the renderers keep it before sending: 0 is background (sends nothing), else
@@ -81,13 +103,14 @@ inline uint32_t packed_pixel(protocol::Rgb c) {
 uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::CommandSink& sink);
 
 // The scene built for tracing at set-up: world faces, tracer and (with a grid density above
-// 0, for the beams) the grid.
+// 0, for the beams, or for rays with Accel::Grid) the grid.
 struct TraceSetup {
     std::unique_ptr<TraceScene> scene;
     std::unique_ptr<UniformGrid> grid;
     std::unique_ptr<RayTracer> tracer;
     // Builds from the world scene a ScreenScene was projected from (its `world`).
-    void build(const ScreenScene& screen, int max_reflections, double grid_density);
+    void build(const ScreenScene& screen, int max_reflections, double grid_density,
+               Accel accel = Accel::Bvh);
 };
 
 // Top-level grid density accepted, in cells per face piece.
@@ -95,6 +118,7 @@ inline constexpr double kMinGridDensity = 0.01, kMaxGridDensity = 1000;
 
 struct TraceOptions {
     int max_reflections = 8;  // mirror bounces followed (0: primary visibility)
+    Accel accel = Accel::Bvh;
 };
 
 // `raytrace`: the ray tracer alone.

@@ -34,6 +34,7 @@ struct GuestArgs {
     double beam_threshold = host::kDefaultBeamThreshold;
     int reflections = host::TraceOptions{}.max_reflections;
     double grid_density = host::BeamOptions{}.grid_density;
+    std::string accel = "bvh";
     int approx_min = 0;
     double approx_eps = 0;
     bool ids = false;
@@ -52,6 +53,7 @@ host::MethodOptions method_options(const GuestArgs& a) {
     o.beam.threshold = a.beam_threshold;
     o.trace.max_reflections = a.reflections;
     o.beam.grid_density = a.grid_density;
+    o.trace.accel = host::parse_accel(a.accel);
     return o;
 }
 
@@ -125,6 +127,8 @@ int main(int argc, char** argv) {
     app.add_option("--beam-threshold", a.beam_threshold, "Beam: Expr. 2.7 threshold");
     app.add_option("--reflections", a.reflections, "Raytrace and beam: mirror bounces");
     app.add_option("--grid-density", a.grid_density, "Beam: grid cells per piece");
+    app.add_option("--accel", a.accel, "Raytrace and beam: what rays walk, bvh or grid")
+        ->check(CLI::IsMember({"bvh", "grid"}));
     app.add_option("--approx-min", a.approx_min, "Approximate fills: smallest side");
     app.add_option("--approx-eps", a.approx_eps, "Approximate fills: centres missed");
     app.add_flag("--ids", a.ids, "Render the face-id pass instead of the shaded frame");

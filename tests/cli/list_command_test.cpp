@@ -33,23 +33,42 @@ TEST(ListCommand, NamesEveryMethodProfileHostSceneAndExperiment) {
 }
 
 // The structure each method says it uses is the one its render counts: a method that walks
-// the BVH counts bvh_nodes_visited, one whose beams query the grid counts query_cells.
+// the BVH counts bvh_nodes_visited, one whose beams query the grid counts query_cells, and
+// one whose line offers "[--accel grid: ...]" counts cells_visited and no BVH nodes with it
+// (the others refuse --accel).
 TEST(ListCommand, EachMethodNamesTheAccelerationStructureItUses) {
     const CliRun list = run_fb89("list methods");
     ASSERT_EQ(list.exit_code, 0) << list.err;
     for (const char* method : {"zbuffer", "scanline", "warnock", "hybrid", "raytrace", "beam"}) {
         const auto at = list.out.find(std::string("\n  ") + method + " ");
         ASSERT_NE(at, std::string::npos) << method << "\n" << list.out;
-        const std::string line = list.out.substr(at + 1, list.out.find('\n', at + 1) - at - 1);
-        const CliRun r =
-            run_fb89(std::string("render G --size 96x73 -q --stats - --method ") + method);
-        ASSERT_EQ(r.exit_code, 0) << r.err;
-        const nlohmann::json counters = nlohmann::json::parse(r.out).at("host").at("counters");
-        auto counted = [&](const char* name) {
+        const std::string whole = list.out.substr(at + 1, list.out.find('\n', at + 1) - at - 1);
+        const auto option = whole.find(" [--accel grid:");
+        const std::string line = whole.substr(0, option);
+        const std::string render =
+            std::string("render G --size 96x73 -q --stats - --method ") + method;
+        auto counters_of = [](const CliRun& r) {
+            return nlohmann::json::parse(r.out).at("host").at("counters");
+        };
+        auto counted = [](const nlohmann::json& counters, const char* name) {
             return counters.contains(name) && counters.at(name).get<uint64_t>() > 0;
         };
-        EXPECT_EQ(line.find("BVH") != std::string::npos, counted("bvh_nodes_visited")) << line;
-        EXPECT_EQ(line.find("grid") != std::string::npos, counted("query_cells")) << line;
+        const CliRun r = run_fb89(render);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const nlohmann::json counters = counters_of(r);
+        EXPECT_EQ(line.find("BVH") != std::string::npos, counted(counters, "bvh_nodes_visited"))
+            << line;
+        EXPECT_EQ(line.find("grid") != std::string::npos, counted(counters, "query_cells")) << line;
+        EXPECT_FALSE(counted(counters, "cells_visited")) << line;
+        const CliRun grid = run_fb89(render + " --accel grid");
+        if (option == std::string::npos) {
+            EXPECT_EQ(grid.exit_code, 2) << whole;
+            continue;
+        }
+        ASSERT_EQ(grid.exit_code, 0) << grid.err;
+        const nlohmann::json grid_counters = counters_of(grid);
+        EXPECT_TRUE(counted(grid_counters, "cells_visited")) << whole;
+        EXPECT_FALSE(counted(grid_counters, "bvh_nodes_visited")) << whole;
     }
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "host/scene/scene_loader.h"
+#include "host/trace/kernel_level.h"
 #include "tests/host/trace/trace_test_util.h"
 
 namespace fb89::host {
@@ -78,6 +79,39 @@ TEST_P(GoldenTraceRaster, RaysAgreeWithTheZBufferButOnEdges) {
 
 INSTANTIATE_TEST_SUITE_P(ScenesWithoutMirrors, GoldenTraceRaster,
                          ::testing::Values("cornell_box.json", "A.json", "C.json", "demo.json"));
+
+// Every kernel level this machine runs (host/trace/kernel_level.h) makes the same frames and
+// the same counts as the baseline: ids, pixels, rays, nodes visited, face tests, beams.
+class GoldenTraceLevels : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GoldenTraceLevels, EveryInstructionSetGivesTheBaselinesFramesAndCounts) {
+    const Scene scene = bundled(GetParam());
+    const KernelLevel was = kernel_level();
+    struct Result {
+        testing::Frame rays, beams;
+    };
+    auto run = [&](KernelLevel level) {
+        set_kernel_level(level);
+        return Result{render_trace(scene, trace_options("raytrace")),
+                      render_trace(scene, trace_options("beam", 1.0))};
+    };
+    const Result base = run(KernelLevel::Baseline);
+    for (KernelLevel level : supported_kernel_levels()) {
+        SCOPED_TRACE(std::string(kernel_level_name(level)));
+        const Result r = run(level);
+        EXPECT_EQ(r.rays.ids, base.rays.ids);
+        EXPECT_EQ(r.rays.pixels, base.rays.pixels);
+        EXPECT_EQ(r.beams.ids, base.beams.ids);
+        EXPECT_EQ(r.beams.pixels, base.beams.pixels);
+        EXPECT_EQ(r.rays.stats.counters.items(), base.rays.stats.counters.items());
+        EXPECT_EQ(r.beams.stats.counters.items(), base.beams.stats.counters.items());
+    }
+    set_kernel_level(was);
+    EXPECT_GE(supported_kernel_levels().size(), 1u);
+}
+
+INSTANTIATE_TEST_SUITE_P(MirrorScenes, GoldenTraceLevels,
+                         ::testing::Values("G.json", "H.json", "I.json", "cornell_box.json"));
 
 }  // namespace
 }  // namespace fb89::host

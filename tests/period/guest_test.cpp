@@ -145,7 +145,7 @@ TEST_P(PeriodGuest, AGuestThatFailsIsAClearErrorNotACrash) {
 
 // "PeriodIsa/": the names start with Period, the ctest label `period` (tests/CMakeLists.txt)
 INSTANTIATE_TEST_SUITE_P(PeriodIsa, PeriodGuest, ::testing::Values("m68k", "sparc"),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 }  // namespace
 }  // namespace fb89::period
