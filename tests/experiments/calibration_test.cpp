@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
+#include "experiments/experiments.h"
 #include "experiments/period_runs.h"
+#include "host/trace/beam_ray_hybrid.h"
 
 namespace fb89::experiments {
 namespace {
@@ -22,6 +25,13 @@ struct Scripted {
         return c;
     }
 };
+
+// The beam default is the threshold calibration chooses (docs/RESULTS.md §4), so it must be a
+// point calibration can choose: one of the ramp's values, exactly.
+TEST(CalibrateBeam, TheDefaultThresholdIsAPointOfTheRamp) {
+    const std::vector<double> ramp = beam_threshold_ramp();
+    EXPECT_NE(std::find(ramp.begin(), ramp.end(), host::kDefaultBeamThreshold), ramp.end());
+}
 
 TEST(CalibrateStably, StopsWhenTwoSweepsInARowAgree) {
     Scripted sweeps{{0.01, 0.04, 0.04, 0.5}};
