@@ -34,7 +34,12 @@ std::string level_list() {
 
 KernelLevel initial_level() {
     if (const char* forced = std::getenv("FB89_ISA"); forced && *forced) {
-        const KernelLevel level = parse_kernel_level(forced);
+        KernelLevel level;
+        try {
+            level = parse_kernel_level(forced);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(std::string("$FB89_ISA: ") + e.what());
+        }
         for (KernelLevel l : supported_kernel_levels())
             if (l == level) return level;
         throw std::invalid_argument("$FB89_ISA: " + std::string(forced) +

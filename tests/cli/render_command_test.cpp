@@ -50,6 +50,36 @@ TEST(RenderCommand, WritesImageIdsStreamAndStats) {
     EXPECT_TRUE(j["controller"].is_object());
 }
 
+// The kernels' instruction set: --isa and $FB89_ISA force one, --stats says which ran, every
+// one this machine runs counts the same; a name it does not know is a usage error naming it.
+TEST(RenderCommand, TheKernelsInstructionSetIsChosenReportedAndChecked) {
+    const std::string render = "render G --size 96x73 -q --stats - -m beam";
+    const CliRun best = fb89(render);
+    ASSERT_EQ(best.exit_code, 0) << best.err;
+    const nlohmann::json best_stats = nlohmann::json::parse(best.out);
+    EXPECT_EQ(best_stats.at("accel"), "bvh");
+    const CliRun baseline = fb89(render + " --isa baseline");
+    ASSERT_EQ(baseline.exit_code, 0) << baseline.err;
+    const nlohmann::json stats = nlohmann::json::parse(baseline.out);
+    EXPECT_EQ(stats.at("kernels"), "baseline");
+    EXPECT_EQ(stats.at("host").at("counters"), best_stats.at("host").at("counters"));
+    const CliRun from_env = fb89::testing::run_fb89(render, "FB89_ISA=baseline ");
+    ASSERT_EQ(from_env.exit_code, 0) << from_env.err;
+    EXPECT_EQ(nlohmann::json::parse(from_env.out).at("kernels"), "baseline");
+
+    const CliRun bad = fb89(render + " --isa v9");
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("v9"), std::string::npos) << bad.err;
+    const CliRun bad_env = fb89::testing::run_fb89(render, "FB89_ISA=v9 ");
+    EXPECT_EQ(bad_env.exit_code, 2);
+    EXPECT_NE(bad_env.err.find("$FB89_ISA: expected baseline, v3 or v4, got 'v9'"),
+              std::string::npos)
+        << bad_env.err;
+    const CliRun bad_accel = fb89(render + " --accel octree");
+    EXPECT_EQ(bad_accel.exit_code, 2);
+    EXPECT_NE(bad_accel.err.find("octree"), std::string::npos) << bad_accel.err;
+}
+
 TEST(RenderCommand, SizeOverridesTheScene) {
     fs::path png = scratch("small.png");
     CliRun r =
