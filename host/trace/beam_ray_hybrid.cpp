@@ -105,6 +105,17 @@ void BeamRayHybrid::render(const ScreenScene& scene, protocol::CommandSink& sink
     stats.counters.set("max_depth", frame.max_depth);
 }
 
+uint32_t BeamRayHybrid::distinct_first_faces(const RayTrace* const corners[4]) const {
+    uint32_t ids[4];
+    uint32_t n = 0;
+    for (int i = 0; i < 4; ++i) {
+        if (corners[i]->count == 0) continue;
+        const uint32_t id = m_trace.scene->faces()[corners[i]->hits[0].piece].id;
+        if (std::find(ids, ids + n, id) == ids + n) ids[n++] = id;
+    }
+    return n;
+}
+
 void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]) {
     frame.max_depth = std::max(frame.max_depth, frame.level);
     if (w.area() == 1) {  // a single pixel: its ray is its corner's
@@ -123,6 +134,14 @@ void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* con
         frame.pixels_by_beams += static_cast<uint64_t>(w.area());
         return;
     }
+    // A window at most 4 pixels each way whose own beam failed: its children are at most 2
+    // each way, every pixel of theirs a corner whose ray is traced anyway, so their beams
+    // could fill no pixel without its ray. Rays for all of it trace the same rays, without
+    // the children's beams (or an F_w query to decide so).
+    if (w.width() <= 4 && w.height() <= 4) {
+        rays_for_window(frame, w, corners);
+        return;
+    }
     // Expr. 2.7: go on with beams, or hand the window to the ray tracer
     if (std::isfinite(m_options.threshold)) {
         // the cost exceeds the threshold once F_w exceeds this; count no further than that,
@@ -132,8 +151,12 @@ void BeamRayHybrid::window(Frame& frame, const PixelRect& w, const RayTrace* con
         const double enough =
             model::expr_2_7_faces_at(m_options.threshold, scene_faces, m_depth, area);
         if (enough < scene_faces) {
-            const double faces = m_beams->faces_in_beam(
-                corners, frame.beams, static_cast<uint32_t>(std::max(0.0, std::floor(enough))));
+            // the faces the corner rays hit first lie in the beam: when they already number
+            // more than `most`, so would the query's count, which stops at most + 1
+            const auto most = static_cast<uint32_t>(std::max(0.0, std::floor(enough)));
+            const double faces = distinct_first_faces(corners) > most
+                                     ? most + 1.0
+                                     : m_beams->faces_in_beam(corners, frame.beams, most);
             if (model::expr_2_7_area(scene_faces, faces, m_depth, area) > m_options.threshold) {
                 rays_for_window(frame, w, corners);
                 return;

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -27,10 +28,12 @@
 namespace fb89::host {
 
 // The Expr. 2.7 threshold `fb89 calibrate --method beam` chooses on G, H, I and the mirrored
-// Cornell box with the BVH-walking ray tracer: 10^(7/3), the ramp's point 215.443
-// (docs/RESULTS.md §4; the test Methods.TheBeamDefaultIsAPointOfTheCalibrationRamp keeps it
-// one). The default until this machine is calibrated.
-inline constexpr double kDefaultBeamThreshold = 215.44346900318845;
+// Cornell box with the 8-wide BVH, now that a window of at most 4x4 pixels whose beam fails
+// goes to rays at once: infinity, the ramp's last point (docs/RESULTS.md §4; the test
+// CalibrateBeam.TheDefaultThresholdIsAPointOfTheRamp keeps it one): Expr. 2.7's F_w query
+// costs more than the windows it sends to rays save. The default until a machine is
+// calibrated.
+inline constexpr double kDefaultBeamThreshold = std::numeric_limits<double>::infinity();
 
 struct BeamOptions {
     double threshold = kDefaultBeamThreshold;   // Expr. 2.7 threshold (inf: down to pixels)
@@ -54,6 +57,8 @@ class BeamRayHybrid final : public Renderer {
     struct Frame;
     void window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]);
     void rays_for_window(Frame& frame, const PixelRect& w, const RayTrace* const corners[4]);
+    // The faces the corners' primary rays hit first, each counted once.
+    uint32_t distinct_first_faces(const RayTrace* const corners[4]) const;
 
     BeamOptions m_options;
     TraceOptions m_trace_options;
