@@ -79,7 +79,9 @@ int run_calibrate_beam(const CalibrateArgs& a) {
     for (const auto& [t, ms] : c.total)
         details["total_ms_by_threshold"].push_back({std::isinf(t) ? 1e300 : t, ms});
     details["chosen_total_ms"] = c.total.at(c.chosen);
-    details["sweeps"] = c.choices;
+    details["sweeps"] = nlohmann::json::array();
+    for (double t : c.choices)  // JSON has no infinity: "inf", as the saved threshold
+        details["sweeps"].push_back(std::isinf(t) ? nlohmann::json("inf") : nlohmann::json(t));
     details["stable"] = c.stable;
     if (!a.dry_run) save_beam_calibration(c.chosen, details.dump(), a.host.host);
     if (claims_stdout({{"--csv", a.csv}})) return kSuccess;

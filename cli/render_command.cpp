@@ -342,8 +342,8 @@ void register_render(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"window", "scene"}))
         ->capture_default_str();
     sub->add_option("--beam-threshold", args->beam_threshold,
-                    fmt::format("Beam: Expr. 2.7 threshold: a number, inf (beams down to "
-                                "pixels) or calibrated (this machine's, from fb89 calibrate "
+                    fmt::format("Beam: Expr. 2.7 threshold: a number, inf (beams down to 4x4 "
+                                "pixels, no F_w query) or calibrated (this machine's, from fb89 calibrate "
                                 "--method beam; else the built-in {:g})",
                                 host::kDefaultBeamThreshold))
         ->capture_default_str();

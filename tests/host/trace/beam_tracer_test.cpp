@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
+#include "tests/host/raster/raster_test_util.h"
 #include "tests/host/trace/trace_test_util.h"
 
 namespace fb89::host {
@@ -151,6 +154,37 @@ TEST(BeamTracer, CountsTheFacesInAWindowsBeam) {
         corners[i] = &traces[i];
     }
     EXPECT_EQ(b.beams.faces_in_beam(corners, b.counts), 3u);
+}
+
+// The beam-ray hybrid skips the F_w query when the distinct faces its corner rays hit first
+// already exceed what the query would count (BeamRayHybrid::window): sound only if the
+// query always counts those faces. Every window of 2 to 32 pixels a side on a grid of
+// positions, over random triangles and over edges through pixel centres.
+TEST(BeamTracer, TheFacesInAWindowsBeamIncludeTheFacesItsCornerRaysHit) {
+    for (const Scene& s : {testing::random_scene(128, 96, 300, 150, 7),
+                           testing::lattice_through_pixel_centres(97, 6)}) {
+        Beams b(s);
+        int windows = 0;
+        for (int size = 2; size <= 32; size *= 2)
+            for (int y = 0; y + size <= s.height; y += 7)
+                for (int x = 0; x + size <= s.width; x += 5) {
+                    const int xs[4] = {x, x + size - 1, x + size - 1, x};
+                    const int ys[4] = {y, y, y + size - 1, y + size - 1};
+                    RayTrace traces[4];
+                    const RayTrace* corners[4];
+                    std::set<uint32_t> first;
+                    for (int i = 0; i < 4; ++i) {
+                        b.rays.trace_pixel(xs[i], ys[i], traces[i], b.ray_counts);
+                        corners[i] = &traces[i];
+                        if (traces[i].count > 0)
+                            first.insert(b.trace.faces()[traces[i].hits[0].piece].id);
+                    }
+                    ASSERT_GE(b.beams.faces_in_beam(corners, b.counts), first.size())
+                        << "window " << x << "," << y << " size " << size;
+                    ++windows;
+                }
+        EXPECT_GT(windows, 500);
+    }
 }
 
 }  // namespace
