@@ -341,11 +341,12 @@ void register_render(CLI::App& app, int& exit_code) {
                     "Hybrid: D in Expr. 3.1 from the window's faces or the whole scene's")
         ->check(CLI::IsMember({"window", "scene"}))
         ->capture_default_str();
-    sub->add_option("--beam-threshold", args->beam_threshold,
-                    fmt::format("Beam: Expr. 2.7 threshold: a number, inf (beams down to 4x4 "
-                                "pixels, no F_w query) or calibrated (this machine's, from fb89 calibrate "
-                                "--method beam; else the built-in {:g})",
-                                host::kDefaultBeamThreshold))
+    sub->add_option(
+           "--beam-threshold", args->beam_threshold,
+           fmt::format("Beam: Expr. 2.7 threshold: a number, inf (beams down to 4x4 "
+                       "pixels, no F_w query) or calibrated (this machine's, from fb89 calibrate "
+                       "--method beam; else the built-in {:g})",
+                       host::kDefaultBeamThreshold))
         ->capture_default_str();
     sub->add_option("--reflections", args->reflections,
                     "Raytrace and beam: mirror bounces followed (0: primary visibility)")
