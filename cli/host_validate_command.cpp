@@ -3,9 +3,11 @@
 // on each emulated instruction set a profile needs (its counts do not depend on the
 // profile), each host profile prices its timed phase, and the modelled speed is printed
 // beside the published figures of period/validation.json with the error (modelled /
-// published - 1). --check exits 1 when a figure's check fails (|error| over 30% for a figure
-// of the profiled machine itself).
+// published - 1), and the ratios between machines that validation.json names beside the ratios
+// of their modelled figures. --check exits 1 when a check fails (|error| over the figure's
+// tolerance for a figure of the profiled machine itself, or over a ratio's).
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <set>
@@ -155,7 +157,7 @@ int run_host_validate(const HostValidateArgs& a) {
             r.seconds = period::timed_seconds(run.counts, profile, f->clock_mhz);
             r.modelled = period::modelled_value(k, f->unit, r.seconds);
             r.error = period::relative_error(r.modelled, f->value);
-            r.pass = period::passes(f->check, r.error);
+            r.pass = period::passes(*f, r.error);
             r.unpriced = period::price(run.counts, profile)
                              .phases[static_cast<int>(period::Phase::HiddenSurface)]
                              .unpriced;
@@ -164,22 +166,52 @@ int run_host_validate(const HostValidateArgs& a) {
     }
 
     bool all_pass = true;
-    std::string table =
-        fmt::format("{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<9} {}\n", "kernel", "profile",
-                    "clock", "modelled", "published", "unit", "error", "check", "source");
+    std::string table = fmt::format("{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<13} {}\n",
+                                    "kernel", "profile", "clock", "modelled", "published", "unit",
+                                    "error", "check", "source");
     for (const Row& r : rows) {
         const auto& f = *r.figure;
         all_pass = all_pass && r.pass;
         table += fmt::format(
-            "{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>+7.1f}%  {:<9} {} [{}]{}\n", f.kernel,
+            "{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>+7.1f}%  {:<13} {} [{}]{}\n", f.kernel,
             r.profile, f.clock_mhz > 0 ? fmt::format("{:g}MHz", f.clock_mhz) : "own",
             number(r.modelled), number(f.value), f.unit, 100 * r.error,
-            std::string(period::check_name(f.check)) + (r.pass ? "" : "!"), f.cite, f.id,
-            r.unpriced ? fmt::format(" ({} executions unpriced)", r.unpriced) : "");
+            std::string(period::check_name(f.check)) +
+                (f.tolerance != period::kValidationTolerance
+                     ? fmt::format(" {:.0f}%", 100 * f.tolerance)
+                     : "") +
+                (r.pass ? "" : "!"),
+            f.cite, f.id, r.unpriced ? fmt::format(" ({} executions unpriced)", r.unpriced) : "");
     }
     // The same benchmark on two machines, each compared with its own figure at its own
-    // clocks: the ratio of the machines' speeds, modelled against published.
-    std::string ratios;
+    // clocks: the ratio of the machines' speeds, modelled against published. The ratios
+    // validation.json names are checks; the other pairs are shown for what they say.
+    const auto row_of = [&](const std::string& figure_id) -> const Row* {
+        for (const Row& r : rows)
+            if (r.figure->id == figure_id) return &r;
+        return nullptr;
+    };
+    std::string ratios, ratio_csv;
+    std::set<std::pair<const period::PublishedFigure*, const period::PublishedFigure*>> checked;
+    for (const period::RatioCheck& c : data.ratios) {
+        const Row *one = row_of(c.numerator), *other = row_of(c.denominator);
+        if (!one || !other) continue;  // a profile of it was not asked for
+        checked.insert({one->figure, other->figure});
+        const double modelled = one->modelled / other->modelled,
+                     published = one->figure->value / other->figure->value;
+        const double error = period::relative_error(modelled, published);
+        const bool pass = std::fabs(error) <= c.tolerance;
+        all_pass = all_pass && pass;
+        ratios += fmt::format(
+            "  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%, within {:.0f}%{}) [{}]\n",
+            one->figure->kernel, one->profile, other->profile, modelled, published, 100 * error,
+            100 * c.tolerance, pass ? "" : " !", c.id);
+        ratio_csv +=
+            fmt::format("{},{}/{},{},ratio,{},ratio,,{:.6g},{:.6g},{:.6f},within,{},{} / {}\n",
+                        one->figure->kernel, one->profile, other->profile, c.id,
+                        csv_field(one->figure->benchmark), modelled, published, error,
+                        pass ? "yes" : "no", one->figure->id, other->figure->id);
+    }
     for (size_t i = 0; i < rows.size(); ++i)
         for (size_t k = i + 1; k < rows.size(); ++k) {
             const Row &one = rows[i], &other = rows[k];
@@ -187,7 +219,9 @@ int run_host_validate(const HostValidateArgs& a) {
                 one.figure->benchmark != other.figure->benchmark || one.figure == other.figure ||
                 one.figure->clock_mhz > 0 || other.figure->clock_mhz > 0 ||
                 one.figure->check != period::FigureCheck::Within ||
-                other.figure->check != period::FigureCheck::Within)
+                other.figure->check != period::FigureCheck::Within ||
+                checked.contains({one.figure, other.figure}) ||
+                checked.contains({other.figure, one.figure}))
                 continue;
             const double modelled = one.modelled / other.modelled,
                          published = one.figure->value / other.figure->value;
@@ -217,11 +251,13 @@ int run_host_validate(const HostValidateArgs& a) {
         if (f.profiles.empty())
             context += fmt::format("  {}: {} {} on {} ({})\n", f.id, number(f.value), f.unit,
                                    f.machine, f.cite);
-    if (!context.empty()) table += "not compared (no profile of the machine):\n" + context;
+    if (!context.empty())
+        table += "not compared (context only: see each figure's note):\n" + context;
     table += fmt::format(
-        "error = modelled / published - 1; within: |error| <= {0:.0f}%, at_most: error <= "
-        "+{0:.0f}%, at_least: error >= -{0:.0f}%; '!' marks a failed check. clock: the "
-        "profile's cycles timed at the figure's machine's clock.\n",
+        "error = modelled / published - 1; within: |error| <= the figure's tolerance, at_most: "
+        "error <= +tolerance, at_least: error >= -tolerance (the tolerance {:.0f}% unless the "
+        "check names its own); '!' marks a failed check. clock: the profile's cycles timed at "
+        "the figure's machine's clock.\n",
         100 * period::kValidationTolerance);
     std::string sources = "sources:\n";
     std::set<std::string> listed;
@@ -242,7 +278,7 @@ int run_host_validate(const HostValidateArgs& a) {
                                f.value, r.error, period::check_name(f.check), r.pass ? "yes" : "no",
                                csv_field(f.source));
         }
-        write_text(a.csv, csv);
+        write_text(a.csv, csv + ratio_csv);
     }
     if (a.classes > 0)
         for (const auto& [asked, profile] : profiles)
@@ -270,7 +306,9 @@ void register_host_validate(CLI::App& app, int& exit_code) {
                     "Also list the N instruction classes that take most of each kernel's "
                     "modelled time, with the rule that prices each")
         ->check(CLI::Range(0, 1000));
-    sub->add_flag("--check", a->check, "Exit 1 when a figure's check fails (an error beyond 30%)");
+    sub->add_flag(
+        "--check", a->check,
+        "Exit 1 when a figure's or a ratio's check fails (an error beyond its tolerance)");
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
     sub->callback([a, &exit_code] { exit_code = run_host_validate(*a); });
 }

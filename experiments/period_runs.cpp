@@ -62,8 +62,15 @@ void write_whole(const fs::path& path, const std::string& text,
     protocol::write_output(path, text, publish);
 }
 
-std::string fingerprint(const std::string& guest) {
-    return fmt::format("{:016x}", fnv1a(slurp(guest)));
+// What decides a run's counts besides its job: the guest program, the counting plugin and the
+// plugin's options (the caches and register windows it follows). A change to any of them makes
+// every kept run stale.
+std::string fingerprint(const period::EmulatorParts& parts) {
+    uint64_t h = fnv1a(slurp(parts.guest));
+    h = fnv1a(slurp(parts.plugin), h);
+    for (const std::string_view o : parts.isa->plugin_options)
+        h = fnv1a(std::string(o) + '\0', h);
+    return fmt::format("{:016x}", h);
 }
 
 std::string number(double v) {
@@ -143,7 +150,7 @@ PeriodRuns::PeriodRuns(const std::string& host, int jobs, std::string results_di
       m_emit(std::move(emit_jobs)),
       m_fb89(std::move(fb89_path)),
       m_parts(period::find_emulator_parts(period::instruction_set(m_profile.isa))),
-      m_guest_fingerprint(fingerprint(m_parts.guest)) {
+      m_guest_fingerprint(fingerprint(m_parts)) {
     if (!m_emit.empty() && m_results.empty())
         throw std::runtime_error("--emit-jobs needs --results DIR, where the jobs write");
     if (!m_results.empty()) fs::create_directories(m_results);
@@ -287,7 +294,7 @@ std::vector<GuestOutcome> PeriodRuns::run_outcomes(const std::vector<GuestJob>& 
 
 void run_one_job(const GuestJob& job, const std::string& isa, const std::string& results_dir) {
     const period::EmulatorParts parts = period::find_emulator_parts(period::instruction_set(isa));
-    const std::string key = job_key(fingerprint(parts.guest), job);
+    const std::string key = job_key(fingerprint(parts), job);
     const period::GuestRun run = period::run_guest(parts, job.scene, job.options);
     fs::create_directories(results_dir);
     write_whole(fs::path(results_dir) / (key + ".json"), run.counts_json, protocol::Publish::Now);

@@ -138,7 +138,7 @@ HostCost price(const GuestCounts& counts, const HostProfile& profile) {
         for (const auto& [key, n] : c.classes) {
             const KeyPrice k = price_key(profile, key);
             const double cpu = k.cpu * static_cast<double>(n), fpu = k.fpu * static_cast<double>(n);
-            if (key.starts_with('@')) out.events[key] += n;
+            if (key.starts_with('@') && (k.cpu > 0 || k.fpu > 0)) out.events[key] += n;
             auto& [executions, ms] = out.classes[key];
             executions += n;
             ms += cpu / cpu_khz + fpu / fpu_khz;

@@ -45,8 +45,10 @@ struct PhaseCost {
     // sequences that would stand in for them (CostRule::stand_in), and how many there were
     double stand_in_ms = 0;
     uint64_t stand_ins = 0;
-    // the pseudo-classes' counts: events that cost time but are no instruction of the
-    // guest's ("@window_overflow", "@dcache_64k_read_miss", ...: period/plugin/README.md)
+    // the pseudo-classes' counts that the profile prices: events that cost this machine time
+    // but are no instruction of the guest's ("@window_overflow", "@dcache_128k_16b_wb_read_miss",
+    // ...: period/plugin/README.md); another machine's cache or window count, which the plugin
+    // follows beside it, is left out
     std::map<std::string, uint64_t> events;
     // each class key's executions and modelled time (for the classes that take most)
     std::map<std::string, std::pair<uint64_t, double>> classes;

@@ -24,9 +24,11 @@ const std::vector<InstructionSet>& all() {
          // QEMU's window count set to the MB86900's, so that its own window traps fall
          // where the chip's do (period/sparc/classify.c)
          {"-cpu", "TI UltraSparc II,nwindows=7"},
-         // the MB86900's windows; the SPARCstation 1's (write-through) and the Sun-4/260's
-         // (write-back) caches
-         {"windows=7", "cache=65536:16:wt", "cache=131072:16:wb"},
+         // the MB86900's and L64801's 7 windows (and the CY7C601's 8 beside them); the
+         // SPARCstation 1's (write-through), the Sun-4/260's (write-back) and the
+         // SPARCstation 2's (write-through, 32-byte lines) caches
+         {"windows=7", "also_windows=8", "cache=65536:16:wt", "cache=131072:16:wb",
+          "cache=65536:32:wt"},
          "SPARC",
          "g++-12-sparc64-linux-gnu, g++-12-multilib-sparc64-linux-gnu, "
          "libc6-dev-sparc-sparc64-cross, qemu-user",

@@ -108,6 +108,10 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
             fail(origin,
                  fmt::format("{}\"check\" '{}' is not within, at_most or at_least", at, check));
         if (f.contains("clock_mhz")) figure.clock_mhz = positive(f, "clock_mhz", origin, at);
+        figure.tolerance =
+            f.contains("tolerance") ? positive(f, "tolerance", origin, at) : kValidationTolerance;
+        if (figure.tolerance >= 1)
+            fail(origin, at + "\"tolerance\" is a fraction, e.g. 0.15 for 15%");
         figure.source = text(f, "source", origin, at);
         figure.cite = text(f, "cite", origin, at, false);
         if (figure.cite.empty()) figure.cite = figure.id;
@@ -122,7 +126,41 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
         }
         out.figures.push_back(std::move(figure));
     }
+    if (j.contains("ratios")) {
+        if (!j["ratios"].is_array()) fail(origin, "\"ratios\" must be a list");
+        for (size_t i = 0; i < j["ratios"].size(); ++i) {
+            const json& r = j["ratios"][i];
+            const std::string at = fmt::format("ratios[{}]: ", i);
+            if (!r.is_object()) fail(origin, at + "must be an object");
+            RatioCheck ratio;
+            ratio.id = text(r, "id", origin, at);
+            ratio.numerator = text(r, "numerator", origin, at);
+            ratio.denominator = text(r, "denominator", origin, at);
+            ratio.tolerance = positive(r, "tolerance", origin, at);
+            ratio.note = text(r, "note", origin, at, false);
+            const PublishedFigure *one = nullptr, *other = nullptr;
+            for (const PublishedFigure& f : out.figures) {
+                if (f.id == ratio.numerator) one = &f;
+                if (f.id == ratio.denominator) other = &f;
+            }
+            if (!one || !other)
+                fail(origin, fmt::format("{}no figure '{}'", at,
+                                         one ? ratio.denominator : ratio.numerator));
+            if (one->kernel != other->kernel || one->unit != other->unit)
+                fail(origin, at + "the two figures must be of one kernel, in one unit");
+            if (one->profiles.size() != 1 || other->profiles.size() != 1 || one->clock_mhz > 0 ||
+                other->clock_mhz > 0)
+                fail(origin, at + "each figure must name one profile, at its own clock");
+            out.ratios.push_back(std::move(ratio));
+        }
+    }
     return out;
+}
+
+const PublishedFigure& ValidationData::figure(const std::string& id) const {
+    for (const PublishedFigure& f : figures)
+        if (f.id == id) return f;
+    throw std::runtime_error("no published figure '" + id + "'");
 }
 
 ValidationData builtin_validation() {
@@ -153,14 +191,14 @@ KernelRun run_validation_kernel(const EmulatorParts& parts, const ValidationKern
     return out;
 }
 
-bool passes(FigureCheck check, double error) {
+bool passes(FigureCheck check, double error, double tolerance) {
     switch (check) {
         case FigureCheck::Within:
-            return std::fabs(error) <= kValidationTolerance;
+            return std::fabs(error) <= tolerance;
         case FigureCheck::AtMost:
-            return error <= kValidationTolerance;
+            return error <= tolerance;
         case FigureCheck::AtLeast:
-            return error >= -kValidationTolerance;
+            return error >= -tolerance;
     }
     return false;
 }

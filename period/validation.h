@@ -44,15 +44,30 @@ struct PublishedFigure {
     // > 0: the figure's machine runs at this clock, and the profiles' cycle counts are timed
     // at it instead of at the profile's own clocks (the cycle tables are compared).
     double clock_mhz = 0;
+    // The error band of its check: kValidationTolerance unless the figure states its own (the
+    // Sun-4s' are held to 15%).
+    double tolerance = 0;
     std::string cite;  // short, for tables ("Appel & Li, vmpup.c (1990)")
     std::string source, note;
+};
+
+// The same program's figures on two machines: their ratio, published, against the ratio of the
+// two profiles' modelled figures, within `tolerance` (two errors of opposite signs compound in a
+// ratio, so one that each figure passes can still misstate how much faster one machine is).
+struct RatioCheck {
+    std::string id;
+    std::string numerator, denominator;  // figure ids, of one kernel, each naming one profile
+    double tolerance = 0;
+    std::string note;
 };
 
 struct ValidationData {
     std::vector<ValidationKernel> kernels;
     std::vector<PublishedFigure> figures;
-    // Throws std::runtime_error for an unknown kernel.
+    std::vector<RatioCheck> ratios;
+    // Throw std::runtime_error for an unknown kernel or figure.
     const ValidationKernel& kernel(const std::string& name) const;
+    const PublishedFigure& figure(const std::string& id) const;
 };
 
 // Throws std::runtime_error naming `origin` and the field that is missing or wrong.
@@ -71,12 +86,15 @@ inline double relative_error(double modelled, double published) {
     return modelled / published - 1.0;
 }
 
-// The error band of the validation (docs/HOST_COST_MODEL.md, "Validation"): beyond it, the table is
-// wrong.
+// The error band of the validation (docs/HOST_COST_MODEL.md, "Validation") where a figure states
+// none: beyond it, the table is wrong.
 inline constexpr double kValidationTolerance = 0.30;
 
-// Whether an error passes a figure's check within kValidationTolerance.
-bool passes(FigureCheck check, double error);
+// Whether an error passes a check within `tolerance`.
+bool passes(FigureCheck check, double error, double tolerance = kValidationTolerance);
+inline bool passes(const PublishedFigure& f, double error) {
+    return passes(f.check, error, f.tolerance);
+}
 std::string_view check_name(FigureCheck check);  // "within", "at_most", "at_least"
 
 // One kernel run on the emulator: its counts (the same for every host profile) and what it

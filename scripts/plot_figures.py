@@ -268,14 +268,18 @@ def split_both_sides(folder):
     save(fig, os.path.join(folder, "split_both_sides.png"))
 
 
+# The 1989 hosts of the split across hosts, oldest first: the first is the one speeds and
+# crossovers are counted in multiples of.
+HOSTS_1989 = ("sun3-60", "sun4-260", "sparcstation-1", "sparcstation-2")
+
+
 def split_hosts(root):
-    """The split across hosts: the Sun-3/60, the Sun-4/260 and this machine (experiment split on
-    each), host time against controller time; per method the host speed, in multiples of the
-    Sun-3/60, at which the frame stops being host-bound, beside each host's own speed-up.
-    Writes ROOT/split_hosts.csv and ROOT/split_hosts.png."""
-    sources = [("sun3-60", os.path.join(root, "sun3-60", "split.csv")),
-               ("sun4-260", os.path.join(root, "sun4-260", "split.csv")),
-               ("native", os.path.join(root, "split_native.csv"))]
+    """The split across hosts: the Sun-3/60, the Sun-4/260, the SPARCstations 1 and 2 and this
+    machine (experiment split on each), host time against controller time; per method the host
+    speed, in multiples of the Sun-3/60, at which the frame stops being host-bound, beside each
+    host's own speed-up. Writes ROOT/split_hosts.csv and ROOT/split_hosts.png."""
+    sources = [(host, os.path.join(root, host, "split.csv")) for host in HOSTS_1989] + \
+        [("native", os.path.join(root, "split_native.csv"))]
     tables = {host: read(path) for host, path in sources if os.path.exists(path)}
     if "sun3-60" not in tables or len(tables) < 2:
         return
@@ -291,7 +295,7 @@ def split_hosts(root):
         row = {"method": method, "scenes": len(cells),
                "crossover_median": f"{median(cross):.3g}", "crossover_min": f"{min(cross):.3g}",
                "crossover_max": f"{max(cross):.3g}"}
-        for host in ("sun4-260", "native"):
+        for host in HOSTS_1989[1:] + ("native",):
             if host not in tables:
                 continue
             other = {key(r): r for r in tables[host]}
@@ -307,7 +311,8 @@ def split_hosts(root):
     write_text(os.path.join(root, "split_hosts.csv"), text)
 
     fig, ax = plt.subplots(figsize=(8, 6.5))
-    markers = {"sun3-60": "o", "sun4-260": "s", "native": "^"}
+    markers = {"sun3-60": "o", "sun4-260": "s", "sparcstation-1": "D", "sparcstation-2": "v",
+               "native": "^"}
     colours = {m: f"C{i}" for i, m in enumerate(methods)}
     for host, table in tables.items():
         for method in methods:
@@ -327,8 +332,9 @@ def split_hosts(root):
     ax.set_yscale("log")
     ax.set_xlabel("controller frame time, tms34010-50mhz (modelled ms)")
     ax.set_ylabel("host set-up + hidden-surface (ms: modelled for 1989, measured natively)")
-    ax.set_title("The split across three hosts: Sun-3/60 (o), Sun-4/260 (s), today's CPU (^)\n"
-                 "above the line the host bounds the frame")
+    ax.set_title("The split across hosts of 1987-91 and today: Sun-3/60 (o), Sun-4/260 (s),\n"
+                 "SPARCstation 1 (D), SPARCstation 2 (v), today's CPU (^); above the line the "
+                 "host bounds the frame", fontsize=10)
     ax.grid(which="both", alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()

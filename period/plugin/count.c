@@ -236,11 +236,13 @@ static uint32_t cls_intern(const char* key) {
  * the counts stay the same whatever profile prices them). POLICY is wb (write-back,
  * write-allocate: a store that misses fetches its line, as on the Sun-3/260 and
  * Sun-4/260) or wt (write-through, no write-allocate: a store that misses goes to memory
- * and invalidates the line at its index, as on the SPARCstation 1). Every load and store
+ * and invalidates the line at its index, as on the SPARCstations). Every load and store
  * the guest makes is looked up in each cache; the misses are counted per phase as
- * "@dcache_<SIZE/1024>k_<POLICY>_read_miss" and "..._write_miss". A host profile prices
- * the misses of its own machine's cache and nothing for the others. Instruction fetches
- * are not simulated.
+ * "@dcache_<SIZE/1024>k_<LINE>b_<POLICY>_read_miss" and "..._write_miss", and in a
+ * write-back cache every miss that evicts a line written since it was filled as
+ * "..._writeback" (the dirty line goes back to memory before the new one comes in). A host
+ * profile prices the events of its own machine's cache and nothing for the others.
+ * Instruction fetches are not simulated.
  */
 #define FB89_MAX_CACHES 4
 
@@ -248,8 +250,9 @@ struct cache {
     uint32_t size, line, shift, sets;
     bool write_allocate;
     uint64_t* tags; /* line address + 1 per set; 0 = empty */
-    uint64_t read_miss, write_miss;
-    char read_key[48], write_key[48];
+    uint8_t* dirty; /* per set: written since filled (write-back caches only) */
+    uint64_t read_miss, write_miss, writeback;
+    char read_key[64], write_key[64], writeback_key[64];
 };
 
 static struct cache caches[FB89_MAX_CACHES];
@@ -284,8 +287,14 @@ static bool cache_option(const char* arg) {
     c->sets = c->size / c->line;
     c->tags = xmalloc(sizeof(uint64_t) * c->sets);
     memset(c->tags, 0, sizeof(uint64_t) * c->sets);
-    snprintf(c->read_key, sizeof(c->read_key), "@dcache_%luk_%s_read_miss", size / 1024, policy);
-    snprintf(c->write_key, sizeof(c->write_key), "@dcache_%luk_%s_write_miss", size / 1024, policy);
+    c->dirty = xmalloc(c->sets);
+    memset(c->dirty, 0, c->sets);
+    snprintf(c->read_key, sizeof(c->read_key), "@dcache_%luk_%lub_%s_read_miss", size / 1024, line,
+             policy);
+    snprintf(c->write_key, sizeof(c->write_key), "@dcache_%luk_%lub_%s_write_miss", size / 1024,
+             line, policy);
+    snprintf(c->writeback_key, sizeof(c->writeback_key), "@dcache_%luk_%lub_%s_writeback",
+             size / 1024, line, policy);
     return true;
 }
 
@@ -298,16 +307,26 @@ static void vcpu_mem(unsigned int vcpu_index, qemu_plugin_meminfo_t info, uint64
     for (unsigned i = 0; i < ncaches; i++) {
         struct cache* c = &caches[i];
         for (uint64_t l = vaddr >> c->shift; l <= last >> c->shift; l++) {
-            uint64_t* tag = &c->tags[l & (c->sets - 1)];
+            const uint64_t set = l & (c->sets - 1);
+            uint64_t* tag = &c->tags[set];
             if (*tag == l + 1) {
+                if (store && c->write_allocate) {
+                    c->dirty[set] = 1;
+                }
                 continue;
             }
             if (!store) {
                 c->read_miss++;
-                *tag = l + 1;
             } else {
                 c->write_miss++;
-                *tag = c->write_allocate ? l + 1 : 0;
+            }
+            if (!store || c->write_allocate) {
+                /* the line comes in; a dirty one it replaces goes back first */
+                c->writeback += c->dirty[set];
+                *tag = l + 1;
+                c->dirty[set] = store;
+            } else {
+                *tag = 0; /* write-through, no allocate: the store invalidates the line */
             }
         }
     }
@@ -617,7 +636,8 @@ static void flush_counts(void) {
     for (unsigned i = 0; i < ncaches; i++) {
         add_to_phase(caches[i].read_key, caches[i].read_miss);
         add_to_phase(caches[i].write_key, caches[i].write_miss);
-        caches[i].read_miss = caches[i].write_miss = 0;
+        add_to_phase(caches[i].writeback_key, caches[i].writeback);
+        caches[i].read_miss = caches[i].write_miss = caches[i].writeback = 0;
     }
     uint64_t* tot = phase_cls[cur_phase];
     uint64_t insns = 0, bytes = 0;

@@ -25,7 +25,9 @@
  *   trap handler, as SunOS and Linux do, so at most windows - 1 are resident. A flush of
  *   the windows ("ta 3", V9 "flushw", used by setjmp and C++ unwinding) spills every
  *   resident window but the current one. System calls and context switches, which may
- *   spill too, are not modelled.
+ *   spill too, are not modelled. A chip with more windows (the SPARCstation 2's CY7C601 has
+ *   8) is followed beside it (also_windows=N), its traps counted as "@window_overflow_Nw"
+ *   and "@window_underflow_Nw".
  */
 #include <stdbool.h>
 #include <stdint.h>
@@ -329,10 +331,6 @@ static uint64_t annulling_branch(const struct fb89_insn *last)
  */
 enum { EV_SAVE = 1, EV_RESTORE = 2, EV_FLUSH_TRAP = 3, EV_FLUSHW = 4 };
 
-static unsigned windows = 7;     /* the MB86900's, and the L64801's */
-static unsigned resident = 1;    /* windows of the call chain in the register file */
-static uint64_t overflows, underflows;
-
 static int exec_event(const struct fb89_insn *insn)
 {
     const uint32_t w = word_of(insn);
@@ -350,28 +348,46 @@ static int exec_event(const struct fb89_insn *insn)
     }
 }
 
-static unsigned on_event(int event)
+static unsigned windows = 7;     /* the MB86900's, and the L64801's */
+static unsigned resident = 1;    /* windows of the call chain in the register file */
+static uint64_t overflows, underflows;
+
+/* Other window counts, for machines whose chips have more (the CY7C601's 8: plugin option
+   also_windows=N): their traps are counted as "@window_overflow_<N>w" and
+   "@window_underflow_<N>w" by the same rule; QEMU's own restarts follow `windows` alone. */
+#define FB89_MAX_ALSO 2
+static struct {
+    unsigned windows, resident;
+    uint64_t overflows, underflows;
+    char overflow_key[32], underflow_key[32];
+} also[FB89_MAX_ALSO];
+static unsigned nalso;
+
+/* One event on a register file of `w` windows with `*res` resident; the traps it takes are
+   added to *over and *under. Returns the traps a flushw spills (QEMU restarts it once each). */
+static unsigned window_event(int event, unsigned w, unsigned *res, uint64_t *over,
+                             uint64_t *under)
 {
     switch (event) {
     case EV_SAVE:
-        if (resident + 1 < windows) {
-            resident++;
+        if (*res + 1 < w) {
+            (*res)++;
             return 0;
         }
-        overflows++; /* the oldest window goes to the stack; the new one takes its place */
+        (*over)++; /* the oldest window goes to the stack; the new one takes its place */
         return 1;
     case EV_RESTORE:
-        if (resident > 1) {
-            resident--;
+        if (*res > 1) {
+            (*res)--;
             return 0;
         }
-        underflows++; /* the caller's window comes back from the stack */
+        (*under)++; /* the caller's window comes back from the stack */
         return 1;
     case EV_FLUSH_TRAP:
     case EV_FLUSHW: {
-        const unsigned spilled = resident - 1;
-        overflows += spilled;
-        resident = 1;
+        const unsigned spilled = *res - 1;
+        *over += spilled;
+        *res = 1;
         return event == EV_FLUSHW ? spilled : 0;
     }
     default:
@@ -379,24 +395,53 @@ static unsigned on_event(int event)
     }
 }
 
+static unsigned on_event(int event)
+{
+    for (unsigned i = 0; i < nalso; i++) {
+        window_event(event, also[i].windows, &also[i].resident, &also[i].overflows,
+                     &also[i].underflows);
+    }
+    return window_event(event, windows, &resident, &overflows, &underflows);
+}
+
 static void flush_events(fb89_add_fn add)
 {
     add("@window_overflow", overflows);
     add("@window_underflow", underflows);
     overflows = underflows = 0;
+    for (unsigned i = 0; i < nalso; i++) {
+        add(also[i].overflow_key, also[i].overflows);
+        add(also[i].underflow_key, also[i].underflows);
+        also[i].overflows = also[i].underflows = 0;
+    }
 }
 
+/* windows=N (QEMU's count, which must match its -cpu nwindows) or also_windows=N. */
 static bool option(const char *arg)
 {
-    if (strncmp(arg, "windows=", 8) != 0) {
+    const bool extra = strncmp(arg, "also_windows=", 13) == 0;
+    if (!extra && strncmp(arg, "windows=", 8) != 0) {
         return false;
     }
     char *end = NULL;
-    const long n = strtol(arg + 8, &end, 10);
+    const long n = strtol(arg + (extra ? 13 : 8), &end, 10);
     if (!end || *end || n < 2 || n > 32) {
         return false;
     }
-    windows = (unsigned)n;
+    if (!extra) {
+        windows = (unsigned)n;
+        return true;
+    }
+    if (nalso == FB89_MAX_ALSO) {
+        return false;
+    }
+    also[nalso].windows = (unsigned)n;
+    also[nalso].resident = 1;
+    snprintf(also[nalso].overflow_key, sizeof(also[nalso].overflow_key),
+             "@window_overflow_%ldw", n);
+    snprintf(also[nalso].underflow_key, sizeof(also[nalso].underflow_key),
+             "@window_underflow_%ldw", n);
+    nalso++;
     return true;
 }
 
@@ -412,5 +457,5 @@ const struct fb89_isa fb89_isa_sparc = {
     .on_event = on_event,
     .flush_events = flush_events,
     .option = option,
-    .options_help = " [windows=N]",
+    .options_help = " [windows=N] [also_windows=N]",
 };

@@ -23,9 +23,10 @@ TEST(ListCommand, NamesEveryMethodProfileHostSceneAndExperiment) {
     CliRun r = run_fb89("list");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* name :
-         {"zbuffer", "scanline", "warnock", "hybrid", "raytrace", "beam", "tms34010-50mhz", "ideal",
-          "native", "sun3-60", "sun3-260", "sun4-260", "sparcstation-1", "\n  A ",
-          "\n  garish_room ", "fig3.1", "split", "radiosity"})
+         {"zbuffer",  "scanline",         "warnock",        "hybrid",         "raytrace",
+          "beam",     "tms34010-50mhz",   "ideal",          "native",         "sun3-60",
+          "sun3-260", "sun4-260",         "sparcstation-1", "sparcstation-2", "CY7C601",
+          "\n  A ",   "\n  garish_room ", "fig3.1",         "split",          "radiosity"})
         EXPECT_NE(r.out.find(name), std::string::npos) << name << "\n" << r.out;
     CliRun methods = run_fb89("list methods");
     EXPECT_EQ(methods.out.find("sun3-60"), std::string::npos) << "one kind only";

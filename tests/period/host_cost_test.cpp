@@ -111,7 +111,8 @@ TEST(HostCost, EveryBuiltInProfileLoadsAndPricesTheCommonKeysOfItsInstructionSet
         {"m68k",
          {"movel disp,dreg", "moveq imm,dreg", "fmoved disp,fpreg", "fmuld fpreg,fpreg",
           "beqw target", "lea disp,areg", "rts", "cmpl dreg,dreg", "faddd fpreg,fpreg", "jsr abs",
-          "@dcache_64k_read_miss", "@dcache_64k_write_miss"}},
+          "@dcache_64k_16b_wb_read_miss", "@dcache_64k_16b_wb_write_miss",
+          "@dcache_64k_16b_wb_writeback"}},
         {"sparc",
          {"ld",
           "st",
@@ -133,8 +134,12 @@ TEST(HostCost, EveryBuiltInProfileLoadsAndPricesTheCommonKeysOfItsInstructionSet
           "@annulled_slot",
           "@window_overflow",
           "@window_underflow",
-          "@dcache_64k_read_miss",
-          "@dcache_128k_read_miss"}}};
+          "@window_overflow_8w",
+          "@window_underflow_8w",
+          "@dcache_64k_16b_wt_read_miss",
+          "@dcache_128k_16b_wb_read_miss",
+          "@dcache_128k_16b_wb_writeback",
+          "@dcache_64k_32b_wt_read_miss"}}};
     for (const std::string& name : builtin_host_profile_names()) {
         const HostProfile p = load_host_profile(name);
         EXPECT_EQ(p.name, name);

@@ -69,6 +69,25 @@ TEST(PeriodSparcWindows, EachLevelOfARecursionPastTheRegisterFileSpillsAndFillsO
     }
 }
 
+// The SPARCstation 2's 8 windows followed beside QEMU's 7 (also_windows=8, as fb89 runs the
+// guest: period/isa.cpp) count what QEMU set to 8 counts itself.
+TEST(PeriodSparcWindows, AWindowCountFollowedBesideQemusCountsAsQemuSetToItDoes) {
+    const InstructionSet& sparc = instruction_set("sparc");
+    EmulatorParts parts = find_emulator_parts(sparc);
+    InstructionSet isa = sparc;
+    isa.qemu_options = {"-cpu", "TI UltraSparc II,nwindows=7"};
+    isa.plugin_options = {"windows=7", "also_windows=8"};
+    parts.isa = &isa;
+    const GuestRun run = run_kernel(parts, find_kernel(sparc, "fb89_kernel_recurse"), {"50"});
+    const PhaseCounts* timed = run.counts.phase(static_cast<int>(Phase::HiddenSurface));
+    ASSERT_NE(timed, nullptr);
+    const Windows seven = recurse(50, 7), eight = recurse(50, 8);
+    EXPECT_EQ(count(*timed, "@window_overflow"), seven.overflows);
+    EXPECT_EQ(count(*timed, "@window_underflow"), seven.underflows);
+    EXPECT_EQ(count(*timed, "@window_overflow_8w"), eight.overflows);
+    EXPECT_EQ(count(*timed, "@window_underflow_8w"), eight.underflows);
+}
+
 TEST(PeriodSparcWindows, MoreWindowsTakeOneTrapFewerEachWay) {
     const Windows seven = recurse(50, 7), eight = recurse(50, 8);
     EXPECT_EQ(seven.overflows - eight.overflows, 1u);
@@ -85,8 +104,8 @@ TEST(PeriodSparcV7, TheHelpersAndTheCodeGenRunOnACpuWithNothingNewerThanV7) {
     const std::filesystem::path check =
         guest.parent_path().parent_path().parent_path() / "fb89_v7_check";
     ASSERT_TRUE(std::filesystem::exists(check)) << check;
-    const std::string command = "qemu-sparc -cpu 'Fujitsu MB86904,-mul,-div,-fsqrt' " +
-                                check.string() + " 2>&1";
+    const std::string command =
+        "qemu-sparc -cpu 'Fujitsu MB86904,-mul,-div,-fsqrt' " + check.string() + " 2>&1";
     const int status = std::system(command.c_str());
     ASSERT_TRUE(WIFEXITED(status)) << "stopped by a signal: an instruction V7 does not have";
     EXPECT_EQ(WEXITSTATUS(status), 0) << "a wrong answer (exit 1) or no V7 CPU (127)";

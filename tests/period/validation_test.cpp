@@ -96,6 +96,86 @@ TEST(PeriodValidation, KernelCountsAreTheSameRunAfterRun) {
         }
 }
 
+TEST(PeriodValidation, FbenchTracesTheObjectiveToItsReferenceResults) {
+    for (const char* isa : {"m68k", "sparc"}) {
+        SCOPED_TRACE(isa);
+        const KernelRun& run = kernel_run("fbench", isa);
+        // the kernel exits 1 unless every aberration matches FBENCH's reference to 11 decimals
+        EXPECT_NE(run.output.find("marginal=47.09479120920 0.04178472683"), std::string::npos)
+            << run.output;
+        EXPECT_NE(run.output.find("wrong=0"), std::string::npos) << run.output;
+        // the program's own square root and trigonometry: no fsqrt, and a divide in every
+        // Newton step
+        const PhaseCounts& t = timed(run);
+        uint64_t sqrt = 0, div = 0;
+        for (const auto& [key, n] : t.classes) {
+            if (key.starts_with("fsqrt")) sqrt += n;
+            if (key.starts_with("fdiv")) div += n;
+        }
+        EXPECT_EQ(sqrt, 0u);
+        EXPECT_GT(div, 100u * 100);  // 100 iterations
+    }
+}
+
+// The caches the plugin follows on SPARC (period/isa.cpp), on FFBENCH's 1 MB array: the
+// write-back cache writes back only lines a store made dirty, never more than it filled; the
+// write-through ones write nothing back.
+TEST(PeriodValidation, OnlyTheWriteBackCacheWritesLinesBack) {
+    const PhaseCounts& t = timed(kernel_run("fft2d", "sparc"));
+    const auto n = [&](const std::string& key) {
+        const auto it = t.classes.find(key);
+        return it == t.classes.end() ? uint64_t{0} : it->second;
+    };
+    const uint64_t fills = n("@dcache_128k_16b_wb_read_miss") + n("@dcache_128k_16b_wb_write_miss");
+    EXPECT_GT(n("@dcache_128k_16b_wb_writeback"), 0u);
+    EXPECT_LE(n("@dcache_128k_16b_wb_writeback"), fills);
+    // every pass reads and writes the whole array: at least its 65,536 lines go back once
+    EXPECT_GE(n("@dcache_128k_16b_wb_writeback"), 65536u - 131072u / 16);
+    for (const char* wt : {"@dcache_64k_16b_wt_writeback", "@dcache_64k_32b_wt_writeback"})
+        EXPECT_EQ(n(wt), 0u) << wt;
+    // 32-byte lines hold twice the data: fewer read misses than the 16-byte lines of a cache
+    // of the same size
+    EXPECT_LT(n("@dcache_64k_32b_wt_read_miss"), n("@dcache_64k_16b_wt_read_miss"));
+}
+
+TEST(PeriodValidation, TolerancesAndRatiosAreCheckedOnLoading) {
+    const std::string kernel =
+        R"({"name": "k", "program": "p", "operations": 1, "operation": "pass", "unit": "s/pass"})";
+    const auto figure = [](const std::string& id, const std::string& extra) {
+        return R"({"id": ")" + id +
+               R"(", "machine": "m", "benchmark": "b", "kernel": "k", "value": 2, "unit": "s/pass",
+                 "profiles": ["sun4-260"], "source": "s")" +
+               extra + "}";
+    };
+    const auto doc = [&](const std::string& figures, const std::string& ratios) {
+        return R"({"schema": 1, "kernels": [)" + kernel + R"(], "figures": [)" + figures + "]" +
+               (ratios.empty() ? "" : R"(, "ratios": [)" + ratios + "]") + "}";
+    };
+    const ValidationData d =
+        parse_validation(doc(figure("a", R"(, "tolerance": 0.15)") + "," + figure("b", ""),
+                             R"({"id": "r", "numerator": "a", "denominator": "b",
+                                 "tolerance": 0.2})"),
+                         "t");
+    EXPECT_DOUBLE_EQ(d.figure("a").tolerance, 0.15);
+    EXPECT_DOUBLE_EQ(d.figure("b").tolerance, kValidationTolerance);
+    ASSERT_EQ(d.ratios.size(), 1u);
+    EXPECT_TRUE(passes(d.figure("a"), -0.149));
+    EXPECT_FALSE(passes(d.figure("a"), 0.151));
+    const auto refused = [&](const std::string& text, const std::string& says) {
+        try {
+            parse_validation(text, "t.json");
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("t.json"), std::string::npos) << e.what();
+        }
+    };
+    refused(doc(figure("a", R"(, "tolerance": 15)"), ""), "tolerance");
+    refused(doc(figure("a", ""), R"({"id": "r", "numerator": "a", "denominator": "x",
+                                      "tolerance": 0.2})"),
+            "no figure 'x'");
+}
+
 TEST(PeriodValidation, AMissingKernelIsAClearError) {
     try {
         find_kernel(instruction_set("sparc"), "fb89_kernel_no_such_kernel");
@@ -119,14 +199,35 @@ TEST(PeriodValidation, TheProfilesMeetThePublishedFigures) {
             const double modelled =
                 modelled_value(k, f.unit, timed_seconds(run.counts, profile, f.clock_mhz));
             const double error = relative_error(modelled, f.value);
-            EXPECT_TRUE(passes(f.check, error))
+            EXPECT_TRUE(passes(f, error))
                 << f.kernel << ": modelled " << modelled << " " << f.unit << ", published "
                 << f.value << " (" << f.machine << "), error " << 100 * error << "%, check "
-                << check_name(f.check);
+                << check_name(f.check) << " within " << 100 * f.tolerance << "%";
             const HostCost cost = price(run.counts, profile);
             EXPECT_EQ(cost.phases[static_cast<int>(Phase::HiddenSurface)].unpriced, 0u)
                 << "instruction classes the profile's rules do not price";
         }
+    }
+}
+
+// The same program on two machines: the ratio of the profiles' modelled figures against the
+// published one, within the ratio's tolerance (the Sun-3/60 : Sun-4/260 speed on FFBENCH, the
+// Sun-4 : SPARCstation 2 one).
+TEST(PeriodValidation, TheProfilesMeetThePublishedRatios) {
+    ASSERT_FALSE(data().ratios.empty());
+    const auto modelled = [](const PublishedFigure& f) {
+        const HostProfile profile = load_host_profile(f.profiles.at(0));
+        const KernelRun& run = kernel_run(f.kernel, profile.isa);
+        return modelled_value(data().kernel(f.kernel), f.unit, timed_seconds(run.counts, profile));
+    };
+    for (const RatioCheck& r : data().ratios) {
+        SCOPED_TRACE(r.id);
+        const PublishedFigure &one = data().figure(r.numerator),
+                              &other = data().figure(r.denominator);
+        const double error =
+            relative_error(modelled(one) / modelled(other), one.value / other.value);
+        EXPECT_LE(std::fabs(error), r.tolerance) << "modelled " << modelled(one) / modelled(other)
+                                                 << ", published " << one.value / other.value;
     }
 }
 

@@ -436,10 +436,12 @@ COMMON_NOTES = (
 
 
 def cache_rules(read, write, src):
-    """The misses of the Sun-3/260's data cache (the plugin's "@dcache_64k_wb_*") at `read`
-    and `write` clocks; with read = write = 0, a machine without a cache."""
-    return [{"mnemonic": "@dcache_64k_wb_read_miss", "cpu": read, "source": src},
-            {"mnemonic": "@dcache_64k_wb_write_miss", "cpu": write, "source": src},
+    """The events of the Sun-3/260's data cache (the plugin's "@dcache_64k_16b_wb_*"): misses
+    at `read` and `write` clocks, and a dirty line written back before a fill replaces it at
+    `write`; with read = write = 0, a machine without a cache."""
+    return [{"mnemonic": "@dcache_64k_16b_wb_read_miss", "cpu": read, "source": src},
+            {"mnemonic": "@dcache_64k_16b_wb_write_miss", "cpu": write, "source": src},
+            {"mnemonic": "@dcache_64k_16b_wb_writeback", "cpu": write, "source": src},
             {"mnemonic": "@dcache_.*", "cpu": 0, "source": "another machine's cache: no cost"}]
 
 
@@ -480,13 +482,14 @@ p260 = profile(
     25.0, 20.0, 0,
     "SUN: 25 MHz MC68020, 20 MHz MC68881, 64 KB direct-mapped write-back cache with 16-byte "
     "lines. A hit costs 0 wait states (memory_wait_states 0); the plugin counts the data "
-    "misses and they are priced below; write-backs of dirty lines and the virtually-tagged "
+    "misses and the write-backs of dirty lines they cause, priced below; the virtually-tagged "
     "cache's flushes are not modelled. The FPU runs "
     "at 20 MHz: its part (fpu) is priced at its own clock, the coprocessor-interface part (cpu) "
     "at the MPU's 25 MHz, although CIR accesses are paced by the slower FPU.",
     cache_rules(10, 10, "EST: a 16-byte line filled from the 64-bit ECC memory in two transfers "
-                "of about 200 ns (the Sun-3/60's memory cycle, SUN), 400 ns = 10 clocks at 25 MHz; "
-                "write-back, write-allocate (SunOS). No measured figure was found "
+                "of about 200 ns (the Sun-3/60's memory cycle, SUN), 400 ns = 10 clocks at 25 MHz, "
+                "and the same again for a dirty line written back before the fill; write-back, "
+                "write-allocate (SunOS). No measured figure was found "
                 "(docs/HOST_COST_MODEL.md, 'Caches')"))
 
 for p in (p60, p260):
