@@ -380,8 +380,24 @@ machines = [
             cache_rules("64k_32b_wt", 36, 0, 0, SS2_LINE) + window_rules(8), CY7C602),
 ]
 
-for p in machines:
-    with open(os.path.join(OUT, p["name"] + ".json"), "w") as f:
+# A variant, not built in (period/sparc/profiles/variants/, read with --host FILE): the
+# Sun-4/260 with its square roots priced as the software sqrt period software called in their
+# place (Sun's compilers emitted no fsqrt for this FPU), so that fb89's binary, which executes
+# fsqrtd and so traps to the kernel on the real machine, can be set beside figures measured
+# with period code (docs/RESULTS.md, "The Sun-4").
+LIBM_SQRT = fp("fsqrts|fsqrtd", 300, "EST, stand-in: libm's software sqrt in place of the "
+               "trapping fsqrt, as Sun's compilers built code for the Weitek FPU: SUNOS "
+               "usr.lib/libm/sparc/sqrt.S's common path, about 130 instructions with 2 fdivd, 8 "
+               "fmuld and 5 fadd/fsub and some 45 loads and stores, about 300 cycles",
+               stand_in=True)
+variant = json.loads(json.dumps(machines[0]))
+variant["name"] = "sun4-260-libm-sqrt"
+variant["description"] += "; square roots as libm's software sqrt instead of the kernel's fsqrt"
+variant["rules"] = [LIBM_SQRT if r["mnemonic"] == "fsqrts|fsqrtd" else r for r in variant["rules"]]
+os.makedirs(os.path.join(OUT, "variants"), exist_ok=True)
+
+for p, folder in [(m, OUT) for m in machines] + [(variant, os.path.join(OUT, "variants"))]:
+    with open(os.path.join(folder, p["name"] + ".json"), "w") as f:
         json.dump(p, f, indent=2)
         f.write("\n")
 print(len(rules), "common rules")
