@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -39,12 +40,13 @@ std::string period_summary(const experiments::PeriodFrame& run) {
     // counts 7 windows as "@window_overflow" and other counts as "@window_overflow_<N>w"; the
     // profile prices its own
     std::string overflow = "@window_overflow", underflow = "@window_underflow";
-    for (const auto& [key, n] : phase(period::Phase::HiddenSurface).events)
-        if (key.starts_with(overflow + "_")) {  // events holds only what the machine pays for
-            underflow += key.substr(overflow.size());
-            overflow = key;
-            break;
-        }
+    for (const auto& cost : p)  // events holds only what the machine pays for
+        for (const auto& [key, n] : cost.events)
+            if (key.starts_with("@window_overflow_")) {
+                overflow = key;
+                underflow =
+                    "@window_underflow" + key.substr(std::string_view("@window_overflow").size());
+            }
     const auto events = [&](period::Phase ph, const std::string& key) {
         const auto& e = phase(ph).events;
         const auto it = e.find(key);

@@ -364,7 +364,8 @@ static struct {
 static unsigned nalso;
 
 /* One event on a register file of `w` windows with `*res` resident; the traps it takes are
-   added to *over and *under. Returns the traps a flushw spills (QEMU restarts it once each). */
+   added to *over and *under. Returns how many times QEMU, were its count `w`, would restart
+   the instruction: once after a save's or restore's trap, once a window a flushw spills. */
 static unsigned window_event(int event, unsigned w, unsigned *res, uint64_t *over,
                              uint64_t *under)
 {
