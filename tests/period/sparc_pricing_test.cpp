@@ -150,6 +150,23 @@ TEST_P(SparcPricing, TheSquareRootIsWhatTheMachineDoesWithIt) {
     }
 }
 
+// The variant docs/RESULTS.md prices the Sun-4/260 with (period/sparc/profiles/variants): the
+// same machine in every rule but the square root, which is libm's software sqrt, a stand-in,
+// instead of the kernel's emulation of the trapping fsqrt.
+TEST(SparcPricingVariant, TheLibmSqrtSun4DiffersFromTheSun4OnlyInItsSquareRoot) {
+    const std::string file = std::string(FB89_TEST_DATA_DIR) +
+                             "/../period/sparc/profiles/variants/sun4-260-libm-sqrt.json";
+    const HostProfile variant = load_host_profile(file), machine = load_host_profile("sun4-260");
+    EXPECT_EQ(variant.isa, "sparc");
+    EXPECT_EQ(variant.cpu_clock_mhz, machine.cpu_clock_mhz);
+    EXPECT_EQ(cycles(variant, "fsqrtd"), 300);
+    EXPECT_TRUE(stand_in(variant, "fsqrtd"));
+    EXPECT_GT(cycles(machine, "fsqrtd"), 30 * cycles(variant, "fsqrtd"));
+    for (const char* key : {"ld", "std", "faddd", "fmuld", "fdivd", "fcmpd", "umul", "@load_use",
+                            "@window_overflow", "@dcache_128k_16b_wb_writeback"})
+        EXPECT_EQ(cycles(variant, key), cycles(machine, key)) << key;
+}
+
 INSTANTIATE_TEST_SUITE_P(Sun4, SparcPricing,
                          ::testing::Values("sun4-260", "sparcstation-1", "sparcstation-2"),
                          [](const auto& info) {
