@@ -113,6 +113,13 @@ py::array commands_array(const std::vector<protocol::Command>& commands) {
     return out;
 }
 
+py::array rgb_view(const controller::Framebuffer& frame, py::object owner) {
+    const auto h = static_cast<py::ssize_t>(frame.height()),
+               w = static_cast<py::ssize_t>(frame.width());
+    return py::array(py::dtype::of<uint8_t>(), {h, w, py::ssize_t{3}},
+                     {w * 3, py::ssize_t{3}, py::ssize_t{1}}, frame.pixels().data(), owner);
+}
+
 void save_stream(const protocol::MemoryBuffer& commands, const std::string& path,
                  const protocol::Properties& properties) {
     try {

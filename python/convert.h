@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "controller_sim/framebuffer.h"
 #include "protocol/command.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/stream_format.h"
@@ -32,6 +33,10 @@ pybind11::object to_python(const nlohmann::json& j);
 // marker's text is not in the row (Stream.markers has it).
 pybind11::dtype command_dtype();
 pybind11::array commands_array(const std::vector<protocol::Command>& commands);
+
+// A view of an RGB framebuffer, H x W x 3 uint8, that keeps `owner` (what holds the
+// framebuffer) alive.
+pybind11::array rgb_view(const controller::Framebuffer& frame, pybind11::object owner);
 
 void save_stream(const protocol::MemoryBuffer& commands, const std::string& path,
                  const protocol::Properties& properties);

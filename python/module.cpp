@@ -42,6 +42,7 @@ struct RenderOutcome {
     std::string scene, method, host, controller;
     experiments::RenderResult result;
     controller::Framebuffer image, ids;
+    std::vector<int32_t> face_ids;  // ids as face ids, -1 for the background
     nlohmann::json host_times, counters, controller_figures, split, period;
 };
 
@@ -121,6 +122,7 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     run.commands.replay_into(ctl);
     out->image = ctl.framebuffer();
     out->ids = experiments::id_framebuffer(out->result.scene, *run.renderer);
+    out->face_ids = face_ids(out->ids);
 
     const nlohmann::json stats = run.stats.to_json();
     out->host_times = stats["times"];
@@ -141,14 +143,6 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
                        {"same_frame", p.same_frame}};
     }
     return out;
-}
-
-// A view of an RGB framebuffer, H x W x 3, kept alive by `owner`.
-py::array rgb_view(const controller::Framebuffer& frame, py::object owner) {
-    const auto h = static_cast<py::ssize_t>(frame.height()),
-               w = static_cast<py::ssize_t>(frame.width());
-    return py::array(py::dtype::of<uint8_t>(), {h, w, py::ssize_t{3}},
-                     {w * 3, py::ssize_t{3}, py::ssize_t{1}}, frame.pixels().data(), owner);
 }
 
 }  // namespace
@@ -219,14 +213,11 @@ PYBIND11_MODULE(_fb89, m) {
             "The controller's framebuffer, H x W x 3 uint8 (a view: no copy).")
         .def_property_readonly(
             "ids",
-            [](const RenderOutcome& r) {
-                std::vector<int32_t> ids = face_ids(r.ids);
-                auto* data = new std::vector<int32_t>(std::move(ids));
-                py::capsule owner(data,
-                                  [](void* p) { delete static_cast<std::vector<int32_t>*>(p); });
+            [](py::object self) {
+                const RenderOutcome& r = self.cast<const RenderOutcome&>();
                 return py::array_t<int32_t>({static_cast<py::ssize_t>(r.ids.height()),
                                              static_cast<py::ssize_t>(r.ids.width())},
-                                            data->data(), owner);
+                                            r.face_ids.data(), self);
             },
             "The face-id buffer, H x W int32: each pixel's face id, -1 for the background "
             "(what render --ids writes as a PNG).")

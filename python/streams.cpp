@@ -45,12 +45,6 @@ std::shared_ptr<StreamFile> open_stream(const std::string& path) {
     return out;
 }
 
-// The controller's figures and image for a stream's commands under a cost profile.
-struct Replay {
-    controller::Framebuffer image;
-    py::dict figures;
-};
-
 }  // namespace
 
 void register_streams(py::module_& m) {
@@ -120,12 +114,8 @@ void register_streams(py::module_& m) {
             auto* frame = new controller::Framebuffer(ctl->framebuffer());
             py::capsule owner(frame,
                               [](void* p) { delete static_cast<controller::Framebuffer*>(p); });
-            const auto h = static_cast<py::ssize_t>(frame->height()),
-                       w = static_cast<py::ssize_t>(frame->width());
-            py::array image(py::dtype::of<uint8_t>(), {h, w, py::ssize_t{3}},
-                            {w * 3, py::ssize_t{3}, py::ssize_t{1}}, frame->pixels().data(), owner);
             py::dict out;
-            out["image"] = image;
+            out["image"] = rgb_view(*frame, owner);
             out["checksum"] = frame->checksum();
             out["stats"] = to_python(ctl->stats().to_json());
             return out;
