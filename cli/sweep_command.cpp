@@ -13,7 +13,7 @@
 #include "cli/common.h"
 #include "cli/data_dir.h"
 #include "cli/period_host.h"
-#include "experiments/experiments.h"
+#include "cli/runs.h"
 
 namespace fb89::cli {
 
@@ -22,42 +22,19 @@ using namespace experiments;
 namespace {
 
 struct SweepArgs {
-    HostArgs host;
-    std::string what;
-    std::vector<std::string> scenes;
-    double from = 0.001, to = 1.0;
-    int steps = 13;
-    int repeat = 7;
-    std::string window_test = "area", depth_estimate = "window", csv, size;
-    std::string profile = "tms34010-50mhz";
+    SweepRequest request;
+    std::string what, csv;
     bool quiet = false;
 };
 
-int run_sweep(const SweepArgs& a) {
+int sweep_command(SweepArgs& a) {
     if (a.what != "threshold")
         throw UsageError(fmt::format("unknown sweep '{}' (known: threshold)", a.what));
-    if (!(a.from > 0 && a.to > a.from)) throw UsageError("--from and --to: need 0 < from < to");
-    ExperimentSettings s;
-    s.scenes = a.scenes;
-    s.repeat = a.repeat;
-    s.profile = a.profile;
-    s.progress = !a.quiet && isatty(STDERR_FILENO);
-    if (!a.size.empty()) s.size = parse_size(a.size);
-    s.period = make_period_runs(a.host);
-    std::vector<double> thresholds{0.0};
-    for (double t : threshold_ramp(a.from, a.to, a.steps))
-        thresholds.push_back(t);
-    thresholds.push_back(std::numeric_limits<double>::infinity());
-    host::MethodOptions base(host::Method::Hybrid);
-    base.warnock.window_test =
-        a.window_test == "centres" ? host::WindowTest::Centres : host::WindowTest::Area;
-    base.hybrid.depth =
-        a.depth_estimate == "scene" ? host::DepthEstimate::Scene : host::DepthEstimate::Window;
-    Table table = sweep_threshold(s, thresholds, base);
-    table.map_column("scene", scene_display_name);
-    if (report_emitted(s, a.host)) return kSuccess;
-    if (!a.csv.empty()) write_text(a.csv, table.csv());
-    if (!a.quiet && a.csv != "-") std::cout << table.text();
+    a.request.progress = !a.quiet && isatty(STDERR_FILENO);
+    const RunOutcome out = run_threshold_sweep(a.request);
+    if (report_emitted(out.settings, a.request.host)) return kSuccess;
+    if (!a.csv.empty()) write_text(a.csv, out.table.csv());
+    if (!a.quiet && a.csv != "-") std::cout << out.table.text();
     return kSuccess;
 }
 
@@ -69,34 +46,34 @@ void register_sweep(CLI::App& app, int& exit_code) {
     sub->add_option("what", a->what, "What to sweep: threshold (the hybrid's Expr. 3.1)")
         ->check(CLI::IsMember({"threshold"}))
         ->required();
-    sub->add_option("scenes", a->scenes,
+    sub->add_option("scenes", a->request.scenes,
                     "Scenes: files, or bundled scenes by name (fb89 list scenes)")
         ->required();
-    sub->add_option("--from", a->from, "Smallest threshold of the ramp (> 0)")
+    sub->add_option("--from", a->request.from, "Smallest threshold of the ramp (> 0)")
         ->capture_default_str();
-    sub->add_option("--to", a->to, "Largest threshold of the ramp")->capture_default_str();
-    sub->add_option("--steps", a->steps, "Thresholds on the ramp, log-spaced")
+    sub->add_option("--to", a->request.to, "Largest threshold of the ramp")->capture_default_str();
+    sub->add_option("--steps", a->request.steps, "Thresholds on the ramp, log-spaced")
         ->check(CLI::Range(1, 200))
         ->capture_default_str();
-    sub->add_option("--repeat", a->repeat, "Interleaved timing rounds (median)")
+    sub->add_option("--repeat", a->request.repeat, "Interleaved timing rounds (median)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    sub->add_option("--window-test", a->window_test, "area or centres")
+    sub->add_option("--window-test", a->request.window_test, "area or centres")
         ->check(CLI::IsMember({"area", "centres"}))
         ->capture_default_str();
-    sub->add_option("--depth-estimate", a->depth_estimate, "window or scene")
+    sub->add_option("--depth-estimate", a->request.depth_estimate, "window or scene")
         ->check(CLI::IsMember({"window", "scene"}))
         ->capture_default_str();
     sub->add_option("--csv", a->csv, "Write the results as CSV ('-' for stdout)");
-    sub->add_option("--size", a->size, "Image size WxH, overriding the scenes'");
-    sub->add_option("--profile", a->profile, profile_option_help())->capture_default_str();
-    add_host_options(sub, a->host);
+    sub->add_option("--size", a->request.size, "Image size WxH, overriding the scenes'");
+    sub->add_option("--profile", a->request.profile, profile_option_help())->capture_default_str();
+    add_host_options(sub, a->request.host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
     add_isa_option(sub);
     sub->callback([a, &exit_code] {
-        for (std::string& scene : a->scenes)
+        for (std::string& scene : a->request.scenes)
             scene = resolve_scene(scene);
-        exit_code = run_sweep(*a);
+        exit_code = sweep_command(*a);
     });
 }
 

@@ -13,6 +13,7 @@
 #include "host/raster/screen_scene.h"
 #include "host/scene/scene.h"
 #include "host/stats.h"
+#include "period/stop.h"
 #include "protocol/memory_buffer.h"
 
 namespace fb89::experiments {
@@ -25,12 +26,14 @@ struct GuestOutcome;
 // that slow drifts of the machine fall on all settings alike. run(m, timed) runs setting m;
 // `timed` is false in the warm-up round, whose figures are not kept.
 // With `progress`, the rounds done show on stderr ("label: 3/11 rounds, about 12 s left").
+// A stop asked for (period/stop.h) ends it between rounds.
 template <class Run>
 void interleave(size_t count, int repeat, const std::string& label, bool progress, Run&& run) {
     ProgressLine line(progress);
     line.start(label);
     const auto rounds = static_cast<uint64_t>(repeat + 1);
     for (int round = -1; round < repeat; ++round) {
+        period::throw_if_stopped();
         line.step(static_cast<uint64_t>(round + 1), rounds, "rounds");
         for (size_t k = 0; k < count; ++k)
             run((k + static_cast<size_t>(round + 1)) % count, round >= 0);

@@ -18,6 +18,7 @@
 
 #include "experiments/progress.h"
 #include "host/scene/scene_loader.h"
+#include "period/stop.h"
 #include "protocol/output_file.h"
 
 namespace fb89::experiments {
@@ -253,8 +254,12 @@ std::vector<GuestOutcome> PeriodRuns::run_outcomes(const std::vector<GuestJob>& 
         ++done;
         line.step(done, jobs.size(), "emulated runs");
     };
+    // a stop asked for (period/stop.h) or thrown by the progress observer ends every worker
+    // after its run; the first such throw reaches the caller
+    std::exception_ptr stopped;
     auto worker = [&] {
         for (size_t i = next++; i < jobs.size(); i = next++) {
+            if (period::stop_requested()) break;
             try {
                 const std::string text =
                     counts_of(jobs[i], job_key(m_guest_fingerprint, jobs[i]), out[i]);
@@ -266,9 +271,19 @@ std::vector<GuestOutcome> PeriodRuns::run_outcomes(const std::vector<GuestJob>& 
                 }
             } catch (const std::exception& e) {
                 errors[i] = e.what();
+            } catch (const period::Stopped&) {
+                std::lock_guard lock(m_mutex);
+                if (!stopped) stopped = std::current_exception();
+                break;
             }
             std::lock_guard lock(m_mutex);
-            report();
+            try {
+                report();
+            } catch (...) {  // the observer's: stop the others too
+                if (!stopped) stopped = std::current_exception();
+                period::request_stop();
+                break;
+            }
         }
     };
     const size_t n = std::min<size_t>(static_cast<size_t>(m_jobs), jobs.size());
@@ -286,6 +301,8 @@ std::vector<GuestOutcome> PeriodRuns::run_outcomes(const std::vector<GuestJob>& 
     else
         all();
     line.clear();
+    if (stopped) std::rethrow_exception(stopped);
+    if (period::stop_requested()) throw period::Stopped{};
     if (!m_emit.empty()) write_whole(m_emit, m_emit_list);  // the whole list so far, at once
     for (const std::string& e : errors)
         if (!e.empty()) throw period::EmulatorError(e);

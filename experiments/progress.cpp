@@ -13,6 +13,8 @@ namespace fb89::experiments {
 namespace {
 constexpr uint64_t kEveryUnitUpTo = 1000;
 
+thread_local const ProgressObserver* current_observer = nullptr;
+
 std::size_t code_points(std::string_view text) {
     std::size_t n = 0;
     for (const char c : text)
@@ -46,10 +48,20 @@ std::size_t terminal_columns() {
     return 80;
 }
 
+ObserveProgress::ObserveProgress(ProgressObserver observer)
+    : m_before(current_observer), m_observer(std::move(observer)) {
+    current_observer = m_observer ? &m_observer : nullptr;
+}
+
+ObserveProgress::~ObserveProgress() { current_observer = m_before; }
+
+ProgressLine::ProgressLine(bool on) : m_on(on), m_observer(current_observer) {}
+
 void ProgressLine::start(std::string what) {
     m_what = std::move(what);
     m_start = std::chrono::steady_clock::now();
     m_last_shown = {};
+    if (m_observer) (*m_observer)(m_what, 0, 0, {});
     if (m_on) show(m_what);
 }
 
@@ -58,13 +70,15 @@ double ProgressLine::seconds() const {
 }
 
 void ProgressLine::step(uint64_t done, uint64_t total, std::string_view unit) {
-    if (!m_on) return;
+    if (!m_on && !m_observer) return;
     const auto now = std::chrono::steady_clock::now();
     // few units (rounds, scenes): every one; many (rows, pairs): ten times a second at most
     if (total > kEveryUnitUpTo && done < total &&
         now - m_last_shown < std::chrono::milliseconds(100))
         return;
     m_last_shown = now;
+    if (m_observer) (*m_observer)(m_what, done, total, unit);
+    if (!m_on) return;
     std::string text =
         unit.empty()
             ? fmt::format("{}: {:.0f}%", m_what,

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -21,9 +22,30 @@ std::string fit_to_width(const std::string& text, std::size_t columns);
 // The width of the terminal on stderr; else $COLUMNS; else 80.
 std::size_t terminal_columns();
 
+// Someone other than a person at a terminal following long work (the Python module's
+// progress= callbacks): told of each piece of work as it starts (done = total = 0) and of each
+// step, as the line would show them. It may throw to stop the work.
+using ProgressObserver = std::function<void(const std::string& what, uint64_t done,
+                                            uint64_t total, std::string_view unit)>;
+
+// Sets the observer of the progress lines this thread makes while it lives (each line keeps
+// its observer, whatever thread then steps it); the one before is put back after.
+class ObserveProgress {
+  public:
+    explicit ObserveProgress(ProgressObserver observer);
+    ~ObserveProgress();
+    ObserveProgress(const ObserveProgress&) = delete;
+    ObserveProgress& operator=(const ObserveProgress&) = delete;
+
+  private:
+    const ProgressObserver* m_before;
+    ProgressObserver m_observer;
+};
+
 class ProgressLine {
   public:
-    explicit ProgressLine(bool on) : m_on(on) {}
+    // `on`: shown on stderr. A line is also told to the thread's observer, if any.
+    explicit ProgressLine(bool on);
     ~ProgressLine() { clear(); }
     ProgressLine(const ProgressLine&) = delete;
     ProgressLine& operator=(const ProgressLine&) = delete;
@@ -61,6 +83,7 @@ class ProgressLine {
     double seconds() const;
 
     bool m_on;
+    const ProgressObserver* m_observer;
     std::string m_what;
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point m_last_shown{};

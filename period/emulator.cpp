@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "period/phases.h"
+#include "period/stop.h"
 
 namespace fb89::period {
 
@@ -116,10 +117,11 @@ uint64_t resident_bytes(pid_t child) {
     return 0;
 }
 
-enum class Drained { Closed, OutOfTime, OutOfMemory };
+enum class Drained { Closed, OutOfTime, OutOfMemory, Stopped };
 
 // Reads the child's stdout and stderr until both close, the time runs out, or the child's
-// resident memory passes `memory_bytes` (looked at every 50 ms).
+// resident memory passes `memory_bytes`, or a stop is asked for (period/stop.h; both looked at
+// every 50 ms).
 Drained drain(pid_t child, int out_fd, int err_fd, std::vector<uint8_t>& out, std::string& err,
               std::chrono::steady_clock::time_point deadline, uint64_t memory_bytes) {
     pollfd fds[2] = {{out_fd, POLLIN, 0}, {err_fd, POLLIN, 0}};
@@ -130,6 +132,7 @@ Drained drain(pid_t child, int out_fd, int err_fd, std::vector<uint8_t>& out, st
         const auto now = std::chrono::steady_clock::now();
         if (now >= next_look) {
             if (resident_bytes(child) > memory_bytes) return Drained::OutOfMemory;
+            if (stop_requested()) return Drained::Stopped;
             next_look = now + std::chrono::milliseconds(50);
         }
         const auto left =
@@ -247,6 +250,7 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     run.counts_json = text.str();
     std::filesystem::remove(counts_path);
     const std::string where = last_phase(phase_path);
+    if (drained == Drained::Stopped) throw Stopped{};
 
     const std::string said = guest_err.empty() ? "" : ": " + guest_err.substr(0, 2000);
     if (drained == Drained::OutOfTime)
