@@ -1,12 +1,17 @@
-// Tests of experiments/progress: what the line says, when it estimates, and that a line
-// that is off says nothing.
+// Tests of experiments/progress: what the line says, when it estimates, that a line that is
+// off says nothing, what an observer hears, and how work stops.
 #include "experiments/progress.h"
 
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <mutex>
 #include <sstream>
 #include <thread>
+#include <vector>
+
+#include "experiments/measure.h"
+#include "period/stop.h"
 
 namespace fb89::experiments {
 namespace {
@@ -95,6 +100,51 @@ TEST(ProgressLine, ALineWiderThanTheTerminalLosesItsStartNotItsCount) {
     const std::string cut_utf8 = fit_to_width("§§§§§§§§§§ 3/4", 10);
     EXPECT_EQ(cut_utf8, "...§§ 3/4");
     EXPECT_EQ(fit_to_width("abc", 1), ".");
+}
+
+
+TEST(ProgressLine, AnObserverHearsEveryStartAndStepFromWhicheverThreadSteps) {
+    std::vector<std::string> heard;
+    std::mutex mutex;
+    CapturedCerr err;
+    {
+        ObserveProgress observe([&](const std::string& what, uint64_t done, uint64_t total,
+                                    std::string_view unit) {
+            std::lock_guard lock(mutex);
+            heard.push_back(what + " " + std::to_string(done) + "/" + std::to_string(total) + " " +
+                            std::string(unit));
+        });
+        ProgressLine line(false);  // not shown: the observer hears it all the same
+        line.start("runs");
+        std::thread([&] { line.step(1, 2, "emulated runs"); }).join();
+        line.step(2, 2, "emulated runs");
+    }
+    ProgressLine after(false);  // the observer has gone with its scope
+    after.start("unheard");
+    EXPECT_EQ(heard, (std::vector<std::string>{"runs 0/0 ", "runs 1/2 emulated runs",
+                                               "runs 2/2 emulated runs"}));
+    EXPECT_EQ(err.text.str(), "");
+}
+
+TEST(ProgressLine, AnObserverThatThrowsStopsTheWork) {
+    struct Enough {};
+    ObserveProgress observe([](const std::string&, uint64_t done, uint64_t, std::string_view) {
+        if (done == 2) throw Enough{};
+    });
+    int rounds = 0;
+    EXPECT_THROW(interleave(1, 5, "timing", false, [&](size_t, bool) { ++rounds; }), Enough);
+    EXPECT_EQ(rounds, 2);  // the warm-up and the first timed round
+}
+
+TEST(ProgressLine, AStopAskedForEndsInterleavedTimingBetweenRounds) {
+    int rounds = 0;
+    EXPECT_THROW(interleave(2, 5, "timing", false,
+                            [&](size_t, bool) {
+                                if (++rounds == 3) period::request_stop();
+                            }),
+                 period::Stopped);
+    period::clear_stop();
+    EXPECT_EQ(rounds, 4);  // the round under way ends; the next does not start
 }
 
 }  // namespace
