@@ -20,7 +20,16 @@ using namespace experiments;
 
 namespace {
 
+// A number outside [lo, hi], named as the command line's option: a UsageError.
+template <class T>
+void check_range(const char* option, T value, T lo, T hi) {
+    if (value < lo || value > hi)
+        throw UsageError(fmt::format("{}: {} is not in [{} - {}]", option, value, lo, hi));
+}
+
 ExperimentSettings settings_of(const RunRequest& r, std::vector<std::string> default_scenes) {
+    check_range("--repeat", r.repeat, 1, 1000);
+    check_range("--jobs", r.host.jobs, 1, 256);
     ExperimentSettings s;
     s.scenes = r.scenes.empty() ? std::move(default_scenes) : r.scenes;
     s.repeat = r.repeat;
@@ -65,6 +74,10 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
         throw UsageError(fmt::format("unknown experiment '{}'{} (known: {}; fb89 list experiments)",
                                      r.name, nearest_hint(r.name, experiment_names()),
                                      known_experiments()));
+    if (r.accel != "bvh" && r.accel != "grid")
+        throw UsageError("--accel: '" + r.accel + "': bvh or grid");
+    check_range("--patches", r.patches, 0, 100000);
+    check_range("--reference-rays", r.reference_rays, 2, 16);
     RunOutcome out;
     ExperimentSettings& s = out.settings;
     s = settings_of(r, experiment_scenes(r.name));
@@ -117,6 +130,7 @@ RunOutcome run_threshold_sweep(const SweepRequest& r) {
     if (r.depth_estimate != "window" && r.depth_estimate != "scene")
         throw UsageError("--depth-estimate: '" + r.depth_estimate + "': window or scene");
     if (r.scenes.empty()) throw UsageError("sweep: give the scenes to sweep on");
+    check_range("--steps", r.steps, 1, 200);
     RunOutcome out;
     out.settings = settings_of(r, {});
     std::vector<double> thresholds{0.0};
@@ -158,7 +172,8 @@ void calibrate_beam(const CalibrateRequest& r, CalibrationOutcome& out) {
 
 void calibrate_hybrid(const CalibrateRequest& r, CalibrationOutcome& out) {
     if (!(r.from > 0 && r.to > r.from)) throw UsageError("--from and --to: need 0 < from < to");
-    if (!(r.tolerance >= 0)) throw UsageError("--tolerance: needs a fraction >= 0");
+    check_range("--steps", r.steps, 1, 200);
+    check_range("--tolerance", r.tolerance, 0.0, 100.0);
     const ExperimentSettings& s = out.settings;
     const auto ramp = threshold_ramp(r.from, r.to, r.steps);
     const Calibration& c = out.calibration = calibrate_stably(

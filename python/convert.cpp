@@ -3,7 +3,6 @@
 #include <cstring>
 #include <variant>
 
-#include "protocol/stream_writer.h"
 
 namespace py = pybind11;
 
@@ -42,19 +41,8 @@ py::object to_python(const nlohmann::json& j) {
 
 namespace {
 
-// One row of the command array, packed as command_dtype() describes it.
-#pragma pack(push, 1)
-struct Row {
-    uint8_t opcode;
-    int32_t x, y;
-    uint32_t w, h;
-    uint8_t r, g, b;
-    uint32_t frame;
-};
-#pragma pack(pop)
-
-Row row_of(const protocol::Command& c) {
-    Row row{};
+CommandRow row_of(const protocol::Command& c) {
+    CommandRow row{};
     std::visit(
         [&](const auto& cmd) {
             using T = std::decay_t<decltype(cmd)>;
@@ -86,6 +74,47 @@ Row row_of(const protocol::Command& c) {
 
 }  // namespace
 
+void CommandRows::add(const protocol::Command& c) {
+    if (const auto* m = std::get_if<protocol::Marker>(&c)) markers.emplace_back(rows.size(), m->text);
+    rows.push_back(row_of(c));
+}
+
+void CommandRows::replay_into(protocol::CommandSink& sink) const {
+    auto marker = markers.begin();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const CommandRow& row = rows[i];
+        const protocol::Rgb colour{row.r, row.g, row.b};
+        switch (row.opcode) {
+            case 1:
+                sink.frame_begin(protocol::FrameBegin{row.frame, row.w, row.h, colour});
+                break;
+            case 2:
+                sink.fill_rect(protocol::FillRect{row.x, row.y, row.w, row.h, colour});
+                break;
+            case 3:
+                sink.draw_span(protocol::DrawSpan{
+                    row.y, row.x,
+                    static_cast<int32_t>(static_cast<uint32_t>(row.x) + row.w - 1u), colour});
+                break;
+            case 4: {
+                while (marker != markers.end() && marker->first < i)
+                    ++marker;
+                std::string text;
+                if (marker != markers.end() && marker->first == i) text = marker->second;
+                sink.marker(protocol::Marker{std::move(text)});
+                break;
+            }
+            case 5:
+                sink.frame_end(protocol::FrameEnd{});
+                break;
+            default:
+                throw std::invalid_argument("command " + std::to_string(i) + ": opcode " +
+                                            std::to_string(row.opcode) +
+                                            " is none of 1 to 5 (docs/PROTOCOL.md)");
+        }
+    }
+}
+
 py::dtype command_dtype() {
     py::list fields;
     const auto field = [&](const char* name, const char* format) {
@@ -103,34 +132,11 @@ py::dtype command_dtype() {
     return py::dtype::from_args(fields);
 }
 
-py::array commands_array(const std::vector<protocol::Command>& commands) {
-    py::array out(command_dtype(),
-                  std::vector<py::ssize_t>{static_cast<py::ssize_t>(commands.size())});
-    static_assert(sizeof(Row) == 24);
-    auto* rows = static_cast<Row*>(out.mutable_data());
-    for (std::size_t i = 0; i < commands.size(); ++i)
-        rows[i] = row_of(commands[i]);
-    return out;
-}
-
 py::array rgb_view(const controller::Framebuffer& frame, py::object owner) {
     const auto h = static_cast<py::ssize_t>(frame.height()),
                w = static_cast<py::ssize_t>(frame.width());
     return py::array(py::dtype::of<uint8_t>(), {h, w, py::ssize_t{3}},
                      {w * 3, py::ssize_t{3}, py::ssize_t{1}}, frame.pixels().data(), owner);
-}
-
-void save_stream(const protocol::MemoryBuffer& commands, const std::string& path,
-                 const protocol::Properties& properties) {
-    try {
-        protocol::StreamWriter writer(path, properties);
-        commands.replay_into(writer);
-        writer.close();
-    } catch (const std::invalid_argument&) {
-        throw;
-    } catch (const std::runtime_error& e) {
-        throw FileProblem(e.what());
-    }
 }
 
 }  // namespace fb89::python

@@ -1,5 +1,5 @@
-// What the Python module's parts share: JSON figures as Python objects, a frame's commands as
-// a numpy structured array (one row a command), and a frame written as an fb89 stream.
+// What the Python module's parts share: JSON figures as Python objects, commands as rows of a
+// numpy structured array (and back), and framebuffers as numpy views.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -13,6 +13,7 @@
 
 #include "controller_sim/framebuffer.h"
 #include "protocol/command.h"
+#include "protocol/command_sink.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/stream_format.h"
 
@@ -32,13 +33,38 @@ pybind11::object to_python(const nlohmann::json& j);
 // x0 + 1, h = 1; FRAME_BEGIN's w and h are the frame's size and r, g, b its background; a
 // marker's text is not in the row (Stream.markers has it).
 pybind11::dtype command_dtype();
-pybind11::array commands_array(const std::vector<protocol::Command>& commands);
+
+// One row of that array, packed as command_dtype() describes it.
+#pragma pack(push, 1)
+struct CommandRow {
+    uint8_t opcode;
+    int32_t x, y;
+    uint32_t w, h;
+    uint8_t r, g, b;
+    uint32_t frame;
+};
+#pragma pack(pop)
+static_assert(sizeof(CommandRow) == 24);
+
+// Commands as rows, with the markers' text beside them: what fb89.Stream holds. Rows and
+// commands convert both ways without loss.
+struct CommandRows final : protocol::CommandSink {
+    std::vector<CommandRow> rows;
+    std::vector<std::pair<std::size_t, std::string>> markers;  // (row, text), in row order
+
+    void add(const protocol::Command& c);
+    void frame_begin(const protocol::FrameBegin& c) override { add(c); }
+    void fill_rect(const protocol::FillRect& c) override { add(c); }
+    void draw_span(const protocol::DrawSpan& c) override { add(c); }
+    void marker(const protocol::Marker& c) override { add(c); }
+    void frame_end(const protocol::FrameEnd& c) override { add(c); }
+    // Sends every row as its command, in order. Throws std::invalid_argument naming the row of
+    // an opcode that is none.
+    void replay_into(protocol::CommandSink& sink) const;
+};
 
 // A view of an RGB framebuffer, H x W x 3 uint8, that keeps `owner` (what holds the
 // framebuffer) alive.
 pybind11::array rgb_view(const controller::Framebuffer& frame, pybind11::object owner);
-
-void save_stream(const protocol::MemoryBuffer& commands, const std::string& path,
-                 const protocol::Properties& properties);
 
 }  // namespace fb89::python

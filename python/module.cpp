@@ -26,10 +26,13 @@
 #include "experiments/render_job.h"
 #include "host/methods.h"
 #include "host/scene/scene_error.h"
+#include "host/scene/scene_loader.h"
 #include "period/emulator.h"
 #include "period/host_profile.h"
 #include "protocol/stream_format.h"
 #include "python/convert.h"
+#include "python/stream_file.h"
+#include "python/work.h"
 
 namespace py = pybind11;
 
@@ -43,6 +46,7 @@ struct RenderOutcome {
     experiments::RenderResult result;
     controller::Framebuffer image, ids;
     std::vector<int32_t> face_ids;  // ids as face ids, -1 for the background
+    std::shared_ptr<StreamFile> stream;  // the frame's commands
     nlohmann::json host_times, counters, controller_figures, split, period;
 };
 
@@ -123,6 +127,13 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     out->image = ctl.framebuffer();
     out->ids = experiments::id_framebuffer(out->result.scene, *run.renderer);
     out->face_ids = face_ids(out->ids);
+    out->stream = std::make_shared<StreamFile>();
+    out->stream->header = {{"scene", cli::scene_display_name(out->scene)},
+                           {"method", method},
+                           {"resolution", std::to_string(out->result.screen.width) + "x" +
+                                              std::to_string(out->result.screen.height)},
+                           {"tool", std::string("fb89 ") + FB89_VERSION}};
+    run.commands.replay_into(out->stream->commands);
 
     const nlohmann::json stats = run.stats.to_json();
     out->host_times = stats["times"];
@@ -149,6 +160,7 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
 
 void register_errors(py::module_& m);
 void register_streams(py::module_& m);
+void register_runs(py::module_& m);
 
 PYBIND11_MODULE(_fb89, m) {
     m.doc() =
@@ -241,25 +253,16 @@ PYBIND11_MODULE(_fb89, m) {
             "period", [](const RenderOutcome& r) { return to_python(r.period); },
             "On a 1989 host: the profile, its chips, the emulated instructions and the modelled "
             "end-to-end time; None natively.")
+        .def_readonly("stream", &RenderOutcome::stream,
+                      "The frame's command stream (an fb89.Stream: .commands, .save(path)).")
         .def_property_readonly(
             "commands",
             [](const RenderOutcome& r) {
-                return commands_array(r.result.runs.front().commands.commands());
+                const py::object stream = py::cast(r.stream);
+                return py::object(stream.attr("commands"));
             },
-            "The frame's command stream as a structured array, one row a command "
-            "(fb89.COMMAND_DTYPE).")
-        .def(
-            "save_stream",
-            [](const RenderOutcome& r, const std::string& path) {
-                py::gil_scoped_release unlocked;
-                save_stream(r.result.runs.front().commands, path,
-                            {{"scene", cli::scene_display_name(r.scene)},
-                             {"method", r.method},
-                             {"resolution", std::to_string(r.result.screen.width) + "x" +
-                                                std::to_string(r.result.screen.height)},
-                             {"tool", std::string("fb89 ") + FB89_VERSION}});
-            },
-            py::arg("path"), "Writes the frame as an fb89 stream file (render --stream).")
+            "The frame's commands as a structured array (fb89.COMMAND_DTYPE), one row a "
+            "command: render.stream.commands.")
         .def("__repr__", [](const RenderOutcome& r) {
             return "<fb89.Render " + cli::scene_display_name(r.scene) + " " + r.method + " " +
                    std::to_string(r.result.screen.width) + "x" +
@@ -267,36 +270,39 @@ PYBIND11_MODULE(_fb89, m) {
         });
 
     m.def(
-        "render",
+        "_render",
         [](const std::string& scene, const std::string& method, const std::string& size,
            const std::string& host, const std::string& controller, int repeat,
            const std::optional<std::string>& threshold,
            const std::optional<std::string>& beam_threshold,
            const std::optional<int>& reflections) {
+            std::shared_ptr<RenderOutcome> out;
+            run_work(py::bool_(false), [&](bool) {
+                out = render(scene, method, size, host, controller, repeat, threshold,
+                             beam_threshold, reflections);
+            });
+            return out;
+        });
+    m.def("_scene_info", [](const std::string& argument) {
+        const std::string file = cli::resolve_scene(argument);
+        host::Scene scene;
+        {
             py::gil_scoped_release unlocked;
-            return render(scene, method, size, host, controller, repeat, threshold, beam_threshold,
-                          reflections);
-        },
-        py::arg("scene"), py::kw_only(), py::arg("method") = "zbuffer", py::arg("size") = "",
-        py::arg("host") = "native",
-        py::arg("controller") = std::string(controller::kDefaultProfile), py::arg("repeat") = 1,
-        py::arg("threshold") = py::none(), py::arg("beam_threshold") = py::none(),
-        py::arg("reflections") = py::none(),
-        R"(Renders a scene with one method, as `fb89 render` does.
-
-scene: a bundled scene by name ("demo", "G"), or a scene file (.json, .tri).
-method: zbuffer, scanline, warnock, hybrid, raytrace or beam (fb89.methods()).
-size: "WxH"; "" for the scene's own.
-host: "native" (timed here, in `repeat` interleaved rounds) or a 1989 host (fb89.hosts():
-    the method's host code emulated once and priced).
-controller: the controller's cost profile (fb89.profiles()).
-threshold, beam_threshold: the hybrids' thresholds, as --threshold and --beam-threshold take
-    them: a number, "inf", "paper" or "calibrated" (the default: the one saved for this host
-    by `fb89 calibrate`, else the paper's); refused for a method that does not read them.
-reflections: mirror bounces for raytrace and beam.
-Returns an fb89.Render. Raises fb89.SceneError, fb89.OptionError, fb89.EmulatorError.)");
+            scene = host::load_scene(file);
+        }
+        py::dict d;
+        d["path"] = file;
+        d["name"] = cli::scene_display_name(file);
+        d["width"] = scene.width;
+        d["height"] = scene.height;
+        d["faces"] = scene.faces.size();
+        d["face_ids"] = scene.face_count;
+        d["notes"] = scene.notes;
+        return d;
+    });
 
     register_streams(m);
+    register_runs(m);
 }
 
 }  // namespace fb89::python

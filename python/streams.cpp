@@ -1,18 +1,25 @@
-// fb89 streams from Python: a stream file read through the stream reader into a structured
-// array of its commands, its header and markers; replayed into a controller.
+// fb89 streams from Python: a stream file read through the stream reader in batches into rows
+// (one a command, viewed as a numpy structured array), with its header and markers; a stream
+// built from such an array; saved, replayed into a controller, trimmed and compared.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "cli/common.h"
+#include "cli/stream_edit.h"
+#include "cli/stream_tools.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/profile.h"
-#include "protocol/memory_buffer.h"
+#include "protocol/call_set.h"
 #include "protocol/stream_reader.h"
+#include "protocol/stream_writer.h"
 #include "python/convert.h"
+#include "python/stream_file.h"
 
 namespace py = pybind11;
 
@@ -20,14 +27,10 @@ namespace fb89::python {
 
 namespace {
 
-struct StreamFile {
-    std::string path;
-    uint16_t version = 0;
-    protocol::Properties header;
-    protocol::MemoryBuffer commands;
-};
-
-std::shared_ptr<StreamFile> open_stream(const std::string& path) {
+std::shared_ptr<StreamFile> open_stream(const std::string& path,
+                                        const std::optional<std::string>& calls) {
+    std::optional<protocol::CallSet> selection;
+    if (calls) selection = cli::parse_call_set_option("calls", *calls);
     auto out = std::make_shared<StreamFile>();
     out->path = path;
     std::optional<protocol::StreamReader> opened;
@@ -41,70 +44,140 @@ std::shared_ptr<StreamFile> open_stream(const std::string& path) {
     protocol::StreamReader& reader = *opened;
     out->version = reader.version();
     out->header = reader.properties();
-    reader.replay_into(out->commands);
+    std::array<protocol::Command, 4096> batch;
+    if (selection) out->numbers.emplace();
+    uint64_t number = 0;
+    for (std::size_t n; (n = reader.read_batch(batch)) > 0;) {
+        for (std::size_t i = 0; i < n; ++i, ++number) {
+            if (selection) {
+                if (number > selection->last()) return out;
+                if (!selection->contains(number, batch[i])) continue;
+                out->numbers->push_back(number);
+            }
+            out->commands.add(batch[i]);
+        }
+    }
     return out;
+}
+
+// Rows from a structured array of fb89.COMMAND_DTYPE (or one that casts to it by field).
+std::shared_ptr<StreamFile> stream_from(const py::array& commands, const protocol::Properties& header,
+                                        const std::vector<std::pair<std::size_t, std::string>>& markers) {
+    const py::dtype want = command_dtype();
+    py::array rows = commands;
+    if (!rows.dtype().equal(want)) rows = commands.attr("astype")(want);
+    if (rows.ndim() != 1) throw py::value_error("commands: a 1-D structured array of fb89.COMMAND_DTYPE");
+    rows = py::array::ensure(rows, py::array::c_style);
+    auto out = std::make_shared<StreamFile>();
+    out->header = header;
+    const auto* first = static_cast<const CommandRow*>(rows.data());
+    out->commands.rows.assign(first, first + rows.shape(0));
+    out->commands.markers = markers;
+    std::sort(out->commands.markers.begin(), out->commands.markers.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [row, text] : out->commands.markers) {
+        if (row >= out->commands.rows.size() || out->commands.rows[row].opcode != 4)
+            throw cli::UsageError("markers: row " + std::to_string(row) + " is not a MARKER");
+        if (text.size() > protocol::kMaxMarkerLength)
+            throw cli::UsageError("markers: row " + std::to_string(row) + ": longer than " +
+                                  std::to_string(protocol::kMaxMarkerLength) + " bytes");
+    }
+    return out;
+}
+
+py::array rows_view(const py::object& self) {
+    const StreamFile& s = self.cast<const StreamFile&>();
+    return py::array(command_dtype(), {static_cast<py::ssize_t>(s.commands.rows.size())},
+                     {static_cast<py::ssize_t>(sizeof(CommandRow))}, s.commands.rows.data(), self);
 }
 
 }  // namespace
 
+void save_rows(const StreamFile& s, const std::string& path) {
+    try {
+        protocol::StreamWriter writer(path, s.header);
+        s.commands.replay_into(writer);
+        writer.close();
+    } catch (const std::invalid_argument&) {
+        throw;
+    } catch (const protocol::StreamError&) {
+        throw;
+    } catch (const std::runtime_error& e) {
+        throw FileProblem(e.what());
+    }
+}
+
 void register_streams(py::module_& m) {
     m.attr("COMMAND_DTYPE") = command_dtype();
 
-    py::class_<StreamFile, std::shared_ptr<StreamFile>>(
-        m, "Stream",
-        "An fb89 command stream read whole (docs/PROTOCOL.md): its header, and its commands "
-        "as a numpy structured array (fb89.COMMAND_DTYPE).")
+    py::class_<StreamFile, std::shared_ptr<StreamFile>>(m, "Stream", R"(A command stream (docs/PROTOCOL.md): its header, and its commands as a numpy structured
+array of fb89.COMMAND_DTYPE, one row a command, with the markers' text beside them.
+
+Stream.open(path) reads a file; Stream(commands, header=None, markers=None) makes one from an
+array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.stream.)")
+        .def(py::init([](const py::array& commands, const std::optional<protocol::Properties>& header,
+                         const std::optional<std::vector<std::pair<std::size_t, std::string>>>& markers) {
+                 return stream_from(commands, header.value_or(protocol::Properties{}),
+                                    markers.value_or(std::vector<std::pair<std::size_t, std::string>>{}));
+             }),
+             py::arg("commands"), py::arg("header") = py::none(), py::arg("markers") = py::none(),
+             "A stream of these commands (copied), its header properties, and the MARKER rows' "
+             "text as (row, text) pairs.")
         .def_static(
             "open",
-            [](const std::string& path) {
+            [](const std::string& path, const std::optional<std::string>& calls) {
                 py::gil_scoped_release unlocked;
-                return open_stream(path);
+                return open_stream(path, calls);
             },
-            py::arg("path"),
-            "Reads a stream file. Raises fb89.FileError naming the byte offset and command "
-            "number of anything corrupt.")
-        .def_readonly("path", &StreamFile::path)
+            py::arg("path"), py::arg("calls") = py::none(),
+            "Reads a stream file, or with `calls` (a call set as dump --calls takes it, e.g. "
+            "'0-1000', '/span', 'frame') only the commands in it (numbers says which). Raises "
+            "fb89.FileError naming the byte offset and command number of anything corrupt, "
+            "fb89.OptionError for a bad call set.")
+        .def_readonly("path", &StreamFile::path, "The file read ('' when not read from one).")
         .def_readonly("version", &StreamFile::version, "The stream's format version.")
         .def_readonly("header", &StreamFile::header,
                       "The header's properties (scene, method, resolution, tool ...).")
         .def_property_readonly(
-            "commands", [](const StreamFile& s) { return commands_array(s.commands.commands()); },
-            "The commands, one row each, in order (row i is command number i).")
+            "commands", &rows_view,
+            "The commands, one row each, in order: a view (no copy) that keeps the stream alive.")
         .def_property_readonly(
-            "markers",
-            [](const StreamFile& s) {
-                py::list out;
-                const auto& all = s.commands.commands();
-                for (std::size_t i = 0; i < all.size(); ++i)
-                    if (const auto* mk = std::get_if<protocol::Marker>(&all[i]))
-                        out.append(py::make_tuple(i, mk->text));
-                return out;
+            "numbers",
+            [](const py::object& self) -> py::object {
+                const StreamFile& s = self.cast<const StreamFile&>();
+                if (!s.numbers) return py::none();
+                return py::array_t<uint64_t>({static_cast<py::ssize_t>(s.numbers->size())},
+                                             s.numbers->data(), self);
             },
-            "The MARKER commands: (command number, text) pairs.")
+            "Opened with a call set: each row's command number in the file (uint64); else None "
+            "(row i is command i).")
+        .def_property_readonly(
+            "markers", [](const StreamFile& s) { return s.commands.markers; },
+            "The MARKER commands: (row, text) pairs.")
         .def_property_readonly(
             "frames",
             [](const StreamFile& s) {
                 std::size_t n = 0;
-                for (const auto& c : s.commands.commands())
-                    n += std::holds_alternative<protocol::FrameBegin>(c);
+                for (const CommandRow& r : s.commands.rows)
+                    n += r.opcode == 1;
                 return n;
             },
             "How many frames the stream begins.")
-        .def("__len__", [](const StreamFile& s) { return s.commands.size(); })
+        .def("__len__", [](const StreamFile& s) { return s.commands.rows.size(); })
         .def(
             "save",
             [](const StreamFile& s, const std::string& path) {
                 py::gil_scoped_release unlocked;
-                save_stream(s.commands, path, s.header);
+                save_rows(s, path);
             },
-            py::arg("path"), "Writes the stream again (version 1), header and all.")
+            py::arg("path"), "Writes the stream (format version 1), header and all.")
         .def("__repr__", [](const StreamFile& s) {
-            return "<fb89.Stream " + s.path + ": " + std::to_string(s.commands.size()) +
-                   " commands>";
+            return "<fb89.Stream " + (s.path.empty() ? std::string("(in memory)") : s.path) + ": " +
+                   std::to_string(s.commands.rows.size()) + " commands>";
         });
 
     m.def(
-        "replay",
+        "_replay",
         [](const StreamFile& s, const std::string& profile) {
             auto ctl = std::make_unique<controller::Controller>(controller::load_profile(profile));
             {
@@ -120,11 +193,63 @@ void register_streams(py::module_& m) {
             out["stats"] = to_python(ctl->stats().to_json());
             return out;
         },
-        py::arg("stream"), py::kw_only(),
-        py::arg("profile") = std::string(controller::kDefaultProfile),
-        "Replays a stream into a controller of the given cost profile (fb89 replay): returns "
-        "{'image': H x W x 3 uint8, 'checksum': the last frame's XXH64, 'stats': the controller's "
-        "figures per opcode and per frame}.");
+        py::arg("stream"), py::arg("profile"));
+
+    m.def(
+        "_trim",
+        [](const std::string& input, const std::string& output, const std::string& calls,
+           const std::string& frames, bool salvage) {
+            cli::TrimRequest r{input, output, calls, frames, salvage};
+            cli::TrimOutcome out;
+            {
+                py::gil_scoped_release unlocked;
+                out = cli::trim_stream(r);
+            }
+            using Result = cli::TrimOutcome::Result;
+            const std::string said = out.error ? std::string("; ") + out.error->what() : "";
+            if (out.result == Result::NothingMatched)
+                throw cli::UsageError("trim: the selection matched no command of " + input + "; " +
+                                      out.output + " not written" + said);
+            if (out.result == Result::Damaged)
+                throw protocol::StreamError(std::string(out.error->what()) + "; " + out.output +
+                                                " not written (salvage=True keeps what was read "
+                                                "before the error)",
+                                            out.error->offset(), out.error->command());
+            py::dict d;
+            d["path"] = out.output;
+            d["commands"] = out.commands_kept;
+            d["frames"] = out.frames_kept;
+            d["salvaged"] = out.error ? py::object(py::str(out.error->what())) : py::object(py::none());
+            return d;
+        });
+
+    m.def("_diff", [](const std::string& a, const std::string& b, const std::string& image) {
+        cli::DiffOutcome out;
+        {
+            py::gil_scoped_release unlocked;
+            out = cli::diff_streams(a, b, image);
+        }
+        if (out.error)
+            throw protocol::StreamError(std::string(out.error->what()) + "; compared " +
+                                            std::to_string(out.frames.size()) +
+                                            " frame(s) before the error",
+                                        out.error->offset(), out.error->command());
+        py::list frames;
+        for (const cli::FrameDiff& f : out.frames) {
+            py::dict d;
+            d["frame"] = f.frame;
+            d["size_a"] = f.size_a.empty() ? py::object(py::none()) : py::str(f.size_a);
+            d["size_b"] = f.size_b.empty() ? py::object(py::none()) : py::str(f.size_b);
+            d["differing"] = f.differing;
+            d["compared"] = f.compared;
+            frames.append(d);
+        }
+        py::dict d;
+        d["frames"] = frames;
+        d["differing_frames"] = out.differing_frames;
+        d["image_frame"] = out.image_frame ? py::object(py::int_(*out.image_frame)) : py::object(py::none());
+        return d;
+    });
 }
 
 }  // namespace fb89::python

@@ -1,14 +1,23 @@
-"""fb89 from Python: render the paper's hidden-surface methods, get the controller's image and
-the face-id buffer as numpy arrays, read command streams, replay them under a controller.
+"""fb89 from Python: the paper's hidden-surface methods, a 1989 frame-buffer controller and its
+command streams, with numpy arrays for images, face ids and commands, and tables for the
+experiments.
 
     import fb89
     r = fb89.render("demo", method="zbuffer")
     r.image.shape, r.ids.shape, r.split
+    fb89.experiment("fig3.1", ["A"], repeat=3).to_numpy()
 
 The module is a thin layer over the libraries the fb89 command line uses: every call reads
 its arguments and does its work as the matching command does, and raises fb89.Error (or one
-of its subclasses) with the command's message. docs/PYTHON.md is the tour.
+of its subclasses) with the command's message. Long calls run without the GIL, take a
+progress= callback, and stop on Ctrl-C. docs/PYTHON.md is the tour.
 """
+import json as _json
+import os as _os
+import tempfile as _tempfile
+import weakref as _weakref
+
+from . import _fb89
 from ._fb89 import (  # noqa: F401
     COMMAND_DTYPE,
     EmulatorError,
@@ -22,16 +31,287 @@ from ._fb89 import (  # noqa: F401
     hosts,
     methods,
     profiles,
-    render,
-    replay,
     scenes,
 )
+from ._table import Table
 
 __all__ = [
-    "COMMAND_DTYPE", "EmulatorError", "Error", "FileError", "OptionError", "Render",
-    "SceneError", "Stream", "experiments", "hosts", "methods", "profiles", "render", "replay",
-    "scenes",
+    "COMMAND_DTYPE", "Calibration", "Diff", "EmulatorError", "Error", "FileError", "OptionError",
+    "Render", "Replay", "Scene", "SceneError", "Stream", "Table", "calibrate", "diff",
+    "experiment", "experiments", "hosts", "load_scene", "methods", "profiles", "render",
+    "replay", "scenes", "sweep", "trim",
 ]
 
 # Opcodes of COMMAND_DTYPE's "opcode" field (docs/PROTOCOL.md).
 FRAME_BEGIN, FILL_RECT, DRAW_SPAN, MARKER, FRAME_END = 1, 2, 3, 4, 5
+
+DEFAULT_CONTROLLER = "tms34010-50mhz"
+
+
+# ---- arguments as the commands take them ----
+
+def _size(size):
+    """None, "WxH" or (W, H) -> "WxH" ("" for the scene's own)."""
+    if size is None:
+        return ""
+    if isinstance(size, str):
+        return size
+    try:
+        w, h = size
+    except (TypeError, ValueError):
+        raise OptionError(f"size: {size!r}: give \"WxH\" or (width, height)") from None
+    return f"{int(w)}x{int(h)}"
+
+
+def _threshold(value):
+    """A threshold as --threshold takes it: a number, "inf", "paper" or "calibrated"."""
+    if value is None or isinstance(value, str):
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise OptionError(f"threshold: {value!r}: a number, 'inf', 'paper' or 'calibrated'")
+    return repr(float(value))
+
+
+def _scene_arg(scene):
+    """A Scene, a bundled scene's name, a file, or a dict in the scene format -> a path."""
+    if isinstance(scene, Scene):
+        return scene.path
+    if isinstance(scene, dict):
+        return load_scene(scene).path
+    if isinstance(scene, _os.PathLike):
+        return _os.fspath(scene)
+    if isinstance(scene, str):
+        return scene
+    raise SceneError(f"scene: {scene!r}: give a name, a file, a dict or an fb89.Scene")
+
+
+def _scene_list(scenes_given):
+    """None -> []; one scene or a list of them -> paths."""
+    if scenes_given is None:
+        return [], []
+    if isinstance(scenes_given, (str, dict, Scene, _os.PathLike)):
+        scenes_given = [scenes_given]
+    loaded = [s if isinstance(s, Scene) else load_scene(s) if isinstance(s, dict) else s
+              for s in scenes_given]
+    return [_scene_arg(s) for s in loaded], loaded  # the loaded keep their files alive
+
+
+def _path(p, what):
+    if isinstance(p, Stream):
+        if not p.path:
+            raise OptionError(f"{what}: this stream was not read from a file: save() it first")
+        return p.path
+    if isinstance(p, (str, _os.PathLike)):
+        return _os.fspath(p)
+    raise OptionError(f"{what}: {p!r}: give a path or an fb89.Stream")
+
+
+# ---- scenes ----
+
+class Scene:
+    """A scene fb89 has read: a bundled one by name, a file (.json, .tri), or a dict in the
+    scene format (docs/SCENES.md) kept in a private file while the Scene lives.
+
+    name, path: what `fb89 render` would call it and the file read
+    width, height: the scene's own image size
+    faces: the faces after loading (triangulated, degenerate ones dropped); notes says what
+    loading changed
+    """
+
+    def __init__(self, info, owned_file=None):
+        self.path = info["path"]
+        self.name = info["name"]
+        self.width = info["width"]
+        self.height = info["height"]
+        self.faces = info["faces"]
+        self.face_ids = info["face_ids"]
+        self.notes = list(info["notes"])
+        if owned_file is not None:
+            self._finalizer = _weakref.finalize(self, _os.remove, owned_file)
+
+    def __repr__(self):
+        return f"<fb89.Scene {self.name}: {self.faces} faces, {self.width}x{self.height}>"
+
+
+def load_scene(scene):
+    """Reads a scene: a bundled scene by name ("demo", "G"), a scene file (.json or .tri), or a
+    dict in the scene format (so that a script can make scenes). Returns an fb89.Scene, which
+    render(), experiment() and the rest take wherever they take a scene name. Raises
+    fb89.SceneError naming the file and the field of anything wrong."""
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, dict):
+        fd, path = _tempfile.mkstemp(prefix="fb89_scene_", suffix=".json")
+        try:
+            with _os.fdopen(fd, "w") as f:
+                _json.dump(scene, f)
+            return Scene(_fb89._scene_info(path), owned_file=path)
+        except BaseException:
+            _os.remove(path)
+            raise
+    return Scene(_fb89._scene_info(_scene_arg(scene)))
+
+
+# ---- renders ----
+
+def render(scene, *, method="zbuffer", size=None, host="native", controller=DEFAULT_CONTROLLER,
+           repeat=1, threshold=None, beam_threshold=None, reflections=None):
+    """Renders a scene with one method, as `fb89 render` does, and returns an fb89.Render:
+    .image (H x W x 3 uint8, the controller's framebuffer), .ids (H x W int32 face ids, -1 for
+    the background), .times, .counters, .controller_figures, .split, .period, .stream.
+
+    scene: a bundled scene's name ("demo", "G"), a file, a dict, or an fb89.Scene.
+    method: zbuffer, scanline, warnock, hybrid, raytrace or beam (fb89.methods()).
+    size: "WxH" or (W, H); None for the scene's own.
+    host: "native" (timed here, in `repeat` interleaved rounds) or a 1989 host (fb89.hosts():
+        the method's host code emulated once and priced; Ctrl-C stops it).
+    controller: the controller's cost profile (fb89.profiles()).
+    threshold, beam_threshold: the hybrids' thresholds: a number, "inf", "paper" or
+        "calibrated" (the default: the one saved for this host by calibrate(save=True) or
+        `fb89 calibrate`, else the paper's); refused for a method that does not read them.
+    reflections: mirror bounces for raytrace and beam.
+    Raises fb89.SceneError, fb89.OptionError, fb89.EmulatorError."""
+    keep = load_scene(scene) if isinstance(scene, dict) else scene
+    return _fb89._render(_scene_arg(keep), method, _size(size), host, controller, repeat,
+                         _threshold(threshold), _threshold(beam_threshold), reflections)
+
+
+# ---- the experiments ----
+
+def experiment(name, scenes=None, *, size=None, repeat=7, controller=DEFAULT_CONTROLLER,
+               threshold="calibrated", beam_threshold="calibrated", sizes=None,
+               out_dir="out/masks", accel="bvh", patches=0, reference_rays=4, host="native",
+               jobs=1, results=None, progress=None):
+    """Re-runs one of the paper's experiments (fb89.experiments()), as `fb89 experiment NAME`
+    does, and returns its fb89.Table (the CSV's columns and rows).
+
+    scenes: scenes as render() takes them; None for the experiment's own.
+    size: "WxH" or (W, H) for every scene; sizes: the fig4.* experiments' sizes.
+    repeat: interleaved timing rounds (medians); one run each on a 1989 host.
+    threshold, beam_threshold: as render() takes them; out_dir: where fig4.7's masks go;
+    accel: "bvh" or "grid" for the rays; patches, reference_rays: the radiosity experiments'.
+    host, jobs, results: a 1989 host, emulated runs at once, and a folder keeping each run.
+    progress: None (a line on stderr when it is a terminal), True, False, or a callable
+        progress(what, done, total, unit). Ctrl-C, or a callable that raises, stops the
+        experiment between rounds (an emulated run within 50 ms) and is raised."""
+    paths, _keep = _scene_list(scenes)
+    parts = _fb89._experiment(
+        name, paths, _size(size), repeat, controller, _threshold(threshold),
+        _threshold(beam_threshold), [_size(s) for s in (sizes or [])], _os.fspath(out_dir),
+        accel, patches, reference_rays, host, jobs, _os.fspath(results or ""), progress)
+    return Table(**parts)
+
+
+def sweep(what, scenes, *, start=0.001, stop=1.0, steps=13, window_test="area",
+          depth_estimate="window", size=None, repeat=7, controller=DEFAULT_CONTROLLER,
+          host="native", jobs=1, results=None, progress=None):
+    """Sweeps the hybrid's Expr. 3.1 threshold (what="threshold"), as `fb89 sweep threshold`
+    does: 0 (the pure Z-buffer), `steps` thresholds from `start` to `stop` on a log scale, and
+    inf (pure Warnock), on each scene. Returns an fb89.Table. window_test: "area" or "centres";
+    depth_estimate: "window" or "scene"; the rest as experiment() takes them."""
+    if what != "threshold":
+        raise OptionError(f"unknown sweep '{what}' (known: threshold)")
+    paths, _keep = _scene_list(scenes)
+    parts = _fb89._sweep(paths, float(start), float(stop), steps, window_test, depth_estimate,
+                         _size(size), repeat, controller, host, jobs,
+                         _os.fspath(results or ""), progress)
+    return Table(**parts)
+
+
+class Calibration:
+    """What calibrate() chose: chosen (the threshold), sweep (the timed sweep, an fb89.Table),
+    total_ms and worst (per threshold: the scenes' total and the worst scene's ratio to the
+    reference), reference_ms (the pure Z-buffer's or the ray tracer's total), choices and
+    stable (each sweep's choice; whether the last two agreed), saved_to (the file, or None),
+    warning (why a choice of 0 switches the hybrid off, or None), details (what is saved)."""
+
+    def __init__(self, parts):
+        self.chosen = parts["chosen"]
+        self.sweep = Table(**parts["sweep"])
+        self.total_ms = dict(parts["total_ms"])
+        self.worst = dict(parts["worst"])
+        self.reference_ms = parts["reference_ms"]
+        self.choices = list(parts["choices"])
+        self.stable = parts["stable"]
+        self.saved_to = parts["saved_to"]
+        self.warning = parts["warning"]
+        self.details = parts["details"]
+
+    def __repr__(self):
+        return (f"<fb89.Calibration chosen {self.chosen:.6g}, "
+                f"{'stable' if self.stable else 'not stable'}, "
+                f"{'saved to ' + self.saved_to if self.saved_to else 'not saved'}>")
+
+
+def calibrate(method="hybrid", scenes=None, *, start=0.0005, stop=2.0, steps=12, repeat=5,
+              tolerance=0.03, host="native", jobs=1, results=None, save=False, progress=None):
+    """The paper's calibration (§3), as `fb89 calibrate` does: the hybrid's Expr. 3.1 threshold
+    (method="hybrid", on A-F by default; start, stop, steps: the ramp; tolerance: how much
+    slower than the pure Z-buffer any scene may be) or the beam-ray hybrid's Expr. 2.7
+    threshold (method="beam", on G, H, I and cornell_mirror). Returns an fb89.Calibration.
+    With save=True the choice is saved where threshold="calibrated" finds it (as the command
+    does; it leaves the saved one alone by default). The rest as experiment() takes them."""
+    paths, _keep = _scene_list(scenes)
+    return Calibration(_fb89._calibrate(method, paths, float(start), float(stop), steps, repeat,
+                                        float(tolerance), host, jobs,
+                                        _os.fspath(results or ""), bool(save), progress))
+
+
+# ---- streams ----
+
+class Replay:
+    """What replay() gives: image (H x W x 3 uint8, the controller's framebuffer after the
+    stream), checksum (the last frame's XXH64, as `fb89 replay` prints it) and stats (the
+    controller's figures per opcode and per frame)."""
+
+    def __init__(self, parts):
+        self.image = parts["image"]
+        self.checksum = parts["checksum"]
+        self.stats = parts["stats"]
+
+    def __repr__(self):
+        return f"<fb89.Replay {self.image.shape[1]}x{self.image.shape[0]} {self.checksum:016x}>"
+
+
+def replay(stream, *, controller=DEFAULT_CONTROLLER):
+    """Replays a stream (an fb89.Stream or a stream file) into a controller with the given cost
+    profile, as `fb89 replay` does. Returns an fb89.Replay."""
+    if not isinstance(stream, Stream):
+        stream = Stream.open(_path(stream, "stream"))
+    return Replay(_fb89._replay(stream, controller))
+
+
+def trim(stream, output, *, calls=None, frames=None, salvage=False):
+    """Copies the commands in `calls` (a call set, e.g. "0-1000", "/span") and/or the frames in
+    `frames` (e.g. "0-3,7") of a stream file into `output`, a stream that still replays, as
+    `fb89 trim` does. Returns {'path', 'commands', 'frames', 'salvaged'} (salvaged: the
+    error a damaged input ended with, kept up to it with salvage=True, else None). Raises
+    fb89.OptionError when nothing matches and fb89.FileError for a damaged input (nothing is
+    written then)."""
+    if calls is None and frames is None:
+        raise OptionError("trim: give calls= and/or frames= to say what to keep")
+    return _fb89._trim(_path(stream, "stream"), _path(output, "output"), calls or "",
+                       frames or "", bool(salvage))
+
+
+class Diff:
+    """What diff() found: frames (one dict a frame: frame, size_a, size_b (None where only the
+    other stream has it), differing and compared pixels), differing_frames, identical, and
+    image_frame (the frame whose diff image was written, or None)."""
+
+    def __init__(self, parts):
+        self.frames = list(parts["frames"])
+        self.differing_frames = parts["differing_frames"]
+        self.image_frame = parts["image_frame"]
+        self.identical = self.differing_frames == 0
+
+    def __repr__(self):
+        return (f"<fb89.Diff {len(self.frames)} frames, "
+                f"{'identical' if self.identical else f'{self.differing_frames} differ'}>")
+
+
+def diff(a, b, *, image=None):
+    """Compares the frames two stream files produce, pixel by pixel, as `fb89 diff` does;
+    with `image`, writes the first differing frame's diff image (differing pixels red over A
+    dimmed). Returns an fb89.Diff. Raises fb89.FileError for a damaged stream."""
+    return Diff(_fb89._diff(_path(a, "a"), _path(b, "b"), _os.fspath(image or "")))

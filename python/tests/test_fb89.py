@@ -75,7 +75,7 @@ def test_the_ids_are_the_command_lines_ids_png(method, tmp_path):
 def test_a_stream_round_trips_through_python(tmp_path):
     r = fb89.render("G", method="beam", size="128x98")
     first, second = tmp_path / "a.fb89", tmp_path / "b.fb89"
-    r.save_stream(str(first))
+    r.stream.save(str(first))
     s = fb89.Stream.open(str(first))
     assert s.version == 1 and s.header["method"] == "beam" and s.header["scene"] == "G"
     assert np.array_equal(s.commands, r.commands) and len(s) == len(r.commands)
@@ -83,7 +83,8 @@ def test_a_stream_round_trips_through_python(tmp_path):
     s.save(str(second))
     assert first.read_bytes() == second.read_bytes()
     # the same frame as the command line's replay, and as the render's own controller
-    assert np.array_equal(fb89.replay(s)["image"], r.image)
+    assert np.array_equal(fb89.replay(s).image, r.image)
+    assert np.array_equal(fb89.replay(str(first)).image, r.image)
     info = cli("info", str(first), "--json")
     assert info.returncode == 0, info.stderr
     assert f'"commands":{len(s)}' in info.stdout.replace(" ", "")
