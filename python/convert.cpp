@@ -41,35 +41,28 @@ py::object to_python(const nlohmann::json& j) {
 
 namespace {
 
+// One switch on the alternative, no visitor: rows are made by the million.
 CommandRow row_of(const protocol::Command& c) {
-    CommandRow row{};
-    std::visit(
-        [&](const auto& cmd) {
-            using T = std::decay_t<decltype(cmd)>;
-            if constexpr (std::is_same_v<T, protocol::FrameBegin>) {
-                row = {1,
-                       0,
-                       0,
-                       cmd.width,
-                       cmd.height,
-                       cmd.background.r,
-                       cmd.background.g,
-                       cmd.background.b,
-                       cmd.frame};
-            } else if constexpr (std::is_same_v<T, protocol::FillRect>) {
-                row = {2, cmd.x, cmd.y, cmd.w, cmd.h, cmd.color.r, cmd.color.g, cmd.color.b, 0};
-            } else if constexpr (std::is_same_v<T, protocol::DrawSpan>) {
-                row = {3, cmd.x0,      cmd.y,       static_cast<uint32_t>(cmd.x1 - cmd.x0 + 1),
-                       1, cmd.color.r, cmd.color.g, cmd.color.b,
-                       0};
-            } else if constexpr (std::is_same_v<T, protocol::Marker>) {
-                row.opcode = 4;
-            } else {
-                row.opcode = 5;
-            }
-        },
-        c);
-    return row;
+    switch (c.index()) {
+        case 0: {
+            const auto& f = *std::get_if<protocol::FrameBegin>(&c);
+            return {1, 0, 0, f.width, f.height, f.background.r, f.background.g, f.background.b,
+                    f.frame};
+        }
+        case 1: {
+            const auto& f = *std::get_if<protocol::FillRect>(&c);
+            return {2, f.x, f.y, f.w, f.h, f.color.r, f.color.g, f.color.b, 0};
+        }
+        case 2: {
+            const auto& s = *std::get_if<protocol::DrawSpan>(&c);
+            return {3, s.x0, s.y, static_cast<uint32_t>(s.x1 - s.x0 + 1), 1, s.color.r, s.color.g,
+                    s.color.b, 0};
+        }
+        case 3:
+            return {4, 0, 0, 0, 0, 0, 0, 0, 0};
+        default:
+            return {5, 0, 0, 0, 0, 0, 0, 0, 0};
+    }
 }
 
 }  // namespace
@@ -77,6 +70,17 @@ CommandRow row_of(const protocol::Command& c) {
 void CommandRows::add(const protocol::Command& c) {
     if (const auto* m = std::get_if<protocol::Marker>(&c)) markers.emplace_back(rows.size(), m->text);
     rows.push_back(row_of(c));
+}
+
+void CommandRows::add(std::span<const protocol::Command> commands) {
+    const std::size_t at = rows.size();
+    rows.resize(at + commands.size());
+    CommandRow* out = rows.data() + at;
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+        out[i] = row_of(commands[i]);
+        if (out[i].opcode == 4)
+            markers.emplace_back(at + i, std::get_if<protocol::Marker>(&commands[i])->text);
+    }
 }
 
 void CommandRows::replay_into(protocol::CommandSink& sink) const {

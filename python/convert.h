@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -53,6 +54,7 @@ struct CommandRows final : protocol::CommandSink {
     std::vector<std::pair<std::size_t, std::string>> markers;  // (row, text), in row order
 
     void add(const protocol::Command& c);
+    void add(std::span<const protocol::Command> commands);
     void frame_begin(const protocol::FrameBegin& c) override { add(c); }
     void fill_rect(const protocol::FillRect& c) override { add(c); }
     void draw_span(const protocol::DrawSpan& c) override { add(c); }

@@ -8,6 +8,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -283,6 +284,20 @@ PYBIND11_MODULE(_fb89, m) {
             });
             return out;
         });
+    // For bench/python_overhead.py: the same render done from C++, `rounds` times, each timed
+    // here; what fb89.render() adds is its time less this.
+    m.def("_bench_render", [](const std::string& scene, const std::string& method, int rounds) {
+        std::vector<double> seconds;
+        py::gil_scoped_release unlocked;
+        for (int i = 0; i < rounds; ++i) {
+            const auto start = std::chrono::steady_clock::now();
+            render(scene, method, "", "native", std::string(controller::kDefaultProfile), 1,
+                   std::nullopt, std::nullopt, std::nullopt);  // made and freed, as in Python
+            seconds.push_back(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+        return seconds;
+    });
     m.def("_scene_info", [](const std::string& argument) {
         const std::string file = cli::resolve_scene(argument);
         host::Scene scene;

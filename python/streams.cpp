@@ -6,6 +6,8 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <chrono>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,16 +46,23 @@ std::shared_ptr<StreamFile> open_stream(const std::string& path,
     protocol::StreamReader& reader = *opened;
     out->version = reader.version();
     out->header = reader.properties();
+    // rows for the whole file at once (a record is at least 16 bytes but for FRAME_END's
+    // one): growing the array as it goes would copy it a dozen times
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (!ec && !selection) out->commands.rows.reserve(bytes / protocol::kDrawSpanRecordSize + 1024);
     std::array<protocol::Command, 4096> batch;
     if (selection) out->numbers.emplace();
     uint64_t number = 0;
     for (std::size_t n; (n = reader.read_batch(batch)) > 0;) {
+        if (!selection) {
+            out->commands.add(std::span<const protocol::Command>(batch.data(), n));
+            continue;
+        }
         for (std::size_t i = 0; i < n; ++i, ++number) {
-            if (selection) {
-                if (number > selection->last()) return out;
-                if (!selection->contains(number, batch[i])) continue;
-                out->numbers->push_back(number);
-            }
+            if (number > selection->last()) return out;
+            if (!selection->contains(number, batch[i])) continue;
+            out->numbers->push_back(number);
             out->commands.add(batch[i]);
         }
     }
@@ -175,6 +184,21 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
             return "<fb89.Stream " + (s.path.empty() ? std::string("(in memory)") : s.path) + ": " +
                    std::to_string(s.commands.rows.size()) + " commands>";
         });
+
+    // For bench/python_overhead.py: the stream reader's own speed on a file (every command read
+    // in batches, nothing kept), to hold Stream.open to: (commands, seconds).
+    m.def("_bench_read", [](const std::string& path) {
+        py::gil_scoped_release unlocked;
+        const auto start = std::chrono::steady_clock::now();
+        protocol::StreamReader reader(path);
+        std::array<protocol::Command, 4096> batch;
+        uint64_t commands = 0;
+        for (std::size_t n; (n = reader.read_batch(batch)) > 0;)
+            commands += n;
+        return std::make_pair(
+            commands,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    });
 
     m.def(
         "_replay",
