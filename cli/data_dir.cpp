@@ -21,9 +21,22 @@ fs::path executable_dir() {
     return fs::path(std::string(self, static_cast<size_t>(n))).parent_path();
 }
 
+namespace {
+fs::path& given_prefix() {
+    static fs::path prefix;
+    return prefix;
+}
+}  // namespace
+
+fs::path install_prefix() {
+    return given_prefix().empty() ? executable_dir().parent_path() : given_prefix();
+}
+
+void set_install_prefix(const fs::path& prefix) { given_prefix() = prefix; }
+
 fs::path data_dir() {
     if (const char* given = std::getenv("FB89_DATA_DIR"); given && *given) return given;
-    const fs::path installed = executable_dir().parent_path() / "share" / "fb89";
+    const fs::path installed = install_prefix() / "share" / "fb89";
     if (fs::exists(installed / "scenes")) return installed;
     return FB89_SOURCE_DIR;
 }
@@ -85,7 +98,7 @@ std::string scene_display_name(const std::string& path) {
 }
 
 void use_installed_period_parts() {
-    const fs::path libexec = executable_dir().parent_path() / "libexec" / "fb89";
+    const fs::path libexec = install_prefix() / "libexec" / "fb89";
     if (!fs::exists(libexec / "libfb89_count.so")) return;
     ::setenv("FB89_COUNT_PLUGIN", (libexec / "libfb89_count.so").c_str(), 0);
     for (const period::InstructionSet& isa : period::instruction_sets()) {

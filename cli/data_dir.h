@@ -1,7 +1,8 @@
 // Where fb89 finds what it ships: the bundled scenes and docs, and the 1989 host's guest
 // program and counting plugin. Installed (cmake --install), they sit beside the binary:
 // PREFIX/bin/fb89, PREFIX/share/fb89/{scenes,docs}, PREFIX/libexec/fb89/; in the build tree
-// they are the source tree's and the build's. $FB89_DATA_DIR overrides the data folder.
+// they are the source tree's and the build's. $FB89_DATA_DIR overrides the data folder. The
+// installed Python module finds the same folders from its own prefix (set_install_prefix).
 // So every default works from any directory.
 #pragma once
 
@@ -11,6 +12,10 @@
 namespace fb89::cli {
 
 std::filesystem::path executable_dir();
+// Where an installed fb89 would sit: the executable's folder's parent, unless a front end that
+// is not the fb89 binary (the Python module, run by python3) said where it is installed.
+std::filesystem::path install_prefix();
+void set_install_prefix(const std::filesystem::path& prefix);
 std::filesystem::path data_dir();
 // data_dir()/scenes/NAME (e.g. "A.json").
 std::string bundled_scene(const std::string& name);

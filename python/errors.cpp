@@ -54,6 +54,8 @@ void register_errors(py::module_& m) {
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const py::builtin_exception& e) {
+            e.set_error();  // pybind11's own (TypeError, ...) as they are
         } catch (const host::SceneError& e) {
             PyErr_SetString(scene_error.ptr(), e.what());
         } catch (const FileProblem& e) {

@@ -298,6 +298,14 @@ PYBIND11_MODULE(_fb89, m) {
         }
         return seconds;
     });
+    m.def(
+        "_installed_at",
+        [](const std::string& prefix) {
+            cli::set_install_prefix(prefix);
+            cli::use_installed_period_parts();
+        },
+        "Called by the installed package (fb89/_install.py): the prefix it is installed in, where "
+        "the bundled data and the 1989 hosts' parts are, as for the installed fb89 command.");
     m.def("_scene_info", [](const std::string& argument) {
         const std::string file = cli::resolve_scene(argument);
         host::Scene scene;

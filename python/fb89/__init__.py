@@ -35,6 +35,12 @@ from ._fb89 import (  # noqa: F401
 )
 from ._table import Table
 
+try:  # installed by cmake --install: the data and the 1989 hosts' parts are under the prefix
+    from ._install import PREFIX_FROM_PACKAGE as _prefix
+    _fb89._installed_at(_os.path.normpath(_os.path.join(_os.path.dirname(__file__), _prefix)))
+except ImportError:  # the build tree's package: the source tree's data, the build's guests
+    pass
+
 __all__ = [
     "COMMAND_DTYPE", "Calibration", "Diff", "EmulatorError", "Error", "FileError", "OptionError",
     "Render", "Replay", "Scene", "SceneError", "Stream", "Table", "calibrate", "diff",

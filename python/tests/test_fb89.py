@@ -4,9 +4,11 @@ FB89_CLI names the fb89 executable of the same build; PYTHONPATH the build's pyt
 """
 import gc
 import os
+import signal
 import subprocess
 import sys
 import threading
+import time
 
 import matplotlib.image
 import numpy as np
@@ -144,3 +146,297 @@ def test_the_example_draws_its_chart(tmp_path):
                           check=False)
     assert done.returncode == 0, done.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# ---- scenes ----
+
+A_SCENE = {
+    "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fovy": 45,
+               "near": 0.1, "far": 100},
+    "image": {"width": 64, "height": 48},
+    "background": [0, 0, 0],
+    "objects": [{"polygon": [[-1, -1, 0], [1, -1, 0], [0, 1, 0]],
+                 "material": {"color": [1, 0, 0]}}],
+}
+
+
+def test_a_scene_is_a_name_a_file_or_a_dict(tmp_path):
+    a = fb89.load_scene("A")
+    assert a.name == "A" and a.path.endswith("A.json") and a.faces > 0
+    assert fb89.load_scene(a.path).faces == a.faces
+    made = fb89.load_scene(A_SCENE)
+    assert (made.width, made.height, made.faces) == (64, 48, 1)
+    r = fb89.render(made, method="scanline")
+    assert r.ids.shape == (48, 64) and set(np.unique(r.ids)) == {-1, 0}
+    assert (r.image[r.ids == 0] > 0).any()
+    assert fb89.render(A_SCENE).ids.shape == (48, 64)  # a dict straight to render
+    path = made.path
+    del made, r
+    gc.collect()
+    assert not os.path.exists(path)  # the dict's file went with its Scene
+    with pytest.raises(fb89.SceneError, match="camera|objects|polygon"):
+        fb89.load_scene({"objects": [{"polygon": [[0, 0, 0]]}]})
+
+
+# ---- the experiments as tables ----
+
+def read_csv(text):
+    lines = text.strip().split("\n")
+    return lines[0].split(","), [line.split(",") for line in lines[1:]]
+
+
+def test_an_experiment_is_the_command_lines_table(tmp_path):
+    table = fb89.experiment("fig2.1", ["A", "F"], size=(96, 73), repeat=1, progress=False)
+    done = cli("experiment", "fig2.1", "A", "F", "--size", "96x73", "--repeat", "1", "-q",
+               "--csv", str(tmp_path / "t.csv"))
+    assert done.returncode == 0, done.stderr
+    columns, rows = read_csv((tmp_path / "t.csv").read_text())
+    assert table.columns == columns and len(table) == len(rows)
+    # counted operations are exact: the same in both; times are not compared
+    for name in ("window_samples", "face_computations", "commands", "fills", "spans"):
+        if name in columns:
+            k = columns.index(name)
+            assert list(table[name]) == [int(r[k]) for r in rows], name
+            assert table[name].dtype == np.int64
+    arr = table.to_numpy()
+    assert arr.dtype.names == tuple(columns) and len(arr) == len(rows)
+    assert set(table["scene"]) == {"A", "F"}
+    first = next(iter(table))
+    assert first["scene"] == "A" and isinstance(first["commands"], int)
+    assert table.csv().split("\n")[0] == ",".join(columns)
+    assert "scene" in str(table) and "fb89.Table" in repr(table)
+    with pytest.raises(KeyError, match="no_such_column"):
+        table["no_such_column"]
+
+
+def test_a_sweep_and_its_numpy_columns():
+    table = fb89.sweep("threshold", "A", start=0.01, stop=0.1, steps=3, size="96x73", repeat=1,
+                       progress=False)
+    assert list(table["threshold"]) == pytest.approx([0, 0.01, 0.0316228, 0.1, np.inf], rel=1e-5)
+    assert table["threshold"].dtype == np.float64
+    assert table["window_samples"][0] == 0 and table["window_samples"][-1] > 0
+    with pytest.raises(fb89.OptionError, match="unknown sweep"):
+        fb89.sweep("size", "A")
+    with pytest.raises(fb89.OptionError, match="from"):
+        fb89.sweep("threshold", "A", start=1, stop=0.1)
+
+
+def test_to_pandas_needs_pandas_and_says_so():
+    table = fb89.sweep("threshold", "A", steps=1, size="32x24", repeat=1, progress=False)
+    try:
+        import pandas  # noqa: F401
+    except ImportError:
+        with pytest.raises(ImportError, match="pandas"):
+            table.to_pandas()
+        return
+    frame = table.to_pandas()
+    assert list(frame.columns) == table.columns and len(frame) == len(table)
+
+
+def test_calibrate_saves_only_when_asked(tmp_path, monkeypatch):
+    saved = tmp_path / "calibration.json"
+    monkeypatch.setenv("FB89_CALIBRATION", str(saved))
+    c = fb89.calibrate("hybrid", ["A"], steps=2, repeat=1, progress=False)
+    assert c.saved_to is None and not saved.exists()
+    assert c.chosen in c.total_ms and 0 in c.total_ms and 0.04 in c.total_ms
+    assert len(c.sweep) == len(c.total_ms)
+    c = fb89.calibrate("hybrid", ["A"], steps=2, repeat=1, save=True, progress=False)
+    assert c.saved_to == str(saved) and saved.exists()
+    r = fb89.render("A", method="hybrid", size="32x24")  # threshold="calibrated" reads it
+    assert r.counters is not None
+    with pytest.raises(fb89.OptionError, match="hybrid or beam"):
+        fb89.calibrate("warnock")
+
+
+# ---- progress and stopping ----
+
+def test_progress_goes_to_the_callback():
+    heard = []
+    fb89.experiment("fig2.1", ["A"], size="32x24", repeat=2,
+                    progress=lambda what, done, total, unit: heard.append((what, done, total, unit)))
+    assert heard[0][1:] == (0, 0, "")  # the work starts
+    steps = [h for h in heard if h[3] == "rounds"]
+    assert steps and steps[-1][1] == steps[-1][2] - 1  # every round announced as it starts
+    with pytest.raises(TypeError, match="progress"):
+        fb89.experiment("fig2.1", ["A"], progress="yes")
+
+
+def test_a_callback_that_raises_stops_the_work_with_its_exception():
+    class Enough(Exception):
+        pass
+
+    calls = []
+
+    def stop_at_the_second_round(what, done, total, unit):
+        calls.append(done)
+        if done == 1 and unit == "rounds":
+            raise Enough("stop here")
+
+    with pytest.raises(Enough, match="stop here"):
+        fb89.experiment("fig2.1", ["A"], size="32x24", repeat=50,
+                        progress=stop_at_the_second_round)
+    assert max(calls) == 1  # no round after it
+    assert fb89.render("demo", size="32x24").ids.shape == (24, 32)  # and fb89 goes on
+
+
+def test_ctrl_c_stops_an_experiment_with_keyboard_interrupt():
+    steps = []
+
+    def interrupt_after_a_round(what, done, total, unit):
+        steps.append(done)
+        if done == 1:  # as if Ctrl-C came now: SIGINT to this process, on the main thread
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        fb89.experiment("fig2.1", ["A"], size="32x24", repeat=50, progress=interrupt_after_a_round)
+    assert max(steps) <= 2  # stopped between rounds, not after 50
+    # Python's own handler is back: a SIGINT now is an ordinary KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(1)
+
+
+def test_ctrl_c_ends_an_emulated_run():
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            # far more than a second of emulation: stopped within its 50 ms look
+            fb89.render("demo", method="warnock", host="sun3-60")
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 30  # not the run's full length
+
+
+def test_two_threads_render_at_once():
+    # the GIL is released: two renders in two threads overlap in time
+    spans = []
+
+    def render():
+        start = time.perf_counter()
+        fb89.render("F", method="warnock", repeat=3)
+        spans.append((start, time.perf_counter()))
+
+    threads = [threading.Thread(target=render) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    (a0, a1), (b0, b1) = sorted(spans)
+    assert b0 < a1  # the second began before the first ended
+
+
+# ---- streams ----
+
+def test_a_stream_from_an_array_saves_and_replays(tmp_path):
+    rows = np.zeros(5, dtype=fb89.COMMAND_DTYPE)
+    rows[0] = (fb89.FRAME_BEGIN, 0, 0, 16, 8, 0, 0, 0, 0)
+    rows[1] = (fb89.FILL_RECT, 0, 0, 8, 8, 255, 0, 0, 0)
+    rows[2] = (fb89.MARKER, 0, 0, 0, 0, 0, 0, 0, 0)
+    rows[3] = (fb89.DRAW_SPAN, 8, 3, 8, 1, 0, 255, 0, 0)
+    rows[4] = (fb89.FRAME_END, 0, 0, 0, 0, 0, 0, 0, 0)
+    s = fb89.Stream(rows, header={"scene": "made"}, markers=[(2, "half")])
+    path = tmp_path / "made.fb89"
+    s.save(str(path))
+    back = fb89.Stream.open(str(path))
+    assert np.array_equal(back.commands, rows) and back.markers == [(2, "half")]
+    assert back.header["scene"] == "made" and back.frames == 1
+    image = fb89.replay(back).image
+    assert (image[:, :8] == [255, 0, 0]).all() and (image[3, 8:] == [0, 255, 0]).all()
+    assert (image[0, 8:] == 0).all()
+    dump = cli("dump", str(path))
+    assert dump.returncode == 0 and "half" in dump.stdout and "DRAW_SPAN" in dump.stdout
+    bad = rows.copy()
+    bad[1]["opcode"] = 9
+    with pytest.raises(fb89.OptionError, match="command 1: opcode 9"):
+        fb89.Stream(bad).save(str(tmp_path / "bad.fb89"))
+    with pytest.raises(fb89.OptionError, match="not a MARKER"):
+        fb89.Stream(rows, markers=[(1, "x")])
+
+
+def test_the_commands_are_a_view_that_keeps_its_stream_alive(tmp_path):
+    r = fb89.render("demo", size="64x49")
+    commands = r.commands
+    assert not commands.flags.owndata and commands.base is not None
+    copy = commands.copy()
+    del r
+    gc.collect()
+    assert np.array_equal(commands, copy)
+
+
+def test_a_call_set_selects_commands_as_dump_calls_does(tmp_path):
+    r = fb89.render("A", size="96x73", method="warnock")
+    path = str(tmp_path / "a.fb89")
+    r.stream.save(path)
+    spans = fb89.Stream.open(path, calls="/span")
+    assert (spans.commands["opcode"] == fb89.DRAW_SPAN).all()
+    assert len(spans) == int((r.commands["opcode"] == fb89.DRAW_SPAN).sum())
+    assert np.array_equal(spans.commands, r.commands[spans.numbers])
+    head = fb89.Stream.open(path, calls="0-9")
+    assert np.array_equal(head.commands, r.commands[:10]) and list(head.numbers) == list(range(10))
+    assert fb89.Stream.open(path).numbers is None
+    with pytest.raises(fb89.OptionError, match="calls"):
+        fb89.Stream.open(path, calls="0-1x")
+
+
+def test_trim_and_diff_as_the_commands_do(tmp_path):
+    a, b = str(tmp_path / "a.fb89"), str(tmp_path / "b.fb89")
+    fb89.render("A", size="96x73").stream.save(a)
+    fb89.render("A", size="96x73", method="scanline").stream.save(b)
+    same = fb89.diff(a, b)
+    assert same.identical and len(same.frames) == 1 and same.frames[0]["differing"] == 0
+    other = str(tmp_path / "c.fb89")
+    fb89.render("B", size="96x73").stream.save(other)
+    image = tmp_path / "diff.png"
+    differ = fb89.diff(a, other, image=str(image))
+    assert not differ.identical and differ.image_frame == 0 and image.exists()
+    assert differ.frames[0]["differing"] > 0
+    assert cli("diff", a, other, "-q").returncode == 1
+    cut = str(tmp_path / "cut.fb89")
+    kept = fb89.trim(a, cut, calls="0-99")
+    assert kept["commands"] == len(fb89.Stream.open(cut)) and kept["frames"] == 1
+    assert kept["salvaged"] is None
+    assert fb89.Stream.open(cut).commands[-1]["opcode"] == fb89.FRAME_END  # still replays
+    with pytest.raises(fb89.OptionError, match="matched no command"):
+        fb89.trim(a, str(tmp_path / "none.fb89"), calls="100000-")
+    assert not (tmp_path / "none.fb89").exists()
+    broken = tmp_path / "broken.fb89"
+    broken.write_bytes(open(a, "rb").read()[:200])
+    with pytest.raises(fb89.FileError, match="not written"):
+        fb89.trim(str(broken), str(tmp_path / "t.fb89"), frames="0")
+    salvaged = fb89.trim(str(broken), str(tmp_path / "s.fb89"), frames="0", salvage=True)
+    assert salvaged["salvaged"]
+    with pytest.raises(fb89.FileError):
+        fb89.diff(str(broken), a)
+
+
+# ---- installed ----
+
+def test_an_installed_module_finds_its_data_and_guests(tmp_path):
+    build = os.environ.get("FB89_BUILD_DIR")
+    if not build:
+        pytest.skip("FB89_BUILD_DIR: run under ctest")
+    prefix = tmp_path / "prefix"
+    with open(tmp_path / "install.log", "w") as log:
+        subprocess.run(["cmake", "--install", build, "--prefix", str(prefix)], stdout=log,
+                       stderr=subprocess.STDOUT, check=True)
+    packages = prefix / "lib" / f"python{sys.version_info[0]}.{sys.version_info[1]}" / \
+        "dist-packages"
+    assert (packages / "fb89" / "__init__.pyi").exists()
+    script = ("import ctypes, fb89\n"
+              "print(fb89.load_scene('A').path)\n"
+              "getenv = ctypes.CDLL(None).getenv\n"
+              "getenv.restype = ctypes.c_char_p\n"
+              "print(getenv(b'FB89_M68K_GUEST').decode())\n"
+              "print(fb89.render('A', method='scanline', size='32x24', host='sun3-60')"
+              ".period['same_frame'])\n")
+    env = {k: v for k, v in os.environ.items() if not k.startswith("FB89_")}
+    env["PYTHONPATH"] = str(packages)
+    done = subprocess.run([sys.executable, "-c", script], cwd=str(tmp_path), env=env,
+                          capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    scene, guest, same = done.stdout.split("\n")[:3]
+    assert scene == str(prefix / "share" / "fb89" / "scenes" / "A.json")
+    assert guest.startswith(str(prefix / "libexec" / "fb89"))
+    assert same == "True"

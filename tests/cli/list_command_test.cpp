@@ -147,7 +147,7 @@ TEST(ListCommand, AnInstalledPrefixRunsOnItsOwn) {
     const auto prefix = test_dir() / "prefix";
     std::filesystem::remove_all(prefix);
     const std::string install = "cmake --install " + std::string(FB89_BUILD_DIR) + " --prefix " +
-                                prefix.string() + " >/dev/null";
+                                prefix.string() + " > " + (test_dir() / "install.log").string();
     ASSERT_EQ(std::system(install.c_str()), 0);
     const std::string fb89 = (prefix / "bin" / "fb89").string();
     ASSERT_TRUE(std::filesystem::exists(fb89));
