@@ -63,7 +63,7 @@ def stream_speed(rounds, folder):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--rounds", type=int, default=21, help="interleaved rounds (median)")
+    parser.add_argument("--rounds", type=int, default=41, help="interleaved rounds (median)")
     parser.add_argument("--scene", default="demo")
     parser.add_argument("--method", default="zbuffer")
     args = parser.parse_args()

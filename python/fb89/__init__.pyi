@@ -1,5 +1,6 @@
 # Type stubs for the fb89 module (its compiled part is fb89._fb89).
-from typing import Any
+import os
+from typing import Any, Callable, Iterator, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -10,6 +11,7 @@ FILL_RECT: int
 DRAW_SPAN: int
 MARKER: int
 FRAME_END: int
+DEFAULT_CONTROLLER: str
 
 class Error(Exception): ...
 class SceneError(Error, ValueError): ...
@@ -17,11 +19,46 @@ class OptionError(Error, ValueError): ...
 class FileError(Error, OSError): ...
 class EmulatorError(Error, RuntimeError): ...
 
+Progress = None | bool | Callable[[str, int, int, str], object]
+Size = None | str | tuple[int, int]
+Threshold = None | str | float
+
+class Scene:
+    path: str
+    name: str
+    width: int
+    height: int
+    faces: int
+    face_ids: int
+    notes: list[str]
+
+SceneLike = str | os.PathLike[str] | dict[str, Any] | Scene
+
+class Stream:
+    path: str
+    version: int
+    header: dict[str, str]
+    def __init__(self, commands: npt.NDArray[np.void], header: dict[str, str] | None = ...,
+                 markers: Sequence[tuple[int, str]] | None = ...) -> None: ...
+    @staticmethod
+    def open(path: str, calls: str | None = ...) -> Stream: ...
+    @property
+    def commands(self) -> npt.NDArray[np.void]: ...
+    @property
+    def numbers(self) -> npt.NDArray[np.uint64] | None: ...
+    @property
+    def markers(self) -> list[tuple[int, str]]: ...
+    @property
+    def frames(self) -> int: ...
+    def __len__(self) -> int: ...
+    def save(self, path: str) -> None: ...
+
 class Render:
     scene: str
     method: str
     host: str
     controller: str
+    stream: Stream
     @property
     def image(self) -> npt.NDArray[np.uint8]: ...
     @property
@@ -38,29 +75,70 @@ class Render:
     def period(self) -> dict[str, Any] | None: ...
     @property
     def commands(self) -> npt.NDArray[np.void]: ...
-    def save_stream(self, path: str) -> None: ...
 
-class Stream:
-    path: str
-    version: int
-    header: dict[str, str]
-    @staticmethod
-    def open(path: str) -> Stream: ...
-    @property
-    def commands(self) -> npt.NDArray[np.void]: ...
-    @property
-    def markers(self) -> list[tuple[int, str]]: ...
-    @property
-    def frames(self) -> int: ...
+class Table:
+    columns: list[str]
+    rows: list[tuple[str, ...]]
+    def __init__(self, columns: Sequence[str], rows: Sequence[Sequence[str]], text: str = ...,
+                 csv: str = ...) -> None: ...
     def __len__(self) -> int: ...
-    def save(self, path: str) -> None: ...
+    def __iter__(self) -> Iterator[dict[str, Any]]: ...
+    def __getitem__(self, column: str) -> npt.NDArray[Any]: ...
+    def to_numpy(self) -> npt.NDArray[np.void]: ...
+    def to_pandas(self) -> Any: ...
+    def csv(self) -> str: ...
 
-def render(scene: str, *, method: str = ..., size: str = ..., host: str = ...,
-           controller: str = ..., repeat: int = ..., threshold: str = ...,
-           beam_threshold: str = ..., reflections: int = ...) -> Render: ...
-def replay(stream: Stream, *, profile: str = ...) -> dict[str, Any]: ...
+class Calibration:
+    chosen: float
+    sweep: Table
+    total_ms: dict[float, float]
+    worst: dict[float, float]
+    reference_ms: float
+    choices: list[float]
+    stable: bool
+    saved_to: str | None
+    warning: str | None
+    details: dict[str, Any]
+
+class Replay:
+    image: npt.NDArray[np.uint8]
+    checksum: int
+    stats: dict[str, Any]
+
+class Diff:
+    frames: list[dict[str, Any]]
+    differing_frames: int
+    image_frame: int | None
+    identical: bool
+
 def scenes() -> list[str]: ...
 def methods() -> list[str]: ...
 def hosts() -> list[str]: ...
 def profiles() -> list[str]: ...
 def experiments() -> list[str]: ...
+def load_scene(scene: SceneLike) -> Scene: ...
+def render(scene: SceneLike, *, method: str = ..., size: Size = ..., host: str = ...,
+           controller: str = ..., repeat: int = ..., threshold: Threshold = ...,
+           beam_threshold: Threshold = ..., reflections: int | None = ...) -> Render: ...
+def experiment(name: str, scenes: SceneLike | Sequence[SceneLike] | None = ..., *,
+               size: Size = ..., repeat: int = ..., controller: str = ...,
+               threshold: Threshold = ..., beam_threshold: Threshold = ...,
+               sizes: Sequence[Size] | None = ..., out_dir: str | os.PathLike[str] = ...,
+               accel: str = ..., patches: int = ..., reference_rays: int = ...,
+               host: str = ..., jobs: int = ..., results: str | os.PathLike[str] | None = ...,
+               progress: Progress = ...) -> Table: ...
+def sweep(what: str, scenes: SceneLike | Sequence[SceneLike], *, start: float = ...,
+          stop: float = ..., steps: int = ..., window_test: str = ...,
+          depth_estimate: str = ..., size: Size = ..., repeat: int = ..., controller: str = ...,
+          host: str = ..., jobs: int = ..., results: str | os.PathLike[str] | None = ...,
+          progress: Progress = ...) -> Table: ...
+def calibrate(method: str = ..., scenes: SceneLike | Sequence[SceneLike] | None = ..., *,
+              start: float = ..., stop: float = ..., steps: int = ..., repeat: int = ...,
+              tolerance: float = ..., host: str = ..., jobs: int = ...,
+              results: str | os.PathLike[str] | None = ..., save: bool = ...,
+              progress: Progress = ...) -> Calibration: ...
+def replay(stream: Stream | str | os.PathLike[str], *, controller: str = ...) -> Replay: ...
+def trim(stream: Stream | str | os.PathLike[str], output: str | os.PathLike[str], *,
+         calls: str | None = ..., frames: str | None = ..., salvage: bool = ...) -> dict[str, Any]: ...
+def diff(a: Stream | str | os.PathLike[str], b: Stream | str | os.PathLike[str], *,
+         image: str | os.PathLike[str] | None = ...) -> Diff: ...

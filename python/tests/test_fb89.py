@@ -440,3 +440,12 @@ def test_an_installed_module_finds_its_data_and_guests(tmp_path):
     assert scene == str(prefix / "share" / "fb89" / "scenes" / "A.json")
     assert guest.startswith(str(prefix / "libexec" / "fb89"))
     assert same == "True"
+
+
+def test_the_fig3_1_example_draws_its_chart(tmp_path):
+    example = os.path.join(os.path.dirname(__file__), "..", "examples", "fig3_1.py")
+    out = tmp_path / "fig3_1.png"
+    done = subprocess.run([sys.executable, example, str(out), "1"], capture_output=True,
+                          text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
