@@ -74,7 +74,7 @@ void run_work(const py::object& progress, const std::function<void(bool)>& work)
     }
 
     InterruptStops interrupt_stops;
-    ++calls_under_way;
+    if (calls_under_way++ == 0) period::clear_stop();  // a Ctrl-C that came after the last call
     bool stopped = false;
     {
         py::gil_scoped_release unlocked;

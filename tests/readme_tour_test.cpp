@@ -108,7 +108,7 @@ std::string skip_reason(const std::string& command) {
     if (command.rfind("cmake --install", 0) == 0)
         return "ListCommand.AnInstalledPrefixRunsOnItsOwn installs and runs a prefix";
     if (command.rfind("parallel", 0) == 0 &&
-        std::system("command -v parallel >/dev/null 2>&1") != 0)
+        !fb89::testing::on_path("parallel"))
         return "GNU parallel is not installed (scripts/bootstrap installs it)";
     if (command.rfind("fb89 view", 0) == 0)
         return "needs a display (ViewCommand.* run it under xvfb)";
@@ -198,7 +198,7 @@ TEST(ReadmeTourLong, TheCommandsRunInACopyLeaveItCleanAndPrintWhatTheSamplesShow
     const std::string make_copy =
         "cd '" + kSource.string() +
         "' && git ls-files -z --cached --others --exclude-standard | tar --null -T - "
-        "--ignore-failed-read -cf - 2>/dev/null | tar -xf - -C '" +
+        "--ignore-failed-read -cf - | tar -xf - -C '" +
         copy.string() + "' && cd '" + copy.string() +
         "' && git init -q && git add -A && git -c user.name=t -c user.email=t@t commit -qm copy";
     ASSERT_EQ(std::system(make_copy.c_str()), 0) << make_copy;

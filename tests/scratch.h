@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -32,6 +33,21 @@ inline const std::filesystem::path& scratch_dir() {
 // `name` inside scratch_dir().
 inline std::filesystem::path scratch_path(const std::string& name) {
     return scratch_dir() / name;
+}
+
+// Whether `program` is an executable on $PATH (what `command -v` says, without a shell whose
+// output would have to go somewhere).
+inline bool on_path(const std::string& program) {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "";
+    for (std::size_t start = 0; start <= dirs.size();) {
+        const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+        const std::string dir = dirs.substr(start, end - start);
+        const std::filesystem::path candidate = (dir.empty() ? "." : dir) + ("/" + program);
+        if (::access(candidate.c_str(), X_OK) == 0) return true;
+        start = end + 1;
+    }
+    return false;
 }
 
 }  // namespace fb89::testing

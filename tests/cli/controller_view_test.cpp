@@ -15,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(ControllerView, ShowsALiveStreamAndKeepsItsFrame) {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    if (!fb89::testing::on_path("xvfb-run"))
         GTEST_SKIP() << "xvfb-run is not installed";
     const fs::path dir = fb89::testing::test_dir();
     const std::string sock = "/tmp/fb89-view-test-" + std::to_string(getpid()) + ".sock";

@@ -22,7 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 bool have_xvfb_run() {
-    return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+    return fb89::testing::on_path("xvfb-run");
 }
 
 // xvfb-run on a free display, 24-bit so colours survive; a generous time-out.

@@ -49,7 +49,7 @@ TEST(PeriodExperiments, EmittedJobsRunByGnuParallelJoinIntoTheSameTable) {
     for (std::string line; std::getline(lines, line);)
         n += !line.empty();
     EXPECT_EQ(n, 10);
-    ASSERT_EQ(std::system(("parallel --will-cite -j 2 < " + jobs + " >/dev/null").c_str()), 0);
+    ASSERT_EQ(std::system(("parallel --will-cite -j 2 < " + jobs + " > " + jobs + ".out").c_str()), 0);
     // join
     CliRun join = run_fb89(kSweep + merged + " --results " + results);
     ASSERT_EQ(join.exit_code, 0) << join.err;
@@ -76,7 +76,7 @@ TEST(PeriodExperiments, EmittedJobsComeWithTheirWorkAndAJoinSaysWhatItRunsItself
                             "their size: 72 faces and 0.021 million pixels in all (A.json "),
               std::string::npos)
         << emit.err;
-    ASSERT_EQ(std::system(("sh " + jobs + " >/dev/null").c_str()), 0);
+    ASSERT_EQ(std::system(("sh " + jobs + " > " + jobs + ".out").c_str()), 0);
     // as if the guest had changed: the counts gone, the work they took kept
     std::vector<fs::path> counts;
     for (const auto& e : fs::directory_iterator(results))
@@ -115,7 +115,7 @@ TEST(PeriodExperiments, Sun4JobsNameTheirInstructionSetAndJoinIntoTheSameTable) 
     const std::string lines = slurp(jobs);
     EXPECT_NE(lines.find(" host-run "), std::string::npos) << lines;
     EXPECT_NE(lines.find(" --isa sparc "), std::string::npos) << lines;
-    ASSERT_EQ(std::system(("sh " + jobs + " >/dev/null").c_str()), 0);
+    ASSERT_EQ(std::system(("sh " + jobs + " > " + jobs + ".out").c_str()), 0);
     CliRun join = run_fb89(sweep + merged + " --results " + results);
     ASSERT_EQ(join.exit_code, 0) << join.err;
     EXPECT_EQ(slurp(merged), slurp(single));

@@ -29,7 +29,8 @@ int save_chart(const std::string& target, const std::string& redirect = "") {
 }
 
 bool have_matplotlib() {
-    return std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
+    return std::system("/usr/bin/python3 -c 'import importlib.util as u, sys; "
+                       "sys.exit(u.find_spec(\"matplotlib\") is None)'") == 0;
 }
 
 TEST(ChartOutput, ARegularFileIsReplacedWholeWithNoTemporaryLeft) {
