@@ -1,0 +1,66 @@
+#include "controller_sim/timed_pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace fb89::controller {
+
+TimedPipeline::TimedPipeline(uint64_t buffer_bytes) : m_capacity(buffer_bytes) {
+    if (buffer_bytes == 0) throw std::invalid_argument("a command buffer of 0 bytes holds nothing");
+}
+
+double TimedPipeline::push(const TimedCommand& c) {
+    if (!std::isfinite(c.send_us) || c.send_us < m_last_send_us)
+        throw std::invalid_argument("a send time of " + std::to_string(c.send_us) +
+                                    " us comes before the last one, " +
+                                    std::to_string(m_last_send_us) + " us");
+    if (c.bytes > m_capacity)
+        throw std::invalid_argument("a command of " + std::to_string(c.bytes) +
+                                    " bytes cannot fit a buffer of " + std::to_string(m_capacity) +
+                                    " bytes");
+    m_last_send_us = c.send_us;
+    if (c.bytes == 0) return m_controller_free_us;  // not sent
+
+    const double ready = c.send_us + m_shift_us;
+    double start = std::max(ready, m_bus_free_us);
+    const auto free_until = [&](double t) {  // what the controller has executed by t leaves
+        while (!m_held.empty() && m_held.front().done_us <= t) {
+            m_occupied -= m_held.front().bytes;
+            m_held.pop_front();
+        }
+    };
+    free_until(start);
+    while (m_occupied + c.bytes > m_capacity) {  // wait for the oldest to be executed
+        start = std::max(start, m_held.front().done_us);
+        free_until(start);
+    }
+    if (start > ready) {
+        m_shift_us += start - ready;
+        m_figures.host_stalled_us += start - ready;
+        ++m_figures.stalls;
+    }
+    const double arrive = start + c.bus_us;
+    m_bus_free_us = arrive;
+    const double done = std::max(arrive, m_controller_free_us) + c.exec_us;
+    m_controller_free_us = done;
+    m_held.push_back({done, c.bytes});
+    m_occupied += c.bytes;
+    m_figures.high_water_bytes = std::max(m_figures.high_water_bytes, m_occupied);
+    m_figures.bus_busy_us += c.bus_us;
+    m_figures.controller_busy_us += c.exec_us;
+    return done;
+}
+
+PipelineFigures TimedPipeline::finish(double host_end_us) {
+    PipelineFigures f = m_figures;
+    const double host_end = std::max(host_end_us, m_last_send_us) + m_shift_us;
+    f.frame_us = std::max(host_end, m_controller_free_us);
+    f.host_us = host_end - f.host_stalled_us;
+    f.controller_idle_us = f.frame_us - f.controller_busy_us;
+    *this = TimedPipeline(m_capacity);
+    return f;
+}
+
+}  // namespace fb89::controller

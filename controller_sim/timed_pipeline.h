@@ -1,0 +1,75 @@
+// The split as a pipeline in time: a frame's commands as the host sends them, each crossing
+// the bus into the controller's command buffer, executed in order -- with the buffer of a
+// stated size, so that a full buffer stalls the host (issue 30's model; docs/COST_MODEL.md,
+// "The pipeline in time").
+//
+// Time is in microseconds from the start of the host's set-up. A command is ready when the
+// host sends it, moved by every stall before it. It starts across the bus when it is ready,
+// the bus is free (one command crosses at a time) and the buffer has room for its bytes; the
+// host waits until then (a stall). It takes the buffer's room from the moment it starts to
+// cross until the controller has executed it. The controller executes a command once it has
+// arrived and the one before is done. The frame ends when the last command is done or the
+// host's own work ends, whichever is later. An unbounded buffer never stalls the host on
+// room, only on the bus.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <limits>
+
+namespace fb89::controller {
+
+inline constexpr uint64_t kUnboundedBuffer = std::numeric_limits<uint64_t>::max();
+
+// One command as the pipeline sees it.
+struct TimedCommand {
+    double send_us = 0;  // when the host sends it, without stalls; never before the last
+    uint32_t bytes = 0;  // on the bus and in the buffer; 0: not sent (a MARKER)
+    double bus_us = 0;   // crossing the bus
+    double exec_us = 0;  // executing
+};
+
+// One frame's figures.
+struct PipelineFigures {
+    double frame_us = 0;           // set-up start to the last command done (or the host's end)
+    double host_us = 0;            // the host's own work: its end less its stalls
+    double host_stalled_us = 0;    // waiting for the bus or for room in the buffer
+    uint64_t stalls = 0;           // commands the host waited on
+    double bus_busy_us = 0;
+    double controller_busy_us = 0;
+    double controller_idle_us = 0;  // within the frame, waiting for commands
+    uint64_t high_water_bytes = 0;  // the most the buffer held
+    double host_utilization() const { return frame_us > 0 ? host_us / frame_us : 0; }
+    double controller_utilization() const {
+        return frame_us > 0 ? controller_busy_us / frame_us : 0;
+    }
+};
+
+class TimedPipeline {
+  public:
+    // Throws std::invalid_argument for a buffer of 0 bytes.
+    explicit TimedPipeline(uint64_t buffer_bytes = kUnboundedBuffer);
+
+    // The next command of the frame. Throws std::invalid_argument when its send time goes
+    // back or is not finite, or when it cannot fit the buffer at all. Returns when it is done.
+    double push(const TimedCommand& c);
+    // The frame's figures, the host's own work ending at `host_end_us` (not before the last
+    // send). The pipeline is then ready for the next frame, from 0.
+    PipelineFigures finish(double host_end_us);
+
+  private:
+    struct Held {
+        double done_us;
+        uint64_t bytes;
+    };
+    uint64_t m_capacity;
+    std::deque<Held> m_held;  // in the buffer, oldest first
+    uint64_t m_occupied = 0;
+    double m_last_send_us = 0;
+    double m_shift_us = 0;  // the stalls so far: every later send moves by them
+    double m_bus_free_us = 0;
+    double m_controller_free_us = 0;
+    PipelineFigures m_figures;
+};
+
+}  // namespace fb89::controller

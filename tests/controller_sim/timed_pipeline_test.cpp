@@ -1,0 +1,105 @@
+// Tests of controller_sim/timed_pipeline: pipelines worked out by hand, exact in microseconds.
+#include "controller_sim/timed_pipeline.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace fb89::controller {
+namespace {
+
+TEST(TimedPipeline, AHostBoundFrameLeavesTheControllerIdle) {
+    // sends at 0, 10, 20; 1 us on the bus, 2 executing; the host ends at 30
+    TimedPipeline p;
+    EXPECT_EQ(p.push({0, 10, 1, 2}), 3);
+    EXPECT_EQ(p.push({10, 10, 1, 2}), 13);
+    EXPECT_EQ(p.push({20, 10, 1, 2}), 23);
+    const PipelineFigures f = p.finish(30);
+    EXPECT_EQ(f.frame_us, 30);
+    EXPECT_EQ(f.host_us, 30);
+    EXPECT_EQ(f.host_stalled_us, 0);
+    EXPECT_EQ(f.stalls, 0u);
+    EXPECT_EQ(f.bus_busy_us, 3);
+    EXPECT_EQ(f.controller_busy_us, 6);
+    EXPECT_EQ(f.controller_idle_us, 24);
+    EXPECT_EQ(f.high_water_bytes, 10u);
+    EXPECT_DOUBLE_EQ(f.controller_utilization(), 0.2);
+    EXPECT_DOUBLE_EQ(f.host_utilization(), 1.0);
+}
+
+TEST(TimedPipeline, AFullBufferStallsTheHostAndMovesEveryLaterSend) {
+    // a 20-byte buffer, four 10-byte commands all sent at 0: 1 us on the bus, 10 executing.
+    // c0 crosses 0-1 and runs 1-11; c1 waits for the bus (a 1 us stall), crosses 1-2, runs
+    // 11-21; c2 is ready at 1, the bus is free at 2 but the buffer holds c0 and c1 until c0
+    // is done at 11: a 10 us stall, crosses 11-12, runs 21-31; c3 is ready at 11, the buffer
+    // frees at 21: crosses 21-22, runs 31-41.
+    TimedPipeline p(20);
+    EXPECT_EQ(p.push({0, 10, 1, 10}), 11);
+    EXPECT_EQ(p.push({0, 10, 1, 10}), 21);
+    EXPECT_EQ(p.push({0, 10, 1, 10}), 31);
+    EXPECT_EQ(p.push({0, 10, 1, 10}), 41);
+    const PipelineFigures f = p.finish(0);
+    EXPECT_EQ(f.host_stalled_us, 21);
+    EXPECT_EQ(f.stalls, 3u);
+    EXPECT_EQ(f.host_us, 0);  // all the host did was wait
+    EXPECT_EQ(f.frame_us, 41);
+    EXPECT_EQ(f.controller_busy_us, 40);
+    EXPECT_EQ(f.controller_idle_us, 1);  // the first command's crossing
+    EXPECT_EQ(f.high_water_bytes, 20u);
+    // unbounded, the same frame stalls the host only on the bus
+    TimedPipeline open;
+    for (int i = 0; i < 4; ++i)
+        open.push({0, 10, 1, 10});
+    const PipelineFigures g = open.finish(0);
+    EXPECT_EQ(g.frame_us, 41);
+    EXPECT_EQ(g.host_stalled_us, 3);  // c1, c2 and c3 each wait 1 us for the bus
+    EXPECT_EQ(g.high_water_bytes, 40u);
+}
+
+TEST(TimedPipeline, TheClearRunsWhileTheHostSetsUp) {
+    // FRAME_BEGIN sent at 0, a 100 us clear; the host sets up until 80, then sends a span
+    // (5 us) and ends at 90. The clear crosses 0-1 and runs 1-101, the span crosses 80-81 and
+    // runs 101-106: a frame of 106 us where host + controller would be 90 + 105.
+    TimedPipeline p;
+    p.push({0, 10, 1, 100});
+    EXPECT_EQ(p.push({80, 10, 1, 5}), 106);
+    const PipelineFigures f = p.finish(90);
+    EXPECT_EQ(f.frame_us, 106);
+    EXPECT_EQ(f.host_us, 90);
+    EXPECT_EQ(f.controller_idle_us, 1);
+}
+
+TEST(TimedPipeline, AMixedFrame) {
+    // a 25-byte buffer: a 20-byte command (send 0, bus 2, exec 10) then three 10-byte ones
+    // at 3, 4 and 30 (bus 1, exec 4), the host ending at 32. c0 crosses 0-2, runs 2-12. c1 at
+    // 3: room is 5, so it waits for c0 (done 12): a 9 us stall, crosses 12-13, runs 13-17. c2
+    // is ready at 4 + 9 = 13, the bus is free at 13, room 15: crosses 13-14, runs 17-21. c3
+    // is ready at 39: crosses 39-40, runs 40-44. The host ends at 32 + 9 = 41.
+    TimedPipeline p(25);
+    EXPECT_EQ(p.push({0, 20, 2, 10}), 12);
+    EXPECT_EQ(p.push({3, 10, 1, 4}), 17);
+    EXPECT_EQ(p.push({4, 10, 1, 4}), 21);
+    EXPECT_EQ(p.push({4, 0, 0, 0}), 21);  // a marker: not sent
+    EXPECT_EQ(p.push({30, 10, 1, 4}), 44);
+    const PipelineFigures f = p.finish(32);
+    EXPECT_EQ(f.host_stalled_us, 9);
+    EXPECT_EQ(f.stalls, 1u);
+    EXPECT_EQ(f.frame_us, 44);
+    EXPECT_EQ(f.host_us, 32);
+    EXPECT_EQ(f.bus_busy_us, 5);
+    EXPECT_EQ(f.controller_busy_us, 22);
+    EXPECT_EQ(f.high_water_bytes, 20u);
+    // the next frame starts from 0 again
+    EXPECT_EQ(p.push({0, 10, 1, 1}), 2);
+}
+
+TEST(TimedPipeline, RefusesWhatCannotBe) {
+    EXPECT_THROW(TimedPipeline(0), std::invalid_argument);
+    TimedPipeline p(8);
+    EXPECT_THROW(p.push({0, 10, 1, 1}), std::invalid_argument);  // bigger than the buffer
+    p.push({5, 4, 1, 1});
+    EXPECT_THROW(p.push({4, 4, 1, 1}), std::invalid_argument);  // back in time
+}
+
+}  // namespace
+}  // namespace fb89::controller
