@@ -141,6 +141,49 @@ std::string split_line(const std::string& host_name, double host_ms, const std::
                     : "the other side takes no time");
 }
 
+namespace {
+
+// The share of the smaller side the pipeline hides: 0 when the frame is host + controller
+// (no overlap), 1 when it is max(host, controller).
+double overlap(double frame_ms, double host_ms, double controller_ms) {
+    const double smaller = std::min(host_ms, controller_ms);
+    return smaller > 0 ? (host_ms + controller_ms - frame_ms) / smaller : 1;
+}
+
+}  // namespace
+
+std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
+                          double controller_ms) {
+    const double frame_ms = p.frame_us / 1e3;
+    return fmt::format(
+        "pipeline (send times measured, buffer unbounded): frame {:.3f} ms (max {:.3f}, sum "
+        "{:.3f}; {:.1f}% of the smaller side overlapped), host stalled {:.3f} ms, utilization "
+        "host {:.1f}% controller {:.1f}%\n",
+        frame_ms, std::max(host_ms, controller_ms), host_ms + controller_ms,
+        100 * overlap(frame_ms, host_ms, controller_ms), p.host_stalled_us / 1e3,
+        100 * p.host_utilization(), 100 * p.controller_utilization());
+}
+
+nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_ms,
+                             double controller_ms) {
+    const double frame_ms = p.frame_us / 1e3;
+    return {{"send_times", "measured"},
+            {"buffer_bytes", "unbounded"},
+            {"frame_ms", frame_ms},
+            {"max_ms", std::max(host_ms, controller_ms)},
+            {"sum_ms", host_ms + controller_ms},
+            {"overlap", overlap(frame_ms, host_ms, controller_ms)},
+            {"host_ms", p.host_us / 1e3},
+            {"host_stalled_ms", p.host_stalled_us / 1e3},
+            {"host_stalls", p.stalls},
+            {"bus_busy_ms", p.bus_busy_us / 1e3},
+            {"controller_busy_ms", p.controller_busy_us / 1e3},
+            {"controller_idle_ms", p.controller_idle_us / 1e3},
+            {"buffer_high_water_bytes", p.high_water_bytes},
+            {"host_utilization", p.host_utilization()},
+            {"controller_utilization", p.controller_utilization()}};
+}
+
 void add_host_options(CLI::App* sub, HostArgs& a) {
     std::string hosts;
     for (const std::string& h : period::builtin_host_profile_names())

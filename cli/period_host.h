@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "controller_sim/timed_pipeline.h"
 #include "experiments/render_job.h"
 #include "experiments/settings.h"
 #include "host/methods.h"
@@ -29,6 +30,14 @@ std::string period_classes(const experiments::PeriodFrame& run, period::Phase ph
 // controller's frame time; the frame time is the larger, the side that bounds it named.
 std::string split_line(const std::string& host_name, double host_ms, const std::string& profile,
                        double controller_ms);
+
+// The same frame through the pipeline in time (controller_sim/timed_pipeline.h), natively from
+// measured send times: its frame time beside max(host, controller) and their sum, how much of
+// the smaller side it hides, the host's stalls and both sides' utilization.
+std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
+                          double controller_ms);
+nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_ms,
+                             double controller_ms);
 
 // --host, --jobs, --results and --emit-jobs, as experiment, sweep and calibrate take them.
 struct HostArgs {

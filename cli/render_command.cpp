@@ -214,6 +214,8 @@ nlohmann::json stats_json(const RenderArgs& args, const experiments::RenderResul
                               {"mean_visible_face_px", m.mean_visible_face}};
     j["controller"] = ctl.stats().to_json();
     if (run.period) j["period_host"] = period_json(*run.period);
+    if (run.pipeline)
+        j["pipeline"] = pipeline_json(*run.pipeline, run.host_frame_ms, run.controller.frame_ms);
     return j;
 }
 
@@ -311,6 +313,9 @@ int run_render(const RenderArgs& args) {
         fmt::print("{}",
                    split_line(run.period ? run.period->cost.profile : "native", run.host_frame_ms,
                               ctl.profile().name, run.controller.frame_ms));
+        if (run.pipeline)
+            fmt::print("{}",
+                       pipeline_line(*run.pipeline, run.host_frame_ms, run.controller.frame_ms));
     }
     return kSuccess;
 }

@@ -237,6 +237,7 @@ void Controller::account(Opcode opcode, const Executed& x) {
     // time: summed command by command, in stream order (floating-point sums)
     const double exec_us = static_cast<double>(x.cycles) * m_us_per_cycle;
     (m_in_frame ? m_frame_pipe : m_unframed_pipe).push(e.bus_us, exec_us);
+    m_last_cost = {e.bytes, e.bus_us, exec_us};
     m_stats.bus_busy_us += e.bus_us;
     m_stats.controller_busy_us += exec_us;
     ++m_next_command;

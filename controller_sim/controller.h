@@ -105,6 +105,13 @@ class Controller final : public protocol::CommandSink {
     // time so far, plus the commands outside frames. Cheap (no checksum): a viewer paces
     // playback by it.
     double elapsed_us() const;
+    // What the last command executed through execute(c) or a sink call cost: its modelled
+    // bytes, bus time and execution time (the pipeline in time, timed_pipeline.h, takes them).
+    struct CommandCost {
+        uint32_t bytes = 0;
+        double bus_us = 0, exec_us = 0;
+    };
+    const CommandCost& last_cost() const { return m_last_cost; }
 
     // Called after each command has executed, with its number (commands_executed() before
     // it) and the command; empty by default. A viewer hooks a Recorder here.
@@ -158,6 +165,7 @@ class Controller final : public protocol::CommandSink {
     bool m_in_frame = false;
     FrameResult m_frame;  // the open frame's counters
     Pipeline m_frame_pipe;
+    CommandCost m_last_cost;
     Pipeline m_unframed_pipe;
     uint64_t m_next_command = 0;
     Observer m_observer;

@@ -21,6 +21,7 @@ std::vector<Measured> time_renderers(const host::ScreenScene& screen,
     std::vector<Measured> out(renderers.size());
     interleave(renderers.size(), repeat, label, progress, [&](size_t m, bool timed) {
         out[m].commands.clear();
+        out[m].commands.time_packets(protocol::kSendPacketCommands);  // send times, by packet
         host::HostStats stats;
         host::Timing t = host::render_frame(*renderers[m], screen, out[m].commands, stats);
         if (timed) {

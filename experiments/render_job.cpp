@@ -55,6 +55,22 @@ PeriodFrame period_frame(GuestOutcome&& outcome, const period::HostProfile& prof
 
 }  // namespace
 
+controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
+                                             const std::vector<double>& send_us,
+                                             double host_end_us,
+                                             const controller::CostProfile& profile,
+                                             uint64_t buffer_bytes) {
+    controller::Controller ctl(profile);
+    controller::TimedPipeline pipe(buffer_bytes);
+    const auto& all = commands.commands();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        ctl.execute(all[i]);
+        const auto& cost = ctl.last_cost();
+        pipe.push({send_us.at(i), cost.bytes, cost.bus_us, cost.exec_us});
+    }
+    return pipe.finish(host_end_us);
+}
+
 uint64_t frames_differing(const protocol::MemoryBuffer& a, const protocol::MemoryBuffer& b,
                           bool* same_checksum) {
     const Frame fa = frame_of(a), fb = frame_of(b);
@@ -104,8 +120,10 @@ RenderResult run_render_job(const RenderJob& job) {
     // hidden-surface: interleaved rounds here (the commands are the last round's)
     std::vector<Measured> measured = time_renderers(result.screen, renderers, job.repeat, job.scene,
                                                     job.progress && !job.period);
+    std::vector<std::vector<double>> send_us(result.runs.size());
     for (size_t m = 0; m < result.runs.size(); ++m) {
         MethodRun& run = result.runs[m];
+        send_us[m] = measured[m].commands.send_times_us();
         run.commands = std::move(measured[m].commands);
         run.stats.hidden_surface = measured[m].median;
         run.stats.hidden_surface_samples = std::move(measured[m].samples);
@@ -132,9 +150,19 @@ RenderResult run_render_job(const RenderJob& job) {
     }
 
     // the controller tiles what the host decided; its cost is modelled, never timed
-    for (MethodRun& run : result.runs) {
+    for (size_t m = 0; m < result.runs.size(); ++m) {
+        MethodRun& run = result.runs[m];
         run.controller = controller_figures(run.commands, profile);
         run.split = frame_split(run.host_frame_ms, run.controller.frame_ms);
+        // natively, the pipeline in time from the measured send times (a job of 0 rounds
+        // renders once, untimed, and has none)
+        std::vector<double>& sends = send_us[m];
+        if (job.period || sends.size() != run.commands.size() || sends.empty()) continue;
+        const double setup_us = run.stats.setup.cpu_ms * 1e3;
+        for (double& t : sends)
+            t += setup_us;
+        sends.front() = 0;  // FRAME_BEGIN: the clear starts as the host sets up
+        run.pipeline = pipeline_figures(run.commands, sends, run.host_frame_ms * 1e3, profile);
     }
     return result;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "controller_sim/profile.h"
+#include "controller_sim/timed_pipeline.h"
 #include "experiments/measure.h"
 #include "experiments/settings.h"
 #include "host/methods.h"
@@ -62,6 +63,12 @@ struct MethodRun {
     ControllerFigures controller;
     double host_frame_ms = 0;  // set-up + hidden-surface on the job's host (CPU ms natively)
     FrameSplit split;          // host_frame_ms against the controller's frame time
+    // Natively: the frame through the pipeline in time (controller_sim/timed_pipeline.h) from
+    // the commands' measured send times -- the set-up's time, then each command's packet's
+    // time in the last hidden-surface round; FRAME_BEGIN sent as the set-up starts, so that
+    // the clear overlaps it -- with an unbounded command buffer. None on a 1989 host (its
+    // send times are not yet counted).
+    std::optional<controller::PipelineFigures> pipeline;
 };
 
 struct RenderResult {
@@ -73,6 +80,14 @@ struct RenderResult {
 // Throws what loading the scene or the controller profile throws, and period::EmulatorError
 // when an emulated run fails.
 RenderResult run_render_job(const RenderJob& job);
+
+// A frame's commands through the pipeline in time under `profile`: command i sent at
+// send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`.
+controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
+                                             const std::vector<double>& send_us,
+                                             double host_end_us,
+                                             const controller::CostProfile& profile,
+                                             uint64_t buffer_bytes = controller::kUnboundedBuffer);
 
 // The rows of the job's frame check: the frame `commands` leave, and how many pixels differ
 // between two such frames (all of them when the sizes differ).

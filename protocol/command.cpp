@@ -79,4 +79,23 @@ void MemoryBuffer::replay_into(CommandSink& sink) const {
         sink.submit(c);
 }
 
+void MemoryBuffer::time_packets(uint32_t commands_per_packet) {
+    m_packet = commands_per_packet;
+    m_unstamped = 0;
+    m_stamps.clear();
+    m_origin = std::chrono::steady_clock::now();
+}
+
+std::vector<double> MemoryBuffer::send_times_us() {
+    std::vector<double> out;
+    if (!m_packet) return out;
+    if (m_stamps.empty() || m_stamps.back().end < m_commands.size()) stamp();
+    out.reserve(m_commands.size());
+    for (const Stamp& s : m_stamps) {
+        const double us = std::chrono::duration<double, std::micro>(s.at - m_origin).count();
+        out.resize(s.end, us);
+    }
+    return out;
+}
+
 }  // namespace fb89::protocol
