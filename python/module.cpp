@@ -19,6 +19,7 @@
 #include "cli/calibration.h"
 #include "cli/common.h"
 #include "cli/data_dir.h"
+#include "cli/period_host.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/profile.h"
 #include "experiments/catalog.h"
@@ -48,7 +49,7 @@ struct RenderOutcome {
     controller::Framebuffer image, ids;
     std::vector<int32_t> face_ids;  // ids as face ids, -1 for the background
     std::shared_ptr<StreamFile> stream;  // the frame's commands
-    nlohmann::json host_times, counters, controller_figures, split, period;
+    nlohmann::json host_times, counters, controller_figures, split, period, pipeline;
 };
 
 // The face-id buffer as ids (-1 for the background) from the id pass's 24-bit id + 1.
@@ -145,6 +146,9 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
                   {"frame_ms", run.split.frame_ms},
                   {"bound_by", run.split.host_bounds ? "host" : "controller"},
                   {"ratio", run.split.ratio}};
+    if (run.pipeline)
+        out->pipeline =
+            cli::pipeline_json(*run.pipeline, run.host_frame_ms, run.controller.frame_ms);
     if (run.period) {
         const auto& p = *run.period;
         out->period = {{"profile", p.cost.profile},
@@ -250,6 +254,12 @@ PYBIND11_MODULE(_fb89, m) {
             "split", [](const RenderOutcome& r) { return to_python(r.split); },
             "The host against the controller: host_ms, controller_ms, frame_ms, bound_by, "
             "ratio.")
+        .def_property_readonly(
+            "pipeline", [](const RenderOutcome& r) { return to_python(r.pipeline); },
+            "Natively: the frame through the pipeline in time from the commands' measured send "
+            "times (docs/COST_MODEL.md): frame_ms beside max_ms and sum_ms, overlap, host "
+            "stalls, bus and controller busy, utilizations (render --stats' \"pipeline\"); None "
+            "on a 1989 host.")
         .def_property_readonly(
             "period", [](const RenderOutcome& r) { return to_python(r.period); },
             "On a 1989 host: the profile, its chips, the emulated instructions and the modelled "

@@ -43,6 +43,11 @@ def test_a_render_gives_the_image_the_ids_and_the_split():
     assert r.times["hidden_surface"]["cpu_ms"] >= 0
     assert r.controller_figures["frames"][0]["width"] == 256
     assert r.period is None
+    p = r.pipeline  # natively, from measured send times
+    assert p["max_ms"] <= p["frame_ms"] + 1e-9
+    assert p["frame_ms"] <= (p["host_ms"] + p["host_stalled_ms"] + p["bus_busy_ms"] +
+                             p["controller_busy_ms"] + 1e-6)
+    assert 0 < p["controller_utilization"] <= 1 and p["send_times"] == "measured"
     # the background is the scene's: every pixel without a face has the frame's clear colour
     begin = r.commands[0]
     assert begin["opcode"] == fb89.FRAME_BEGIN and (begin["w"], begin["h"]) == (256, 195)
@@ -135,6 +140,7 @@ def test_a_render_on_a_1989_host_is_modelled_from_its_emulated_run():
     then = fb89.render("A", method="scanline", size="64x49", host="sun4-260")
     assert then.period["profile"] == "sun4-260" and then.period["instructions"] > 0
     assert then.period["same_frame"]
+    assert then.pipeline is None  # a 1989 host's send times are not counted yet
     assert np.array_equal(then.ids, here.ids) and np.array_equal(then.image, here.image)
     assert then.split["host_ms"] > 100 * here.split["host_ms"]  # a 1989 workstation
 
