@@ -35,8 +35,10 @@ int main(int argc, char** argv) {
             for (int k = 0; k < 2; ++k) {
                 const bool with_times = (k + r) % 2 != 0;
                 buffer.clear();
-                if (with_times) buffer.time_packets(protocol::kSendPacketCommands);
-                else buffer.time_packets(0);
+                if (with_times)
+                    buffer.time_packets(protocol::kSendPacketCommands);
+                else
+                    buffer.time_packets(0);
                 host::HostStats stats;
                 const host::Timing t = host::render_frame(*renderer, screen, buffer, stats);
                 if (with_times) (void)buffer.send_times_us();
@@ -48,10 +50,11 @@ int main(int argc, char** argv) {
             return v[v.size() / 2];
         };
         const double a = median(plain), b = median(timed);
-        std::printf("%s %s: hidden-surface %.4f ms plain, %.4f ms with send times (%zu commands, "
-                    "a clock read per %u): %+.2f%% (medians of %d interleaved rounds)\n",
-                    file.c_str(), method.c_str(), a, b, buffer.size(),
-                    protocol::kSendPacketCommands, 100 * (b / a - 1), rounds);
+        std::printf(
+            "%s %s: hidden-surface %.4f ms plain, %.4f ms with send times (%zu commands, "
+            "a clock read per %u): %+.2f%% (medians of %d interleaved rounds)\n",
+            file.c_str(), method.c_str(), a, b, buffer.size(), protocol::kSendPacketCommands,
+            100 * (b / a - 1), rounds);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fb89_send_times_bench: %s\n", e.what());
         return 2;

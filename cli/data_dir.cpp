@@ -32,7 +32,9 @@ fs::path install_prefix() {
     return given_prefix().empty() ? executable_dir().parent_path() : given_prefix();
 }
 
-void set_install_prefix(const fs::path& prefix) { given_prefix() = prefix; }
+void set_install_prefix(const fs::path& prefix) {
+    given_prefix() = prefix;
+}
 
 fs::path data_dir() {
     if (const char* given = std::getenv("FB89_DATA_DIR"); given && *given) return given;

@@ -38,8 +38,8 @@ int run_diff(const DiffArgs& args_in) {
         for (const FrameDiff& f : out.frames) {
             const auto size = [](const std::string& s) { return s.empty() ? "-" : s; };
             if (f.size_a.empty() || f.size_b.empty())
-                fmt::print("{:>6} {:>11} {:>11} {:>17}\n", f.frame, size(f.size_a),
-                           size(f.size_b), fmt::format("only in {}", f.size_b.empty() ? "A" : "B"));
+                fmt::print("{:>6} {:>11} {:>11} {:>17}\n", f.frame, size(f.size_a), size(f.size_b),
+                           fmt::format("only in {}", f.size_b.empty() ? "A" : "B"));
             else
                 fmt::print("{:>6} {:>11} {:>11} {:>17}{}\n", f.frame, f.size_a, f.size_b,
                            grouped(f.differing),
@@ -60,11 +60,11 @@ int run_diff(const DiffArgs& args_in) {
         if (out.differing_frames == 0)
             fmt::print("identical: {} frame(s)\n", out.frames.size());
         else
-            fmt::print("A and B differ in {} of {} frame(s){}\n", out.differing_frames,
-                       out.frames.size(),
-                       out.image_frame ? fmt::format("; diff image of frame {}: {}",
-                                                     *out.image_frame, args.image)
-                                       : "");
+            fmt::print(
+                "A and B differ in {} of {} frame(s){}\n", out.differing_frames, out.frames.size(),
+                out.image_frame
+                    ? fmt::format("; diff image of frame {}: {}", *out.image_frame, args.image)
+                    : "");
     }
     return out.differing_frames == 0 ? kSuccess : kCheckFailed;
 }

@@ -64,10 +64,12 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "Scenes (default: the experiment's bundled scenes; fb89 list experiments)");
     sub->add_option("--csv", args->csv, "Write the results as CSV ('-' for stdout)");
     sub->add_option("--size", args->request.size, "Image size WxH, overriding the scenes'");
-    sub->add_option("--repeat", args->request.repeat, "Interleaved timing rounds per method (median)")
+    sub->add_option("--repeat", args->request.repeat,
+                    "Interleaved timing rounds per method (median)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    sub->add_option("--profile", args->request.profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", args->request.profile, profile_option_help())
+        ->capture_default_str();
     sub->add_option("--threshold", args->request.threshold,
                     "fig3.1 and accuracy: the hybrid's threshold (number, paper or calibrated)")
         ->capture_default_str();

@@ -176,8 +176,8 @@ void calibrate_hybrid(const CalibrateRequest& r, CalibrationOutcome& out) {
     check_range("--tolerance", r.tolerance, 0.0, 100.0);
     const ExperimentSettings& s = out.settings;
     const auto ramp = threshold_ramp(r.from, r.to, r.steps);
-    const Calibration& c = out.calibration = calibrate_stably(
-        s, [&] { return experiments::calibrate_hybrid(s, ramp, r.tolerance); });
+    const Calibration& c = out.calibration =
+        calibrate_stably(s, [&] { return experiments::calibrate_hybrid(s, ramp, r.tolerance); });
     const double zbuffer = c.reference_ms, chosen_ms = c.total.at(c.chosen);
     nlohmann::json& details = out.details;
     details["scenes"] = s.scenes;

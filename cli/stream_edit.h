@@ -41,7 +41,7 @@ struct DiffOutcome {
     std::string header_a, header_b;  // header_line() of each
     std::vector<FrameDiff> frames;
     uint64_t differing_frames = 0;
-    std::optional<uint64_t> image_frame;  // the frame whose diff image was written
+    std::optional<uint64_t> image_frame;         // the frame whose diff image was written
     std::optional<protocol::StreamError> error;  // what ended the comparison early
 };
 // With `image` non-empty, writes the first differing frame's diff image there (differing

@@ -49,8 +49,7 @@ int run_trim(const TrimArgs& args) {
     if (out.result == Result::Damaged) {
         report_stream_error(*out.error);
         std::cerr << fmt::format(
-            "fb89: {}: not written (--salvage keeps what was read before the error)\n",
-            out.output);
+            "fb89: {}: not written (--salvage keeps what was read before the error)\n", out.output);
         return kBadInput;
     }
     Console console{args.quiet};
@@ -76,7 +75,8 @@ void register_trim(CLI::App& app, int& exit_code) {
                     "Call set to keep, e.g. '0-1000', '/span', '@calls.txt' (docs/PROTOCOL.md)");
     sub->add_option("--frames", args->request.frames,
                     "Frames to keep, by position in the stream from 0, e.g. '0-3,7'");
-    sub->add_option("-o,--output", args->request.output, "Output stream file ('-' for stdout)")->required();
+    sub->add_option("-o,--output", args->request.output, "Output stream file ('-' for stdout)")
+        ->required();
     sub->add_flag("--salvage", args->request.salvage,
                   "A truncated or corrupt input is a warning, not an error: keep what was read "
                   "before the damage, closed so that it replays, and exit 0");

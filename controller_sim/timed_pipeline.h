@@ -31,10 +31,10 @@ struct TimedCommand {
 
 // One frame's figures.
 struct PipelineFigures {
-    double frame_us = 0;           // set-up start to the last command done (or the host's end)
-    double host_us = 0;            // the host's own work: its end less its stalls
-    double host_stalled_us = 0;    // waiting for the bus or for room in the buffer
-    uint64_t stalls = 0;           // commands the host waited on
+    double frame_us = 0;         // set-up start to the last command done (or the host's end)
+    double host_us = 0;          // the host's own work: its end less its stalls
+    double host_stalled_us = 0;  // waiting for the bus or for room in the buffer
+    uint64_t stalls = 0;         // commands the host waited on
     double bus_busy_us = 0;
     double controller_busy_us = 0;
     double controller_idle_us = 0;  // within the frame, waiting for commands

@@ -53,7 +53,9 @@ ObserveProgress::ObserveProgress(ProgressObserver observer)
     current_observer = m_observer ? &m_observer : nullptr;
 }
 
-ObserveProgress::~ObserveProgress() { current_observer = m_before; }
+ObserveProgress::~ObserveProgress() {
+    current_observer = m_before;
+}
 
 ProgressLine::ProgressLine(bool on) : m_on(on), m_observer(current_observer) {}
 

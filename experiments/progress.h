@@ -25,8 +25,8 @@ std::size_t terminal_columns();
 // Someone other than a person at a terminal following long work (the Python module's
 // progress= callbacks): told of each piece of work as it starts (done = total = 0) and of each
 // step, as the line would show them. It may throw to stop the work.
-using ProgressObserver = std::function<void(const std::string& what, uint64_t done,
-                                            uint64_t total, std::string_view unit)>;
+using ProgressObserver = std::function<void(const std::string& what, uint64_t done, uint64_t total,
+                                            std::string_view unit)>;
 
 // Sets the observer of the progress lines this thread makes while it lives (each line keeps
 // its observer, whatever thread then steps it); the one before is put back after.

@@ -56,8 +56,7 @@ PeriodFrame period_frame(GuestOutcome&& outcome, const period::HostProfile& prof
 }  // namespace
 
 controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
-                                             const std::vector<double>& send_us,
-                                             double host_end_us,
+                                             const std::vector<double>& send_us, double host_end_us,
                                              const controller::CostProfile& profile,
                                              uint64_t buffer_bytes) {
     controller::Controller ctl(profile);

@@ -84,8 +84,7 @@ RenderResult run_render_job(const RenderJob& job);
 // A frame's commands through the pipeline in time under `profile`: command i sent at
 // send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`.
 controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
-                                             const std::vector<double>& send_us,
-                                             double host_end_us,
+                                             const std::vector<double>& send_us, double host_end_us,
                                              const controller::CostProfile& profile,
                                              uint64_t buffer_bytes = controller::kUnboundedBuffer);
 

@@ -15,8 +15,12 @@ namespace detail {
 inline std::atomic<bool> stop_flag{false};
 }
 
-inline void request_stop() noexcept { detail::stop_flag.store(true, std::memory_order_relaxed); }
-inline void clear_stop() noexcept { detail::stop_flag.store(false, std::memory_order_relaxed); }
+inline void request_stop() noexcept {
+    detail::stop_flag.store(true, std::memory_order_relaxed);
+}
+inline void clear_stop() noexcept {
+    detail::stop_flag.store(false, std::memory_order_relaxed);
+}
 inline bool stop_requested() noexcept {
     return detail::stop_flag.load(std::memory_order_relaxed);
 }

@@ -3,7 +3,6 @@
 #include <cstring>
 #include <variant>
 
-
 namespace py = pybind11;
 
 namespace fb89::python {
@@ -46,7 +45,7 @@ CommandRow row_of(const protocol::Command& c) {
     switch (c.index()) {
         case 0: {
             const auto& f = *std::get_if<protocol::FrameBegin>(&c);
-            return {1, 0, 0, f.width, f.height, f.background.r, f.background.g, f.background.b,
+            return {1,      0, 0, f.width, f.height, f.background.r, f.background.g, f.background.b,
                     f.frame};
         }
         case 1: {
@@ -55,8 +54,8 @@ CommandRow row_of(const protocol::Command& c) {
         }
         case 2: {
             const auto& s = *std::get_if<protocol::DrawSpan>(&c);
-            return {3, s.x0, s.y, static_cast<uint32_t>(s.x1 - s.x0 + 1), 1, s.color.r, s.color.g,
-                    s.color.b, 0};
+            return {3,         s.x0,      s.y, static_cast<uint32_t>(s.x1 - s.x0 + 1), 1, s.color.r,
+                    s.color.g, s.color.b, 0};
         }
         case 3:
             return {4, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -68,7 +67,8 @@ CommandRow row_of(const protocol::Command& c) {
 }  // namespace
 
 void CommandRows::add(const protocol::Command& c) {
-    if (const auto* m = std::get_if<protocol::Marker>(&c)) markers.emplace_back(rows.size(), m->text);
+    if (const auto* m = std::get_if<protocol::Marker>(&c))
+        markers.emplace_back(rows.size(), m->text);
     rows.push_back(row_of(c));
 }
 
@@ -97,8 +97,8 @@ void CommandRows::replay_into(protocol::CommandSink& sink) const {
                 break;
             case 3:
                 sink.draw_span(protocol::DrawSpan{
-                    row.y, row.x,
-                    static_cast<int32_t>(static_cast<uint32_t>(row.x) + row.w - 1u), colour});
+                    row.y, row.x, static_cast<int32_t>(static_cast<uint32_t>(row.x) + row.w - 1u),
+                    colour});
                 break;
             case 4: {
                 while (marker != markers.end() && marker->first < i)

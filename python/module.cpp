@@ -47,7 +47,7 @@ struct RenderOutcome {
     std::string scene, method, host, controller;
     experiments::RenderResult result;
     controller::Framebuffer image, ids;
-    std::vector<int32_t> face_ids;  // ids as face ids, -1 for the background
+    std::vector<int32_t> face_ids;       // ids as face ids, -1 for the background
     std::shared_ptr<StreamFile> stream;  // the frame's commands
     nlohmann::json host_times, counters, controller_figures, split, period, pipeline;
 };
@@ -280,20 +280,19 @@ PYBIND11_MODULE(_fb89, m) {
                    std::to_string(r.result.screen.height) + " on " + r.host + ">";
         });
 
-    m.def(
-        "_render",
-        [](const std::string& scene, const std::string& method, const std::string& size,
-           const std::string& host, const std::string& controller, int repeat,
-           const std::optional<std::string>& threshold,
-           const std::optional<std::string>& beam_threshold,
-           const std::optional<int>& reflections) {
-            std::shared_ptr<RenderOutcome> out;
-            run_work(py::bool_(false), [&](bool) {
-                out = render(scene, method, size, host, controller, repeat, threshold,
-                             beam_threshold, reflections);
-            });
-            return out;
-        });
+    m.def("_render",
+          [](const std::string& scene, const std::string& method, const std::string& size,
+             const std::string& host, const std::string& controller, int repeat,
+             const std::optional<std::string>& threshold,
+             const std::optional<std::string>& beam_threshold,
+             const std::optional<int>& reflections) {
+              std::shared_ptr<RenderOutcome> out;
+              run_work(py::bool_(false), [&](bool) {
+                  out = render(scene, method, size, host, controller, repeat, threshold,
+                               beam_threshold, reflections);
+              });
+              return out;
+          });
     // For bench/python_overhead.py: the same render done from C++, `rounds` times, each timed
     // here; what fb89.render() adds is its time less this.
     m.def("_bench_render", [](const std::string& scene, const std::string& method, int rounds) {

@@ -70,12 +70,14 @@ std::shared_ptr<StreamFile> open_stream(const std::string& path,
 }
 
 // Rows from a structured array of fb89.COMMAND_DTYPE (or one that casts to it by field).
-std::shared_ptr<StreamFile> stream_from(const py::array& commands, const protocol::Properties& header,
-                                        const std::vector<std::pair<std::size_t, std::string>>& markers) {
+std::shared_ptr<StreamFile> stream_from(
+    const py::array& commands, const protocol::Properties& header,
+    const std::vector<std::pair<std::size_t, std::string>>& markers) {
     const py::dtype want = command_dtype();
     py::array rows = commands;
     if (!rows.dtype().equal(want)) rows = commands.attr("astype")(want);
-    if (rows.ndim() != 1) throw py::value_error("commands: a 1-D structured array of fb89.COMMAND_DTYPE");
+    if (rows.ndim() != 1)
+        throw py::value_error("commands: a 1-D structured array of fb89.COMMAND_DTYPE");
     rows = py::array::ensure(rows, py::array::c_style);
     auto out = std::make_shared<StreamFile>();
     out->header = header;
@@ -119,19 +121,24 @@ void save_rows(const StreamFile& s, const std::string& path) {
 void register_streams(py::module_& m) {
     m.attr("COMMAND_DTYPE") = command_dtype();
 
-    py::class_<StreamFile, std::shared_ptr<StreamFile>>(m, "Stream", R"(A command stream (docs/PROTOCOL.md): its header, and its commands as a numpy structured
+    py::class_<StreamFile, std::shared_ptr<StreamFile>>(
+        m, "Stream",
+        R"(A command stream (docs/PROTOCOL.md): its header, and its commands as a numpy structured
 array of fb89.COMMAND_DTYPE, one row a command, with the markers' text beside them.
 
 Stream.open(path) reads a file; Stream(commands, header=None, markers=None) makes one from an
 array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.stream.)")
-        .def(py::init([](const py::array& commands, const std::optional<protocol::Properties>& header,
-                         const std::optional<std::vector<std::pair<std::size_t, std::string>>>& markers) {
-                 return stream_from(commands, header.value_or(protocol::Properties{}),
-                                    markers.value_or(std::vector<std::pair<std::size_t, std::string>>{}));
-             }),
-             py::arg("commands"), py::arg("header") = py::none(), py::arg("markers") = py::none(),
-             "A stream of these commands (copied), its header properties, and the MARKER rows' "
-             "text as (row, text) pairs.")
+        .def(
+            py::init(
+                [](const py::array& commands, const std::optional<protocol::Properties>& header,
+                   const std::optional<std::vector<std::pair<std::size_t, std::string>>>& markers) {
+                    return stream_from(
+                        commands, header.value_or(protocol::Properties{}),
+                        markers.value_or(std::vector<std::pair<std::size_t, std::string>>{}));
+                }),
+            py::arg("commands"), py::arg("header") = py::none(), py::arg("markers") = py::none(),
+            "A stream of these commands (copied), its header properties, and the MARKER rows' "
+            "text as (row, text) pairs.")
         .def_static(
             "open",
             [](const std::string& path, const std::optional<std::string>& calls) {
@@ -219,33 +226,31 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
         },
         py::arg("stream"), py::arg("profile"));
 
-    m.def(
-        "_trim",
-        [](const std::string& input, const std::string& output, const std::string& calls,
-           const std::string& frames, bool salvage) {
-            cli::TrimRequest r{input, output, calls, frames, salvage};
-            cli::TrimOutcome out;
-            {
-                py::gil_scoped_release unlocked;
-                out = cli::trim_stream(r);
-            }
-            using Result = cli::TrimOutcome::Result;
-            const std::string said = out.error ? std::string("; ") + out.error->what() : "";
-            if (out.result == Result::NothingMatched)
-                throw cli::UsageError("trim: the selection matched no command of " + input + "; " +
-                                      out.output + " not written" + said);
-            if (out.result == Result::Damaged)
-                throw protocol::StreamError(std::string(out.error->what()) + "; " + out.output +
-                                                " not written (salvage=True keeps what was read "
-                                                "before the error)",
-                                            out.error->offset(), out.error->command());
-            py::dict d;
-            d["path"] = out.output;
-            d["commands"] = out.commands_kept;
-            d["frames"] = out.frames_kept;
-            d["salvaged"] = out.error ? py::object(py::str(out.error->what())) : py::object(py::none());
-            return d;
-        });
+    m.def("_trim", [](const std::string& input, const std::string& output, const std::string& calls,
+                      const std::string& frames, bool salvage) {
+        cli::TrimRequest r{input, output, calls, frames, salvage};
+        cli::TrimOutcome out;
+        {
+            py::gil_scoped_release unlocked;
+            out = cli::trim_stream(r);
+        }
+        using Result = cli::TrimOutcome::Result;
+        const std::string said = out.error ? std::string("; ") + out.error->what() : "";
+        if (out.result == Result::NothingMatched)
+            throw cli::UsageError("trim: the selection matched no command of " + input + "; " +
+                                  out.output + " not written" + said);
+        if (out.result == Result::Damaged)
+            throw protocol::StreamError(std::string(out.error->what()) + "; " + out.output +
+                                            " not written (salvage=True keeps what was read "
+                                            "before the error)",
+                                        out.error->offset(), out.error->command());
+        py::dict d;
+        d["path"] = out.output;
+        d["commands"] = out.commands_kept;
+        d["frames"] = out.frames_kept;
+        d["salvaged"] = out.error ? py::object(py::str(out.error->what())) : py::object(py::none());
+        return d;
+    });
 
     m.def("_diff", [](const std::string& a, const std::string& b, const std::string& image) {
         cli::DiffOutcome out;
@@ -271,7 +276,8 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
         py::dict d;
         d["frames"] = frames;
         d["differing_frames"] = out.differing_frames;
-        d["image_frame"] = out.image_frame ? py::object(py::int_(*out.image_frame)) : py::object(py::none());
+        d["image_frame"] =
+            out.image_frame ? py::object(py::int_(*out.image_frame)) : py::object(py::none());
         return d;
     });
 }

@@ -19,7 +19,9 @@ namespace {
 // never outlives it (two threads' calls stop together: Ctrl-C means stop).
 std::atomic<int> calls_under_way{0};
 
-void on_sigint(int) { period::request_stop(); }
+void on_sigint(int) {
+    period::request_stop();
+}
 
 // While alive on the main thread, SIGINT asks fb89's work to stop instead of waiting for
 // Python's handler, which cannot run until the call returns; the handler before is put
@@ -60,7 +62,7 @@ void run_work(const py::object& progress, const std::function<void(bool)>& work)
         line_on = progress.cast<bool>();
     } else if (PyCallable_Check(progress.ptr())) {
         observer = [&progress, &raised](const std::string& what, uint64_t done, uint64_t total,
-                                      std::string_view unit) {
+                                        std::string_view unit) {
             py::gil_scoped_acquire gil;
             try {
                 progress(what, done, total, std::string(unit));

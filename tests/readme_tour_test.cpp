@@ -107,8 +107,7 @@ std::string skip_reason(const std::string& command) {
         return "an hour of the commands run here, at full size";
     if (command.rfind("cmake --install", 0) == 0)
         return "ListCommand.AnInstalledPrefixRunsOnItsOwn installs and runs a prefix";
-    if (command.rfind("parallel", 0) == 0 &&
-        !fb89::testing::on_path("parallel"))
+    if (command.rfind("parallel", 0) == 0 && !fb89::testing::on_path("parallel"))
         return "GNU parallel is not installed (scripts/bootstrap installs it)";
     if (command.rfind("fb89 view", 0) == 0)
         return "needs a display (ViewCommand.* run it under xvfb)";

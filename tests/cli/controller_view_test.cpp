@@ -15,8 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(ControllerView, ShowsALiveStreamAndKeepsItsFrame) {
-    if (!fb89::testing::on_path("xvfb-run"))
-        GTEST_SKIP() << "xvfb-run is not installed";
+    if (!fb89::testing::on_path("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
     const fs::path dir = fb89::testing::test_dir();
     const std::string sock = "/tmp/fb89-view-test-" + std::to_string(getpid()) + ".sock";
     const std::string fb89 = FB89_CLI_PATH;

@@ -102,18 +102,17 @@ TEST(ProgressLine, ALineWiderThanTheTerminalLosesItsStartNotItsCount) {
     EXPECT_EQ(fit_to_width("abc", 1), ".");
 }
 
-
 TEST(ProgressLine, AnObserverHearsEveryStartAndStepFromWhicheverThreadSteps) {
     std::vector<std::string> heard;
     std::mutex mutex;
     CapturedCerr err;
     {
-        ObserveProgress observe([&](const std::string& what, uint64_t done, uint64_t total,
-                                    std::string_view unit) {
-            std::lock_guard lock(mutex);
-            heard.push_back(what + " " + std::to_string(done) + "/" + std::to_string(total) + " " +
-                            std::string(unit));
-        });
+        ObserveProgress observe(
+            [&](const std::string& what, uint64_t done, uint64_t total, std::string_view unit) {
+                std::lock_guard lock(mutex);
+                heard.push_back(what + " " + std::to_string(done) + "/" + std::to_string(total) +
+                                " " + std::string(unit));
+            });
         ProgressLine line(false);  // not shown: the observer hears it all the same
         line.start("runs");
         std::thread([&] { line.step(1, 2, "emulated runs"); }).join();

@@ -29,8 +29,8 @@ TEST(RenderJobPipeline, NativelyTheFrameLiesBetweenTheLargerSideAndTheirSum) {
         // last (timed) round ran longer than the median
         EXPECT_GE(p.host_us + 1e-9, host_us);
         EXPECT_GE(p.frame_us + 1e-9, std::max(p.host_us, p.controller_busy_us));
-        EXPECT_LE(p.frame_us, p.host_us + p.host_stalled_us + p.bus_busy_us +
-                                  p.controller_busy_us + 1e-6);
+        EXPECT_LE(p.frame_us,
+                  p.host_us + p.host_stalled_us + p.bus_busy_us + p.controller_busy_us + 1e-6);
         EXPECT_NEAR(p.controller_idle_us, p.frame_us - p.controller_busy_us, 1e-9);
         EXPECT_GT(p.controller_utilization(), 0);
         EXPECT_LE(p.controller_utilization(), 1 + 1e-12);

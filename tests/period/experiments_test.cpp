@@ -49,7 +49,8 @@ TEST(PeriodExperiments, EmittedJobsRunByGnuParallelJoinIntoTheSameTable) {
     for (std::string line; std::getline(lines, line);)
         n += !line.empty();
     EXPECT_EQ(n, 10);
-    ASSERT_EQ(std::system(("parallel --will-cite -j 2 < " + jobs + " > " + jobs + ".out").c_str()), 0);
+    ASSERT_EQ(std::system(("parallel --will-cite -j 2 < " + jobs + " > " + jobs + ".out").c_str()),
+              0);
     // join
     CliRun join = run_fb89(kSweep + merged + " --results " + results);
     ASSERT_EQ(join.exit_code, 0) << join.err;

@@ -29,8 +29,9 @@ int save_chart(const std::string& target, const std::string& redirect = "") {
 }
 
 bool have_matplotlib() {
-    return std::system("/usr/bin/python3 -c 'import importlib.util as u, sys; "
-                       "sys.exit(u.find_spec(\"matplotlib\") is None)'") == 0;
+    return std::system(
+               "/usr/bin/python3 -c 'import importlib.util as u, sys; "
+               "sys.exit(u.find_spec(\"matplotlib\") is None)'") == 0;
 }
 
 TEST(ChartOutput, ARegularFileIsReplacedWholeWithNoTemporaryLeft) {
