@@ -150,16 +150,21 @@ double overlap(double frame_ms, double host_ms, double controller_ms) {
     return smaller > 0 ? (host_ms + controller_ms - frame_ms) / smaller : 1;
 }
 
+std::string buffer_text(uint64_t bytes) {
+    return bytes == controller::kUnboundedBuffer ? std::string("unbounded")
+                                                 : fmt::format("{} bytes", bytes);
+}
+
 }  // namespace
 
 std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
                           double controller_ms) {
     const double frame_ms = p.frame_us / 1e3;
     return fmt::format(
-        "pipeline (send times measured, buffer unbounded): frame {:.3f} ms (max {:.3f}, sum "
+        "pipeline (send times measured, buffer {}): frame {:.3f} ms (max {:.3f}, sum "
         "{:.3f}; {:.1f}% of the smaller side overlapped), host stalled {:.3f} ms, utilization "
         "host {:.1f}% controller {:.1f}%\n",
-        frame_ms, std::max(host_ms, controller_ms), host_ms + controller_ms,
+        buffer_text(p.buffer_bytes), frame_ms, std::max(host_ms, controller_ms), host_ms + controller_ms,
         100 * overlap(frame_ms, host_ms, controller_ms), p.host_stalled_us / 1e3,
         100 * p.host_utilization(), 100 * p.controller_utilization());
 }
@@ -168,7 +173,9 @@ nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_m
                              double controller_ms) {
     const double frame_ms = p.frame_us / 1e3;
     return {{"send_times", "measured"},
-            {"buffer_bytes", "unbounded"},
+            {"buffer_bytes", p.buffer_bytes == controller::kUnboundedBuffer
+                                 ? nlohmann::json("unbounded")
+                                 : nlohmann::json(p.buffer_bytes)},
             {"frame_ms", frame_ms},
             {"max_ms", std::max(host_ms, controller_ms)},
             {"sum_ms", host_ms + controller_ms},

@@ -5,6 +5,7 @@
 // the socket is opened only after the host has finished, so no host time includes it.
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,6 +39,7 @@ namespace {
 
 struct RenderArgs {
     std::string scene;
+    std::string buffer;  // "": the profile's command buffer
     std::string method = "zbuffer";
     std::string window_test = "area";
     std::string threshold = "calibrated";
@@ -266,6 +268,22 @@ int run_render(const RenderArgs& args) {
     job.progress = !args.quiet && isatty(STDERR_FILENO);
     job.period = make_period_runs(HostArgs{args.host, 1, "", ""});
     job.check_frames = true;
+    if (args.buffer == "unbounded") {
+        job.buffer_bytes = controller::kUnboundedBuffer;
+    } else if (!args.buffer.empty()) {
+        uint64_t bytes = 0;
+        const char* end = args.buffer.data() + args.buffer.size();
+        const auto [at, ec] = std::from_chars(args.buffer.data(), end, bytes);
+        if (ec != std::errc() || at != end || bytes == 0 || bytes > (uint64_t{1} << 40))
+            throw UsageError("--buffer: '" + args.buffer +
+                             "': a whole number of bytes (1 to 2^40) or unbounded");
+        for (const uint32_t largest : controller::load_profile(args.profile).bytes)
+            if (largest > bytes)
+                throw UsageError(fmt::format(
+                    "--buffer: {} bytes cannot hold a command of {} ({} bytes)", bytes,
+                    args.profile, largest));
+        job.buffer_bytes = bytes;
+    }
     const experiments::RenderResult result = experiments::run_render_job(job);
     const experiments::MethodRun& run = result.runs.front();
     for (const auto& note : result.scene.notes)
@@ -392,6 +410,9 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--stats", args->stats,
                     "Write host and controller figures as JSON ('-' for stdout)");
     sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
+    sub->add_option("--buffer", args->buffer,
+                    "The controller's command buffer in bytes, or unbounded, for the pipeline in "
+                    "time (default: the profile's; docs/COST_MODEL.md)");
     sub->add_option("--host", args->host,
                     "Host the frame is timed on: native (this machine), sun3-60, sun3-260 or a "
                     ".json host profile; a 1989 host runs fb89's host code on an emulated "

@@ -31,10 +31,13 @@ constexpr double kMinRate = 1, kMaxRate = 1e12;
 // The value of B_bus_bytes_per_s for a bus that takes no time.
 constexpr const char* kUnlimited = "unlimited";
 
-constexpr std::array<std::string_view, 15> kKnownKeys = {
+// The value of command_buffer_bytes for a buffer without a bound.
+constexpr const char* kUnbounded = "unbounded";
+
+constexpr std::array<std::string_view, 16> kKnownKeys = {
     "name",          "description", "f_cyc_hz", "bpp",          "C_cmd",      "C_setup",
     "C_op",          "C_row",       "span_as",  "C_line_setup", "C_line_pix", "B_bus_bytes_per_s",
-    "t_handshake_s", "bytes",       "sources"};
+    "t_handshake_s", "bytes",       "sources",  "command_buffer_bytes"};
 
 bool is_known_key(std::string_view key) {
     return std::find(kKnownKeys.begin(), kKnownKeys.end(), key) != kKnownKeys.end();
@@ -193,6 +196,20 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     p.b_bus_bytes_per_s = r.bandwidth("B_bus_bytes_per_s");
     p.t_handshake_s = r.number_in("t_handshake_s", true, 1e-15, 1.0);
     read_bytes(r, p);
+    if (auto it = j.find("command_buffer_bytes"); it != j.end()) {
+        const uint32_t largest = *std::max_element(p.bytes.begin(), p.bytes.end());
+        if (it->is_string() && it->get<std::string>() == kUnbounded) {
+            p.command_buffer_bytes = kUnboundedBuffer;
+        } else if (!it->is_number_unsigned() || it->get<uint64_t>() < largest ||
+                   it->get<uint64_t>() > (uint64_t{1} << 40)) {
+            r.fail("command_buffer_bytes",
+                   fmt::format("expected \"{}\" or a whole number of bytes from the largest "
+                               "command's {} to 2^40, got {}",
+                               kUnbounded, largest, it->dump()));
+        } else {
+            p.command_buffer_bytes = it->get<uint64_t>();
+        }
+    }
     read_sources(r, j, p);
     return p;
 }
@@ -216,6 +233,9 @@ nlohmann::json CostProfile::to_json() const {
                  std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
                 {"t_handshake_s", t_handshake_s},
                 {"bytes", bytes_json},
+                {"command_buffer_bytes", command_buffer_bytes == kUnboundedBuffer
+                                             ? json(kUnbounded)
+                                             : json(command_buffer_bytes)},
                 {"sources", sources}};
 }
 

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <span>
 #include <string>
@@ -21,6 +22,10 @@
 #include "protocol/command.h"
 
 namespace fb89::controller {
+
+// A command buffer without a bound: the host never waits for room (the pipeline of protocol
+// version 1).
+inline constexpr uint64_t kUnboundedBuffer = std::numeric_limits<uint64_t>::max();
 
 // How DRAW_SPAN is tiled: as a vector draw (the user's card) or as a one-row fill.
 enum class SpanAs { Line, Fill };
@@ -43,6 +48,10 @@ struct CostProfile {
     // Bytes a command occupies on the modelled bus, by protocol::opcode_index. Fixed per
     // opcode whatever the file encoding; 0 means the command is not sent at all.
     std::array<uint32_t, protocol::kOpcodeCount> bytes{};
+    // The controller's command buffer, in bytes (the pipeline in time, timed_pipeline.h):
+    // "command_buffer_bytes", a number at least the largest command's bytes, or "unbounded"
+    // (also when the field is absent).
+    uint64_t command_buffer_bytes = kUnboundedBuffer;
     // Where each figure comes from: field name -> "[EMU] ..." or "[EST] ...".
     std::map<std::string, std::string> sources;
 

@@ -55,6 +55,7 @@ double TimedPipeline::push(const TimedCommand& c) {
 
 PipelineFigures TimedPipeline::finish(double host_end_us) {
     PipelineFigures f = m_figures;
+    f.buffer_bytes = m_capacity;
     const double host_end = std::max(host_end_us, m_last_send_us) + m_shift_us;
     f.frame_us = std::max(host_end, m_controller_free_us);
     f.host_us = host_end - f.host_stalled_us;

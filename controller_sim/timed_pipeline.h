@@ -15,11 +15,10 @@
 
 #include <cstdint>
 #include <deque>
-#include <limits>
+
+#include "controller_sim/profile.h"
 
 namespace fb89::controller {
-
-inline constexpr uint64_t kUnboundedBuffer = std::numeric_limits<uint64_t>::max();
 
 // One command as the pipeline sees it.
 struct TimedCommand {
@@ -39,6 +38,7 @@ struct PipelineFigures {
     double controller_busy_us = 0;
     double controller_idle_us = 0;  // within the frame, waiting for commands
     uint64_t high_water_bytes = 0;  // the most the buffer held
+    uint64_t buffer_bytes = 0;      // its size (kUnboundedBuffer: none)
     double host_utilization() const { return frame_us > 0 ? host_us / frame_us : 0; }
     double controller_utilization() const {
         return frame_us > 0 ? controller_busy_us / frame_us : 0;

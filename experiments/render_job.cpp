@@ -61,6 +61,11 @@ controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& comma
                                              uint64_t buffer_bytes) {
     controller::Controller ctl(profile);
     controller::TimedPipeline pipe(buffer_bytes);
+    for (const uint32_t bytes : profile.bytes)
+        if (bytes > buffer_bytes)
+            throw std::invalid_argument(
+                "--buffer: " + std::to_string(buffer_bytes) + " bytes is less than a command of " +
+                profile.name + " (up to " + std::to_string(bytes) + " bytes)");
     const auto& all = commands.commands();
     for (std::size_t i = 0; i < all.size(); ++i) {
         ctl.execute(all[i]);
@@ -161,7 +166,8 @@ RenderResult run_render_job(const RenderJob& job) {
         for (double& t : sends)
             t += setup_us;
         sends.front() = 0;  // FRAME_BEGIN: the clear starts as the host sets up
-        run.pipeline = pipeline_figures(run.commands, sends, run.host_frame_ms * 1e3, profile);
+        run.pipeline = pipeline_figures(run.commands, sends, run.host_frame_ms * 1e3, profile,
+                                        job.buffer_bytes.value_or(profile.command_buffer_bytes));
     }
     return result;
 }

@@ -39,6 +39,8 @@ struct RenderJob {
     std::shared_ptr<PeriodRuns> period;
     // On a 1989 host: set each emulated run's frame against the native one's, pixel for pixel.
     bool check_frames = false;
+    // The controller's command buffer in the pipeline in time: none given, the profile's.
+    std::optional<uint64_t> buffer_bytes;
 };
 
 // A method's run on the 1989 host.
@@ -66,8 +68,8 @@ struct MethodRun {
     // Natively: the frame through the pipeline in time (controller_sim/timed_pipeline.h) from
     // the commands' measured send times -- the set-up's time, then each command's packet's
     // time in the last hidden-surface round; FRAME_BEGIN sent as the set-up starts, so that
-    // the clear overlaps it -- with an unbounded command buffer. None on a 1989 host (its
-    // send times are not yet counted).
+    // the clear overlaps it -- with the job's command buffer. None on a 1989 host (its send
+    // times are not yet counted).
     std::optional<controller::PipelineFigures> pipeline;
 };
 

@@ -50,6 +50,33 @@ TEST(RenderCommand, WritesImageIdsStreamAndStats) {
     EXPECT_TRUE(j["controller"].is_object());
 }
 
+// The pipeline in time: the profile's buffer (unbounded), or --buffer's; a buffer too small for
+// a command, or not a number, is a usage error naming --buffer.
+TEST(RenderCommand, TheBufferBoundsThePipelineInTime) {
+    const fs::path stats = scratch("buffer.json");
+    CliRun r = fb89("render " + kScenes + "/A.json --size 128x98 --stats " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("pipeline (send times measured, buffer unbounded): frame "),
+              std::string::npos)
+        << r.out;
+    nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    EXPECT_EQ(j["pipeline"]["buffer_bytes"], "unbounded");
+    const uint64_t unbounded_high = j["pipeline"]["buffer_high_water_bytes"].get<uint64_t>();
+    r = fb89("render " + kScenes + "/A.json --size 128x98 --buffer 64 --stats " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("buffer 64 bytes"), std::string::npos) << r.out;
+    j = nlohmann::json::parse(slurp(stats));
+    EXPECT_EQ(j["pipeline"]["buffer_bytes"], 64);
+    EXPECT_LE(j["pipeline"]["buffer_high_water_bytes"].get<uint64_t>(), 64u);
+    EXPECT_GT(unbounded_high, 64u);  // the host sends faster than the controller draws
+    EXPECT_GT(j["pipeline"]["host_stalls"].get<uint64_t>(), 0u);
+    for (const char* bad : {"5", "lots", "0"}) {
+        r = fb89("render " + kScenes + "/A.json --size 128x98 --buffer " + std::string(bad));
+        EXPECT_EQ(r.exit_code, 2) << bad;
+        EXPECT_NE(r.err.find("--buffer"), std::string::npos) << r.err;
+    }
+}
+
 // The kernels' instruction set: --isa and $FB89_ISA force one, --stats says which ran, every
 // one this machine runs counts the same; a name it does not know is a usage error naming it.
 TEST(RenderCommand, TheKernelsInstructionSetIsChosenReportedAndChecked) {

@@ -77,8 +77,28 @@ TEST(Profile, EveryBuiltInFigureCitesEmuOrEstSource) {
         if (name == "ideal") continue;
         for (const char* field :
              {"f_cyc_hz", "bpp", "C_cmd", "C_setup", "C_op", "C_row", "span_as", "C_line_setup",
-              "C_line_pix", "B_bus_bytes_per_s", "t_handshake_s", "bytes"})
+              "C_line_pix", "B_bus_bytes_per_s", "t_handshake_s", "bytes", "command_buffer_bytes"})
             EXPECT_TRUE(p.sources.contains(field)) << name << " has no source for " << field;
+    }
+}
+
+TEST(Profile, TheCommandBufferIsUnboundedOrHoldsTheLargestCommand) {
+    EXPECT_EQ(default_profile().command_buffer_bytes, kUnboundedBuffer);
+    json j = default_profile_json();
+    j.erase("command_buffer_bytes");
+    EXPECT_EQ(parse_profile(j.dump(), "absent").command_buffer_bytes, kUnboundedBuffer);
+    j["command_buffer_bytes"] = 4096;
+    EXPECT_EQ(parse_profile(j.dump(), "4 KB").command_buffer_bytes, 4096u);
+    EXPECT_EQ(parse_profile(j.dump(), "4 KB").to_json()["command_buffer_bytes"], 4096);
+    for (const json& bad : {json(11), json(-1), json(1.5), json("lots")}) {  // FILL_RECT is 12
+        j["command_buffer_bytes"] = bad;
+        try {
+            parse_profile(j.dump(), "bad");
+            ADD_FAILURE() << bad.dump();
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("command_buffer_bytes"), std::string::npos)
+                << e.what();
+        }
     }
 }
 
