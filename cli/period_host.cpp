@@ -164,9 +164,9 @@ std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
         "pipeline (send times measured, buffer {}): frame {:.3f} ms (max {:.3f}, sum "
         "{:.3f}; {:.1f}% of the smaller side overlapped), host stalled {:.3f} ms, utilization "
         "host {:.1f}% controller {:.1f}%\n",
-        buffer_text(p.buffer_bytes), frame_ms, std::max(host_ms, controller_ms), host_ms + controller_ms,
-        100 * overlap(frame_ms, host_ms, controller_ms), p.host_stalled_us / 1e3,
-        100 * p.host_utilization(), 100 * p.controller_utilization());
+        buffer_text(p.buffer_bytes), frame_ms, std::max(host_ms, controller_ms),
+        host_ms + controller_ms, 100 * overlap(frame_ms, host_ms, controller_ms),
+        p.host_stalled_us / 1e3, 100 * p.host_utilization(), 100 * p.controller_utilization());
 }
 
 nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_ms,

@@ -279,9 +279,9 @@ int run_render(const RenderArgs& args) {
                              "': a whole number of bytes (1 to 2^40) or unbounded");
         for (const uint32_t largest : controller::load_profile(args.profile).bytes)
             if (largest > bytes)
-                throw UsageError(fmt::format(
-                    "--buffer: {} bytes cannot hold a command of {} ({} bytes)", bytes,
-                    args.profile, largest));
+                throw UsageError(
+                    fmt::format("--buffer: {} bytes cannot hold a command of {} ({} bytes)", bytes,
+                                args.profile, largest));
         job.buffer_bytes = bytes;
     }
     const experiments::RenderResult result = experiments::run_render_job(job);

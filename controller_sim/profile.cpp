@@ -35,9 +35,10 @@ constexpr const char* kUnlimited = "unlimited";
 constexpr const char* kUnbounded = "unbounded";
 
 constexpr std::array<std::string_view, 16> kKnownKeys = {
-    "name",          "description", "f_cyc_hz", "bpp",          "C_cmd",      "C_setup",
-    "C_op",          "C_row",       "span_as",  "C_line_setup", "C_line_pix", "B_bus_bytes_per_s",
-    "t_handshake_s", "bytes",       "sources",  "command_buffer_bytes"};
+    "name",          "description",  "f_cyc_hz",   "bpp",
+    "C_cmd",         "C_setup",      "C_op",       "C_row",
+    "span_as",       "C_line_setup", "C_line_pix", "B_bus_bytes_per_s",
+    "t_handshake_s", "bytes",        "sources",    "command_buffer_bytes"};
 
 bool is_known_key(std::string_view key) {
     return std::find(kKnownKeys.begin(), kKnownKeys.end(), key) != kKnownKeys.end();
@@ -218,25 +219,25 @@ nlohmann::json CostProfile::to_json() const {
     json bytes_json = json::object();
     for (int i = 0; i < protocol::kOpcodeCount; ++i)
         bytes_json[protocol::to_string(static_cast<protocol::Opcode>(i + 1))] = bytes[i];
-    return json{{"name", name},
-                {"description", description},
-                {"f_cyc_hz", f_cyc_hz},
-                {"bpp", bpp},
-                {"C_cmd", c_cmd},
-                {"C_setup", c_setup},
-                {"C_op", c_op},
-                {"C_row", c_row},
-                {"span_as", controller::to_string(span_as)},
-                {"C_line_setup", c_line_setup},
-                {"C_line_pix", c_line_pix},
-                {"B_bus_bytes_per_s",
-                 std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
-                {"t_handshake_s", t_handshake_s},
-                {"bytes", bytes_json},
-                {"command_buffer_bytes", command_buffer_bytes == kUnboundedBuffer
-                                             ? json(kUnbounded)
-                                             : json(command_buffer_bytes)},
-                {"sources", sources}};
+    return json{
+        {"name", name},
+        {"description", description},
+        {"f_cyc_hz", f_cyc_hz},
+        {"bpp", bpp},
+        {"C_cmd", c_cmd},
+        {"C_setup", c_setup},
+        {"C_op", c_op},
+        {"C_row", c_row},
+        {"span_as", controller::to_string(span_as)},
+        {"C_line_setup", c_line_setup},
+        {"C_line_pix", c_line_pix},
+        {"B_bus_bytes_per_s",
+         std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
+        {"t_handshake_s", t_handshake_s},
+        {"bytes", bytes_json},
+        {"command_buffer_bytes",
+         command_buffer_bytes == kUnboundedBuffer ? json(kUnbounded) : json(command_buffer_bytes)},
+        {"sources", sources}};
 }
 
 std::string CostProfile::to_string() const {

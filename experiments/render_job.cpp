@@ -63,9 +63,9 @@ controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& comma
     controller::TimedPipeline pipe(buffer_bytes);
     for (const uint32_t bytes : profile.bytes)
         if (bytes > buffer_bytes)
-            throw std::invalid_argument(
-                "--buffer: " + std::to_string(buffer_bytes) + " bytes is less than a command of " +
-                profile.name + " (up to " + std::to_string(bytes) + " bytes)");
+            throw std::invalid_argument("--buffer: " + std::to_string(buffer_bytes) +
+                                        " bytes is less than a command of " + profile.name +
+                                        " (up to " + std::to_string(bytes) + " bytes)");
     const auto& all = commands.commands();
     for (std::size_t i = 0; i < all.size(); ++i) {
         ctl.execute(all[i]);
