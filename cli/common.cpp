@@ -1,6 +1,7 @@
 #include "cli/common.h"
 
 #include <algorithm>
+#include <charconv>
 #include <iostream>
 #include <regex>
 
@@ -12,6 +13,23 @@
 #include "protocol/output_file.h"
 
 namespace fb89::cli {
+
+std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::string& profile) {
+    if (text.empty()) return std::nullopt;
+    if (text == "unbounded") return controller::kUnboundedBuffer;
+    uint64_t bytes = 0;
+    const char* end = text.data() + text.size();
+    const auto [at, ec] = std::from_chars(text.data(), end, bytes);
+    if (ec != std::errc() || at != end || bytes == 0 || bytes > (uint64_t{1} << 40))
+        throw UsageError("--buffer: '" + text +
+                         "': a whole number of bytes (1 to 2^40) or unbounded");
+    for (const uint32_t largest : controller::load_profile(profile).bytes)
+        if (largest > bytes)
+            throw UsageError(
+                fmt::format("--buffer: {} bytes cannot hold a command of {} ({} bytes)", bytes,
+                            profile, largest));
+    return bytes;
+}
 
 ImageSize parse_size(const std::string& text) {
     static const std::regex pattern(R"((\d+)x(\d+))");

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -29,6 +30,11 @@ class UsageError : public std::runtime_error {
 using experiments::ImageSize;
 // "WxH", e.g. "1024x780"; throws UsageError.
 ImageSize parse_size(const std::string& text);
+
+// --buffer BYTES|unbounded for the controller profile `profile`: none when "" (the profile's
+// own). Throws UsageError for anything else, and for a buffer smaller than the profile's
+// largest command.
+std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::string& profile);
 
 // Writes JSON (indented) to an output: "-" is stdout, a regular file is written whole or not
 // at all, a device or pipe in place (protocol/output_file.h). Throws std::runtime_error

@@ -5,7 +5,6 @@
 // the socket is opened only after the host has finished, so no host time includes it.
 #include <unistd.h>
 
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +23,7 @@
 #include "experiments/id_view.h"
 #include "experiments/period_runs.h"
 #include "experiments/progress.h"
+#include "experiments/timeline.h"
 #include "host/methods.h"
 #include "host/raster/scene_measures.h"
 #include "host/raster/screen_setup.h"
@@ -52,7 +52,7 @@ struct RenderArgs {
     int approx_min_side = 0;
     double approx_epsilon = 0;
     std::string size;
-    std::string png, ids, ids_view, stream, stats, connect;
+    std::string png, ids, ids_view, stream, stats, connect, timeline;
     std::string profile = std::string(controller::kDefaultProfile);
     std::string host = "native";
     int repeat = 1;
@@ -228,7 +228,8 @@ int run_render(const RenderArgs& args) {
                                              {"--ids", args.ids},
                                              {"--ids-view", args.ids_view},
                                              {"--stream", args.stream},
-                                             {"--stats", args.stats}});
+                                             {"--stats", args.stats},
+                                             {"--timeline", args.timeline}});
     host::MethodOptions options;
     std::string threshold_source, beam_source;
     try {
@@ -268,22 +269,11 @@ int run_render(const RenderArgs& args) {
     job.progress = !args.quiet && isatty(STDERR_FILENO);
     job.period = make_period_runs(HostArgs{args.host, 1, "", ""});
     job.check_frames = true;
-    if (args.buffer == "unbounded") {
-        job.buffer_bytes = controller::kUnboundedBuffer;
-    } else if (!args.buffer.empty()) {
-        uint64_t bytes = 0;
-        const char* end = args.buffer.data() + args.buffer.size();
-        const auto [at, ec] = std::from_chars(args.buffer.data(), end, bytes);
-        if (ec != std::errc() || at != end || bytes == 0 || bytes > (uint64_t{1} << 40))
-            throw UsageError("--buffer: '" + args.buffer +
-                             "': a whole number of bytes (1 to 2^40) or unbounded");
-        for (const uint32_t largest : controller::load_profile(args.profile).bytes)
-            if (largest > bytes)
-                throw UsageError(
-                    fmt::format("--buffer: {} bytes cannot hold a command of {} ({} bytes)", bytes,
-                                args.profile, largest));
-        job.buffer_bytes = bytes;
-    }
+    job.buffer_bytes = parse_buffer_option(args.buffer, args.profile);
+    if (!args.timeline.empty() && job.period)
+        throw UsageError(
+            "--timeline: a 1989 host's send times are not counted yet; "
+            "only --host native has a timeline");
     const experiments::RenderResult result = experiments::run_render_job(job);
     const experiments::MethodRun& run = result.runs.front();
     for (const auto& note : result.scene.notes)
@@ -308,6 +298,16 @@ int run_render(const RenderArgs& args) {
         write_id_buffer(args, result.scene, *run.renderer);
     if (!args.stream.empty()) write_stream(args, result);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, result, ctl));
+    if (!args.timeline.empty() && !run.send_us.empty()) {
+        experiments::TimelineFrame frame;
+        frame.title =
+            fmt::format("scene {}, {} on {}, controller {}", scene_display_name(args.scene),
+                        args.method, args.host, ctl.profile().name);
+        frame.setup_end_us = run.setup_end_us;
+        frame.host_end_us = run.host_frame_ms * 1e3;
+        write_text(args.timeline, experiments::timeline_json(run.commands, run.send_us, frame,
+                                                             ctl.profile(), run.buffer_bytes));
+    }
 
     if (!args.quiet && !stdout_taken) {
         fmt::print("{}", threshold_line);
@@ -413,6 +413,10 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--buffer", args->buffer,
                     "The controller's command buffer in bytes, or unbounded, for the pipeline in "
                     "time (default: the profile's; docs/COST_MODEL.md)");
+    sub->add_option("--timeline", args->timeline,
+                    "Write the frame through the pipeline in time as Chrome trace-event JSON "
+                    "(Perfetto, chrome://tracing): host, bus and controller lanes, host stalls, "
+                    "the buffer's fill ('-' for stdout)");
     sub->add_option("--host", args->host,
                     "Host the frame is timed on: native (this machine), sun3-60, sun3-260 or a "
                     ".json host profile; a 1989 host runs fb89's host code on an emulated "

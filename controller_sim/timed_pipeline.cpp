@@ -11,7 +11,7 @@ TimedPipeline::TimedPipeline(uint64_t buffer_bytes) : m_capacity(buffer_bytes) {
     if (buffer_bytes == 0) throw std::invalid_argument("a command buffer of 0 bytes holds nothing");
 }
 
-double TimedPipeline::push(const TimedCommand& c) {
+double TimedPipeline::push(const TimedCommand& c, CommandTiming* timing) {
     if (!std::isfinite(c.send_us) || c.send_us < m_last_send_us)
         throw std::invalid_argument("a send time of " + std::to_string(c.send_us) +
                                     " us comes before the last one, " +
@@ -21,7 +21,13 @@ double TimedPipeline::push(const TimedCommand& c) {
                                     " bytes cannot fit a buffer of " + std::to_string(m_capacity) +
                                     " bytes");
     m_last_send_us = c.send_us;
-    if (c.bytes == 0) return m_controller_free_us;  // not sent
+    if (c.bytes == 0) {  // not sent
+        if (timing) {
+            const double t = c.send_us + m_shift_us;
+            *timing = {t, t, t, t, t, 0};
+        }
+        return m_controller_free_us;
+    }
 
     const double ready = c.send_us + m_shift_us;
     double start = std::max(ready, m_bus_free_us);
@@ -43,8 +49,10 @@ double TimedPipeline::push(const TimedCommand& c) {
     }
     const double arrive = start + c.bus_us;
     m_bus_free_us = arrive;
-    const double done = std::max(arrive, m_controller_free_us) + c.exec_us;
+    const double exec_start = std::max(arrive, m_controller_free_us);
+    const double done = exec_start + c.exec_us;
     m_controller_free_us = done;
+    if (timing) *timing = {ready, start, arrive, exec_start, done, c.bytes};
     m_held.push_back({done, c.bytes});
     m_occupied += c.bytes;
     m_figures.high_water_bytes = std::max(m_figures.high_water_bytes, m_occupied);

@@ -28,6 +28,16 @@ struct TimedCommand {
     double exec_us = 0;  // executing
 };
 
+// Where one command went, in the frame's time (with the stalls before it): for a timeline.
+struct CommandTiming {
+    double sent_us = 0;        // the host sent it (its send time moved by earlier stalls)
+    double bus_start_us = 0;   // it started across the bus; past sent_us, the host stalled
+    double arrived_us = 0;     // it was in the command buffer
+    double exec_start_us = 0;  // the controller started it
+    double done_us = 0;        // the controller was done with it; its bytes left the buffer
+    uint32_t bytes = 0;        // 0: not sent (a MARKER); the other times are then sent_us
+};
+
 // One frame's figures.
 struct PipelineFigures {
     double frame_us = 0;         // set-up start to the last command done (or the host's end)
@@ -51,8 +61,9 @@ class TimedPipeline {
     explicit TimedPipeline(uint64_t buffer_bytes = kUnboundedBuffer);
 
     // The next command of the frame. Throws std::invalid_argument when its send time goes
-    // back or is not finite, or when it cannot fit the buffer at all. Returns when it is done.
-    double push(const TimedCommand& c);
+    // back or is not finite, or when it cannot fit the buffer at all. Returns when it is done;
+    // where it went, in `timing` when given.
+    double push(const TimedCommand& c, CommandTiming* timing = nullptr);
     // The frame's figures, the host's own work ending at `host_end_us` (not before the last
     // send). The pipeline is then ready for the next frame, from 0.
     PipelineFigures finish(double host_end_us);

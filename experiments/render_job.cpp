@@ -58,7 +58,8 @@ PeriodFrame period_frame(GuestOutcome&& outcome, const period::HostProfile& prof
 controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
                                              const std::vector<double>& send_us, double host_end_us,
                                              const controller::CostProfile& profile,
-                                             uint64_t buffer_bytes) {
+                                             uint64_t buffer_bytes,
+                                             std::vector<controller::CommandTiming>* timings) {
     controller::Controller ctl(profile);
     controller::TimedPipeline pipe(buffer_bytes);
     for (const uint32_t bytes : profile.bytes)
@@ -67,10 +68,15 @@ controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& comma
                                         " bytes is less than a command of " + profile.name +
                                         " (up to " + std::to_string(bytes) + " bytes)");
     const auto& all = commands.commands();
+    if (send_us.size() != all.size())
+        throw std::invalid_argument(std::to_string(send_us.size()) + " send times for " +
+                                    std::to_string(all.size()) + " commands");
+    if (timings) timings->resize(all.size());
     for (std::size_t i = 0; i < all.size(); ++i) {
         ctl.execute(all[i]);
         const auto& cost = ctl.last_cost();
-        pipe.push({send_us.at(i), cost.bytes, cost.bus_us, cost.exec_us});
+        pipe.push({send_us[i], cost.bytes, cost.bus_us, cost.exec_us},
+                  timings ? &(*timings)[i] : nullptr);
     }
     return pipe.finish(host_end_us);
 }
@@ -166,8 +172,11 @@ RenderResult run_render_job(const RenderJob& job) {
         for (double& t : sends)
             t += setup_us;
         sends.front() = 0;  // FRAME_BEGIN: the clear starts as the host sets up
+        run.buffer_bytes = job.buffer_bytes.value_or(profile.command_buffer_bytes);
         run.pipeline = pipeline_figures(run.commands, sends, run.host_frame_ms * 1e3, profile,
-                                        job.buffer_bytes.value_or(profile.command_buffer_bytes));
+                                        run.buffer_bytes);
+        run.send_us = std::move(sends);
+        run.setup_end_us = setup_us;
     }
     return result;
 }

@@ -71,6 +71,11 @@ struct MethodRun {
     // the clear overlaps it -- with the job's command buffer. None on a 1989 host (its send
     // times are not yet counted).
     std::optional<controller::PipelineFigures> pipeline;
+    // What it came from: each command's send time in microseconds from the start of the
+    // set-up (FRAME_BEGIN's 0), the set-up's end, the host's end; empty without a pipeline.
+    std::vector<double> send_us;
+    double setup_end_us = 0;
+    uint64_t buffer_bytes = controller::kUnboundedBuffer;  // the pipeline's command buffer
 };
 
 struct RenderResult {
@@ -84,11 +89,13 @@ struct RenderResult {
 RenderResult run_render_job(const RenderJob& job);
 
 // A frame's commands through the pipeline in time under `profile`: command i sent at
-// send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`.
-controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
-                                             const std::vector<double>& send_us, double host_end_us,
-                                             const controller::CostProfile& profile,
-                                             uint64_t buffer_bytes = controller::kUnboundedBuffer);
+// send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`; where
+// each command went in `timings` when given. Throws std::invalid_argument for a buffer
+// smaller than the profile's largest command and as TimedPipeline::push does.
+controller::PipelineFigures pipeline_figures(
+    const protocol::MemoryBuffer& commands, const std::vector<double>& send_us, double host_end_us,
+    const controller::CostProfile& profile, uint64_t buffer_bytes = controller::kUnboundedBuffer,
+    std::vector<controller::CommandTiming>* timings = nullptr);
 
 // The rows of the job's frame check: the frame `commands` leave, and how many pixels differ
 // between two such frames (all of them when the sizes differ).

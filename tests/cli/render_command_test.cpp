@@ -77,6 +77,29 @@ TEST(RenderCommand, TheBufferBoundsThePipelineInTime) {
     }
 }
 
+// --timeline writes the frame through the pipeline as trace-event JSON beside the other
+// outputs; a path that cannot be written is an error naming it, exit 2, nothing written.
+TEST(RenderCommand, TheTimelineIsWrittenWholeOrNotAtAll) {
+    const fs::path timeline = scratch("timeline.json");
+    const fs::path png = scratch("timeline.png");
+    CliRun r = fb89("render " + kScenes + "/A.json --size 128x98 -q --buffer 256 --timeline " +
+                    timeline.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(slurp(timeline));
+    EXPECT_EQ(j.at("otherData").at("buffer_bytes"), 256);
+    EXPECT_NE(j.at("otherData").at("title").get<std::string>().find("zbuffer"), std::string::npos);
+    EXPECT_GT(j.at("traceEvents").size(), 100u);
+    // into a folder that is a file: refused, and the PNG of the same command not written
+    const fs::path blocked = scratch("a-file");
+    { std::ofstream(blocked) << "x"; }
+    fs::remove(png);
+    r = fb89("render " + kScenes + "/A.json --size 128x98 -q --png " + png.string() +
+             " --timeline " + (blocked / "t.json").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("a-file"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(png));
+}
+
 // The kernels' instruction set: --isa and $FB89_ISA force one, --stats says which ran, every
 // one this machine runs counts the same; a name it does not know is a usage error naming it.
 TEST(RenderCommand, TheKernelsInstructionSetIsChosenReportedAndChecked) {

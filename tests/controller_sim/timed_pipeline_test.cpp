@@ -34,10 +34,22 @@ TEST(TimedPipeline, AFullBufferStallsTheHostAndMovesEveryLaterSend) {
     // is done at 11: a 10 us stall, crosses 11-12, runs 21-31; c3 is ready at 11, the buffer
     // frees at 21: crosses 21-22, runs 31-41.
     TimedPipeline p(20);
-    EXPECT_EQ(p.push({0, 10, 1, 10}), 11);
-    EXPECT_EQ(p.push({0, 10, 1, 10}), 21);
-    EXPECT_EQ(p.push({0, 10, 1, 10}), 31);
-    EXPECT_EQ(p.push({0, 10, 1, 10}), 41);
+    CommandTiming t[4];
+    EXPECT_EQ(p.push({0, 10, 1, 10}, &t[0]), 11);
+    EXPECT_EQ(p.push({0, 10, 1, 10}, &t[1]), 21);
+    EXPECT_EQ(p.push({0, 10, 1, 10}, &t[2]), 31);
+    EXPECT_EQ(p.push({0, 10, 1, 10}, &t[3]), 41);
+    // where each went: sent (moved by the stalls before it), across the bus, run
+    const double expect[4][5] = {
+        {0, 0, 1, 1, 11}, {0, 1, 2, 11, 21}, {1, 11, 12, 21, 31}, {11, 21, 22, 31, 41}};
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(t[i].sent_us, expect[i][0]) << i;
+        EXPECT_EQ(t[i].bus_start_us, expect[i][1]) << i;
+        EXPECT_EQ(t[i].arrived_us, expect[i][2]) << i;
+        EXPECT_EQ(t[i].exec_start_us, expect[i][3]) << i;
+        EXPECT_EQ(t[i].done_us, expect[i][4]) << i;
+        EXPECT_EQ(t[i].bytes, 10u);
+    }
     const PipelineFigures f = p.finish(0);
     EXPECT_EQ(f.host_stalled_us, 21);
     EXPECT_EQ(f.stalls, 3u);

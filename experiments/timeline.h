@@ -1,0 +1,42 @@
+// A frame through the pipeline in time, as a timeline to look at: Chrome's trace-event JSON
+// (the "JSON Object Format" that Perfetto's UI and chrome://tracing open). One process, the
+// frame; a lane (thread) each for the host, the bus and the controller:
+//
+//   host        "set-up" and "hidden-surface" slices, a "stall" slice inside them for every
+//               wait on the bus or the buffer, and an instant mark per command sent, named
+//               by its opcode;
+//   bus         a slice per command crossing it, named by opcode;
+//   controller  a slice per command executing, named by opcode (args: its number, bytes);
+//
+// and a counter, "command buffer", of the bytes held. Times are microseconds from the start
+// of the host's set-up ("ts" is in microseconds in that format). The pipeline's figures,
+// the title and the buffer go in "otherData". docs/COST_MODEL.md, "The pipeline in time".
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "controller_sim/profile.h"
+#include "controller_sim/timed_pipeline.h"
+#include "protocol/memory_buffer.h"
+
+namespace fb89::experiments {
+
+struct TimelineFrame {
+    std::string title;        // what the frame is: scene, method, host, controller
+    double setup_end_us = 0;  // the host's set-up ends (no stall can come before it)
+    double host_end_us = 0;   // the host's own work ends (without stalls)
+    bool send_times = true;   // false: a stream without times, every command ready at 0
+};
+
+// The frame `commands`, command i sent at send_us[i], through the pipeline under `profile`
+// with a buffer of `buffer_bytes`, as trace-event JSON text; its figures in `figures` when
+// given. Throws std::invalid_argument as TimedPipeline does (a send time that goes back, a
+// command too large for the buffer).
+std::string timeline_json(const protocol::MemoryBuffer& commands,
+                          const std::vector<double>& send_us, const TimelineFrame& frame,
+                          const controller::CostProfile& profile, uint64_t buffer_bytes,
+                          controller::PipelineFigures* figures = nullptr);
+
+}  // namespace fb89::experiments
