@@ -158,21 +158,21 @@ std::string buffer_text(uint64_t bytes) {
 }  // namespace
 
 std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
-                          double controller_ms) {
+                          double controller_ms, std::string_view sends) {
     const double frame_ms = p.frame_us / 1e3;
     return fmt::format(
-        "pipeline (send times measured, buffer {}): frame {:.3f} ms (max {:.3f}, sum "
+        "pipeline (send times {}, buffer {}): frame {:.3f} ms (max {:.3f}, sum "
         "{:.3f}; {:.1f}% of the smaller side overlapped), host stalled {:.3f} ms, utilization "
         "host {:.1f}% controller {:.1f}%\n",
-        buffer_text(p.buffer_bytes), frame_ms, std::max(host_ms, controller_ms),
+        sends, buffer_text(p.buffer_bytes), frame_ms, std::max(host_ms, controller_ms),
         host_ms + controller_ms, 100 * overlap(frame_ms, host_ms, controller_ms),
         p.host_stalled_us / 1e3, 100 * p.host_utilization(), 100 * p.controller_utilization());
 }
 
 nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_ms,
-                             double controller_ms) {
+                             double controller_ms, std::string_view sends) {
     const double frame_ms = p.frame_us / 1e3;
-    return {{"send_times", "measured"},
+    return {{"send_times", sends},
             {"buffer_bytes", p.buffer_bytes == controller::kUnboundedBuffer
                                  ? nlohmann::json("unbounded")
                                  : nlohmann::json(p.buffer_bytes)},

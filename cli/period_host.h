@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -31,13 +32,19 @@ std::string period_classes(const experiments::PeriodFrame& run, period::Phase ph
 std::string split_line(const std::string& host_name, double host_ms, const std::string& profile,
                        double controller_ms);
 
-// The same frame through the pipeline in time (controller_sim/timed_pipeline.h), natively from
-// measured send times: its frame time beside max(host, controller) and their sum, how much of
-// the smaller side it hides, the host's stalls and both sides' utilization.
+// The same frame through the pipeline in time (controller_sim/timed_pipeline.h) from its send
+// times -- "measured" natively, "counted" on a 1989 host: its frame time beside max(host,
+// controller) and their sum, how much of the smaller side it hides, the host's stalls and
+// both sides' utilization.
 std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
-                          double controller_ms);
+                          double controller_ms, std::string_view sends);
 nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_ms,
-                             double controller_ms);
+                             double controller_ms, std::string_view sends);
+
+// How a run's send times were had: "counted" on a 1989 host, else "measured".
+inline std::string_view send_times_source(bool period) {
+    return period ? "counted" : "measured";
+}
 
 // --host, --jobs, --results and --emit-jobs, as experiment, sweep and calibrate take them.
 struct HostArgs {

@@ -217,7 +217,8 @@ nlohmann::json stats_json(const RenderArgs& args, const experiments::RenderResul
     j["controller"] = ctl.stats().to_json();
     if (run.period) j["period_host"] = period_json(*run.period);
     if (run.pipeline)
-        j["pipeline"] = pipeline_json(*run.pipeline, run.host_frame_ms, run.controller.frame_ms);
+        j["pipeline"] = pipeline_json(*run.pipeline, run.host_frame_ms, run.controller.frame_ms,
+                                      send_times_source(run.period.has_value()));
     return j;
 }
 
@@ -270,10 +271,6 @@ int run_render(const RenderArgs& args) {
     job.period = make_period_runs(HostArgs{args.host, 1, "", ""});
     job.check_frames = true;
     job.buffer_bytes = parse_buffer_option(args.buffer, args.profile);
-    if (!args.timeline.empty() && job.period)
-        throw UsageError(
-            "--timeline: a 1989 host's send times are not counted yet; "
-            "only --host native has a timeline");
     const experiments::RenderResult result = experiments::run_render_job(job);
     const experiments::MethodRun& run = result.runs.front();
     for (const auto& note : result.scene.notes)
@@ -298,12 +295,17 @@ int run_render(const RenderArgs& args) {
         write_id_buffer(args, result.scene, *run.renderer);
     if (!args.stream.empty()) write_stream(args, result);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, result, ctl));
-    if (!args.timeline.empty() && !run.send_us.empty()) {
+    if (!args.timeline.empty() && run.send_us.empty())
+        throw std::runtime_error(
+            "--timeline: the frame has no send times (a 1989 host's counts from before send "
+            "marks were counted, or a frame rendered untimed)");
+    if (!args.timeline.empty()) {
         experiments::TimelineFrame frame;
         frame.title =
             fmt::format("scene {}, {} on {}, controller {}", scene_display_name(args.scene),
                         args.method, args.host, ctl.profile().name);
         frame.setup_end_us = run.setup_end_us;
+        frame.send_times = send_times_source(run.period.has_value());
         frame.host_end_us = run.host_frame_ms * 1e3;
         write_text(args.timeline, experiments::timeline_json(run.commands, run.send_us, frame,
                                                              ctl.profile(), run.buffer_bytes));
@@ -333,7 +335,8 @@ int run_render(const RenderArgs& args) {
                               ctl.profile().name, run.controller.frame_ms));
         if (run.pipeline)
             fmt::print("{}",
-                       pipeline_line(*run.pipeline, run.host_frame_ms, run.controller.frame_ms));
+                       pipeline_line(*run.pipeline, run.host_frame_ms, run.controller.frame_ms,
+                                     send_times_source(run.period.has_value())));
     }
     return kSuccess;
 }

@@ -67,9 +67,10 @@ struct MethodRun {
     FrameSplit split;          // host_frame_ms against the controller's frame time
     // Natively: the frame through the pipeline in time (controller_sim/timed_pipeline.h) from
     // the commands' measured send times -- the set-up's time, then each command's packet's
-    // time in the last hidden-surface round; FRAME_BEGIN sent as the set-up starts, so that
-    // the clear overlaps it -- with the job's command buffer. None on a 1989 host (its send
-    // times are not yet counted).
+    // time in the last hidden-surface round, or on a 1989 host the priced instructions up to
+    // its packet's send mark; FRAME_BEGIN sent as the set-up starts, so that the clear
+    // overlaps it -- with the job's command buffer. None when the 1989 host's counts have no
+    // send marks (a results folder from before them).
     std::optional<controller::PipelineFigures> pipeline;
     // What it came from: each command's send time in microseconds from the start of the
     // set-up (FRAME_BEGIN's 0), the set-up's end, the host's end; empty without a pipeline.
@@ -96,6 +97,12 @@ controller::PipelineFigures pipeline_figures(
     const protocol::MemoryBuffer& commands, const std::vector<double>& send_us, double host_end_us,
     const controller::CostProfile& profile, uint64_t buffer_bytes = controller::kUnboundedBuffer,
     std::vector<controller::CommandTiming>* timings = nullptr);
+
+// Each of a frame's `commands` commands' send time on a 1989 host in microseconds from the
+// start of the hidden-surface phase: the time of the send mark that closed its packet
+// (period/guest), priced as `cost` prices the phase. Empty when the counts have no send
+// marks (counted before there were any) or they do not cover exactly `commands` commands.
+std::vector<double> period_send_times_us(const period::HostCost& cost, std::size_t commands);
 
 // The rows of the job's frame check: the frame `commands` leave, and how many pixels differ
 // between two such frames (all of them when the sizes differ).

@@ -69,7 +69,7 @@ std::string timeline_json(const protocol::MemoryBuffer& commands,
 
     // the host: its phases (hidden-surface moved by every stall), its stalls, its sends
     const double host_end = f.host_us + f.host_stalled_us;
-    if (frame.send_times) {
+    if (!frame.send_times.empty()) {
         const double setup_end = std::min(frame.setup_end_us, host_end);
         w.slice(kHost, "set-up", 0, setup_end);
         w.slice(kHost, "hidden-surface", setup_end, host_end);
@@ -124,7 +124,8 @@ std::string timeline_json(const protocol::MemoryBuffer& commands,
 
     nlohmann::json other = {
         {"title", frame.title},
-        {"send_times", frame.send_times ? "measured" : "none: every command ready at 0"},
+        {"send_times",
+         frame.send_times.empty() ? "none: every command ready at 0" : frame.send_times},
         {"buffer_bytes", buffer_bytes == controller::kUnboundedBuffer
                              ? nlohmann::json("unbounded")
                              : nlohmann::json(buffer_bytes)},

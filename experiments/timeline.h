@@ -27,7 +27,9 @@ struct TimelineFrame {
     std::string title;        // what the frame is: scene, method, host, controller
     double setup_end_us = 0;  // the host's set-up ends (no stall can come before it)
     double host_end_us = 0;   // the host's own work ends (without stalls)
-    bool send_times = true;   // false: a stream without times, every command ready at 0
+    // how the send times were had: "measured" (natively), "counted" (a 1989 host), or ""
+    // (none: a stream without times, every command ready at 0; no host phases are drawn)
+    std::string send_times = "measured";
 };
 
 // The frame `commands`, command i sent at send_us[i], through the pipeline under `profile`

@@ -103,6 +103,25 @@ GuestCounts parse_guest_counts(std::string_view text, const std::string& origin)
                 c.classes[key] = count(n, key);
             out.phases.push_back(std::move(c));
         }
+        // the send marks (absent from counts made before them)
+        if (j.contains("sends")) {
+            for (const auto& r : j.at("sends")) {
+                SendCounts c;
+                const uint64_t phase = count(r.at("phase"), "a send's phase");
+                if (phase > 15) throw std::runtime_error(fmt::format("phase {} is unknown", phase));
+                c.phase = static_cast<int>(phase);
+                c.commands = count(r.at("commands"), "a send's commands");
+                c.instructions = count(r.at("instructions"), "a send's instructions");
+                if (!out.sends.empty() && out.sends.back().phase == c.phase &&
+                    c.commands < out.sends.back().commands)
+                    throw std::runtime_error(
+                        fmt::format("send {}: {} commands sent, fewer than the {} before it",
+                                    out.sends.size(), c.commands, out.sends.back().commands));
+                for (const auto& [key, n] : r.at("classes").items())
+                    c.classes[key] = count(n, key);
+                out.sends.push_back(std::move(c));
+            }
+        }
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(
             fmt::format("{}: not the counting plugin's JSON: {}", origin, e.what()));
@@ -153,6 +172,19 @@ HostCost price(const GuestCounts& counts, const HostProfile& profile) {
             }
         }
         out.ms = out.cpu_cycles / cpu_khz + out.fpu_cycles / fpu_khz;
+    }
+    // each send mark at the time its phase had run to it, priced as the phase is
+    const double cpu_khz = profile.cpu_clock_mhz * 1e3, fpu_khz = profile.fpu_clock_mhz * 1e3;
+    double cpu = 0, fpu = 0;
+    int phase = -1;
+    for (const SendCounts& s : counts.sends) {
+        if (s.phase != phase) cpu = fpu = 0, phase = s.phase;
+        for (const auto& [key, n] : s.classes) {
+            const KeyPrice k = price_key(profile, key);
+            cpu += k.cpu * static_cast<double>(n);
+            fpu += k.fpu * static_cast<double>(n);
+        }
+        cost.sends.push_back({s.phase, s.commands, cpu / cpu_khz + fpu / fpu_khz});
     }
     return cost;
 }

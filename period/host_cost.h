@@ -20,9 +20,18 @@ struct PhaseCounts {
     std::map<std::string, uint64_t> classes;  // class key -> executions
 };
 
+// What the guest ran from its last send mark (or the phase's start) to this one, when it
+// had sent `commands` commands of its frame (period/guest: a mark a packet and at FRAME_END).
+struct SendCounts {
+    int phase = 0;
+    uint64_t commands = 0, instructions = 0;
+    std::map<std::string, uint64_t> classes;
+};
+
 struct GuestCounts {
     uint64_t instructions = 0;
     std::vector<PhaseCounts> phases;
+    std::vector<SendCounts> sends;  // in order; none from a plugin or guest without them
     const PhaseCounts* phase(int p) const;
 };
 
@@ -54,9 +63,18 @@ struct PhaseCost {
     std::map<std::string, std::pair<uint64_t, double>> classes;
 };
 
+// A send mark priced: `commands` sent by `ms` into the phase (its time from the phase's
+// start, as the phase's own `ms` is priced).
+struct SendTime {
+    int phase = 0;
+    uint64_t commands = 0;
+    double ms = 0;
+};
+
 struct HostCost {
     std::string profile;
     PhaseCost phases[kPhases];
+    std::vector<SendTime> sends;
     std::map<std::string, uint64_t> unpriced_keys;  // key -> executions
     // load + set-up + hidden-surface, as native end-to-end times are
     double end_to_end_ms() const;

@@ -81,6 +81,7 @@ void MemoryBuffer::replay_into(CommandSink& sink) const {
 
 void MemoryBuffer::time_packets(uint32_t commands_per_packet) {
     m_packet = commands_per_packet;
+    m_hook = nullptr;
     m_unstamped = 0;
     m_stamps.clear();
     m_origin = std::chrono::steady_clock::now();
@@ -88,7 +89,7 @@ void MemoryBuffer::time_packets(uint32_t commands_per_packet) {
 
 std::vector<double> MemoryBuffer::send_times_us() {
     std::vector<double> out;
-    if (!m_packet) return out;
+    if (!m_packet || m_hook) return out;
     if (m_stamps.empty() || m_stamps.back().end < m_commands.size()) stamp();
     out.reserve(m_commands.size());
     for (const Stamp& s : m_stamps) {

@@ -47,6 +47,14 @@ class MemoryBuffer final : public CommandSink {
     // Reads the clock every `commands_per_packet` commands (0: never) from now on, times
     // counted from now.
     void time_packets(uint32_t commands_per_packet);
+    // Instead of reading the clock, calls `hook` with the commands sent so far each time a
+    // packet closes (on a 1989 host the guest marks its sends so: period/guest). Its
+    // send_times_us() are then empty.
+    using PacketHook = void (*)(uint64_t commands_sent);
+    void mark_packets(uint32_t commands_per_packet, PacketHook hook) {
+        time_packets(commands_per_packet);
+        m_hook = hook;
+    }
     bool timed() const { return m_packet > 0; }
     // Each command's send time in microseconds from time_packets(): its packet's reading.
     // Commands after the last reading (a frame not yet ended) take a reading now. Empty when
@@ -60,8 +68,9 @@ class MemoryBuffer final : public CommandSink {
         if (m_packet && ++m_unstamped == m_packet) stamp();
     }
     void stamp() {
-        m_stamps.push_back({m_commands.size(), std::chrono::steady_clock::now()});
         m_unstamped = 0;
+        if (m_hook) return m_hook(m_commands.size());
+        m_stamps.push_back({m_commands.size(), std::chrono::steady_clock::now()});
     }
 
     struct Stamp {
@@ -72,6 +81,7 @@ class MemoryBuffer final : public CommandSink {
     uint32_t m_packet = 0, m_unstamped = 0;
     std::chrono::steady_clock::time_point m_origin{};
     std::vector<Stamp> m_stamps;
+    PacketHook m_hook = nullptr;
 };
 
 }  // namespace fb89::protocol

@@ -116,6 +116,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_version = 1;
 /* ---- configuration ------------------------------------------------------- */
 
 #define FB89_MARKER_SYSCALL 0xfb89
+#define FB89_SEND_SYSCALL 0xfb8a
 #define FB89_NPHASES 16
 #define KEY_MAX FB89_KEY_MAX
 
@@ -172,6 +173,26 @@ static uint64_t phase_bytes[FB89_NPHASES];
 static uint64_t phase_entered[FB89_NPHASES];
 static unsigned cur_phase;
 
+/*
+ * Send marks (syscall 0xfb8a, argument: the commands sent so far): at each, the current
+ * phase's counts since the last mark (or since the phase was entered) are kept as a record,
+ * so that the host cost model can price the instructions up to every send. The marking
+ * code itself lies in [marks_lo, marks_hi), which the guest names with every phase marker;
+ * blocks there are not counted.
+ */
+struct send_record {
+    unsigned phase;
+    uint64_t commands, insns;
+    uint32_t n;         /* classes that changed */
+    uint32_t* cls;      /* their ids */
+    uint64_t* delta;    /* and how many more executions */
+};
+static struct send_record* sends;
+static size_t nsends, sends_cap;
+static uint64_t* send_base;   /* [class id]: the current phase's counts at the last mark */
+static uint64_t send_base_insns;
+static uint64_t marks_lo, marks_hi;
+
 static uint32_t hash_str(const char* s) {
     uint32_t h = 2166136261u; /* FNV-1a */
     for (; *s; s++) {
@@ -216,6 +237,8 @@ static uint32_t cls_intern(const char* key) {
             phase_cls[p] = xrealloc(phase_cls[p], sizeof(uint64_t) * ncap);
             memset(phase_cls[p] + cls_cap, 0, sizeof(uint64_t) * (ncap - cls_cap));
         }
+        send_base = xrealloc(send_base, sizeof(uint64_t) * ncap);
+        memset(send_base + cls_cap, 0, sizeof(uint64_t) * (ncap - cls_cap));
         cls_cap = ncap;
     }
     uint32_t id = cls_n++;
@@ -473,6 +496,13 @@ static void vcpu_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb* tb) {
     uint64_t bytes = 0;
     char key[KEY_MAX];
 
+    /* the send marks' own code: translated, run, never counted */
+    if (n && marks_hi > marks_lo) {
+        uint64_t at = qemu_plugin_insn_vaddr(qemu_plugin_tb_get_insn(tb, 0));
+        if (at >= marks_lo && at < marks_hi) {
+            n = 0;
+        }
+    }
     for (size_t i = 0; i < n; i++) {
         struct qemu_plugin_insn* qi = qemu_plugin_tb_get_insn(tb, i);
         struct fb89_insn* in = &insns[i];
@@ -659,12 +689,45 @@ static void flush_counts(void) {
     phase_bytes[cur_phase] += bytes;
 }
 
+/* The current phase's counts now: where the next send record's counts start. */
+static void send_rebase(void) {
+    if (cls_n) {
+        memcpy(send_base, phase_cls[cur_phase], sizeof(uint64_t) * cls_n);
+    }
+    send_base_insns = phase_insns[cur_phase];
+}
+
+/* A send record: what the current phase has run since the last (counts flushed). */
+static void send_mark(uint64_t commands) {
+    if (nsends == sends_cap) {
+        sends_cap = sends_cap ? sends_cap * 2 : 256;
+        sends = xrealloc(sends, sizeof(*sends) * sends_cap);
+    }
+    struct send_record* r = &sends[nsends++];
+    const uint64_t* now = phase_cls[cur_phase];
+    r->phase = cur_phase;
+    r->commands = commands;
+    r->insns = phase_insns[cur_phase] - send_base_insns;
+    r->n = 0;
+    for (uint32_t c = 0; c < cls_n; c++) {
+        r->n += now[c] != send_base[c];
+    }
+    r->cls = xmalloc(sizeof(uint32_t) * (r->n ? r->n : 1));
+    r->delta = xmalloc(sizeof(uint64_t) * (r->n ? r->n : 1));
+    uint32_t k = 0;
+    for (uint32_t c = 0; c < cls_n; c++) {
+        if (now[c] != send_base[c]) {
+            r->cls[k] = c;
+            r->delta[k++] = now[c] - send_base[c];
+        }
+    }
+    send_rebase();
+}
+
 static void vcpu_syscall(qemu_plugin_id_t id, unsigned int vcpu_index, int64_t num, uint64_t a1,
                          uint64_t a2, uint64_t a3, uint64_t a4, uint64_t a5, uint64_t a6,
                          uint64_t a7, uint64_t a8) {
     (void)id;
-    (void)a2;
-    (void)a3;
     (void)a4;
     (void)a5;
     (void)a6;
@@ -676,8 +739,19 @@ static void vcpu_syscall(qemu_plugin_id_t id, unsigned int vcpu_index, int64_t n
             "fb89_count: warning: guest uses more than one "
             "vCPU/thread; counts are not reliable\n");
     }
+    if (num == FB89_SEND_SYSCALL) {
+        flush_counts();
+        send_mark((uint32_t)a1);
+        return;
+    }
     if (num != FB89_MARKER_SYSCALL) {
         return;
+    }
+    /* the guest names its send marks' code; both guests are 32-bit, and QEMU may hand
+       over an address with the top bit set sign-extended */
+    if ((uint32_t)a3 > (uint32_t)a2) {
+        marks_lo = (uint32_t)a2;
+        marks_hi = (uint32_t)a3;
     }
     if (a1 >= FB89_NPHASES) {
         if (bad_markers++ == 0) {
@@ -690,6 +764,7 @@ static void vcpu_syscall(qemu_plugin_id_t id, unsigned int vcpu_index, int64_t n
     flush_counts();
     cur_phase = (unsigned)a1;
     phase_entered[cur_phase]++;
+    send_rebase();
     if (phase_fp) {
         /* the phase so far, for whoever must say where a guest that dies stopped */
         rewind(phase_fp);
@@ -784,6 +859,20 @@ static void plugin_exit(qemu_plugin_id_t id, void* userdata) {
             put_json_string(f, cls_keys[c]);
             fprintf(f, ":%" PRIu64, v);
             firstc = false;
+        }
+        fputs("}}", f);
+    }
+    fputs("\n ],\n \"sends\":[", f);
+    for (size_t i = 0; i < nsends; i++) {
+        const struct send_record* r = &sends[i];
+        fprintf(f,
+                "%s\n  {\"phase\":%u,\"commands\":%" PRIu64 ",\"instructions\":%" PRIu64
+                ",\"classes\":{",
+                i ? "," : "", r->phase, r->commands, r->insns);
+        for (uint32_t k = 0; k < r->n; k++) {
+            fputs(k ? "," : "", f);
+            put_json_string(f, cls_keys[r->cls[k]]);
+            fprintf(f, ":%" PRIu64, r->delta[k]);
         }
         fputs("}}", f);
     }

@@ -140,7 +140,9 @@ def test_a_render_on_a_1989_host_is_modelled_from_its_emulated_run():
     then = fb89.render("A", method="scanline", size="64x49", host="sun4-260")
     assert then.period["profile"] == "sun4-260" and then.period["instructions"] > 0
     assert then.period["same_frame"]
-    assert then.pipeline is None  # a 1989 host's send times are not counted yet
+    # its send times are counted from the emulated instructions
+    assert then.pipeline["send_times"] == "counted"
+    assert then.pipeline["frame_ms"] >= max(then.pipeline["host_ms"], then.pipeline["controller_busy_ms"])
     assert np.array_equal(then.ids, here.ids) and np.array_equal(then.image, here.image)
     assert then.split["host_ms"] > 100 * here.split["host_ms"]  # a 1989 workstation
 

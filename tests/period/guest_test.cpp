@@ -79,6 +79,18 @@ TEST_P(PeriodGuest, SendsTheNativeCommandsForEveryMethod) {
             ASSERT_NE(hs, nullptr);
             EXPECT_EQ(hs->entered, 1u);
             EXPECT_GT(hs->instructions, 1000u);
+            // a send mark a packet of 64 commands and one at FRAME_END, all in the
+            // hidden-surface phase, covering every command, within the phase's instructions
+            const std::size_t commands = decoded(run.stream).size();
+            ASSERT_EQ(run.counts.sends.size(), (commands - 1) / 64 + 1);
+            uint64_t before = 0, instructions = 0;
+            for (const SendCounts& send : run.counts.sends) {
+                EXPECT_EQ(send.phase, static_cast<int>(Phase::HiddenSurface));
+                EXPECT_EQ(send.commands, std::min<uint64_t>(before + 64, commands));
+                before = send.commands;
+                instructions += send.instructions;
+            }
+            EXPECT_LE(instructions, hs->instructions);
         }
     }
 }

@@ -82,6 +82,42 @@ TEST(HostCost, PhasesAddCpuClocksAtTheCpuClockAndFpuClocksAtTheFpus) {
     EXPECT_DOUBLE_EQ(c.end_to_end_ms(), hs.ms);
 }
 
+// Send marks: each priced as its phase is, cumulatively from the phase's start, so that the
+// last one's time is the phase's up to it; a count of commands that goes back is refused.
+TEST(HostCost, SendMarksArePricedFromTheirPhasesStart) {
+    const std::string head =
+        R"({"tool":"fb89_count","version":1,"guest_instructions":1003,
+            "phases":[{"phase":3,"entered":1,"instructions":1003,
+                       "classes":{"movel dreg,dreg":1000,"fmuld fpreg,fpreg":2,"swap dreg":1}}],)";
+    const GuestCounts counts =
+        parse_guest_counts(head + R"("sends":[{"phase":3,"commands":64,"instructions":500,
+                            "classes":{"movel dreg,dreg":500}},
+                           {"phase":3,"commands":70,"instructions":503,
+                            "classes":{"movel dreg,dreg":500,"fmuld fpreg,fpreg":2,"swap dreg":1}}]})",
+                           "counts");
+    ASSERT_EQ(counts.sends.size(), 2u);
+    const HostCost c = price(counts, profile());
+    ASSERT_EQ(c.sends.size(), 2u);
+    EXPECT_EQ(c.sends[0].commands, 64u);
+    EXPECT_DOUBLE_EQ(c.sends[0].ms, 1000 / 20e3);  // 500 moves of 2 clocks at 20 MHz
+    EXPECT_EQ(c.sends[1].commands, 70u);
+    // everything the phase ran: its own time
+    EXPECT_DOUBLE_EQ(c.sends[1].ms, c.phases[static_cast<int>(Phase::HiddenSurface)].ms);
+    try {
+        parse_guest_counts(
+            head + R"("sends":[{"phase":3,"commands":64,"instructions":1,"classes":{}},
+                                             {"phase":3,"commands":63,"instructions":1,"classes":{}}]})",
+            "c.json");
+        ADD_FAILURE() << "accepted commands that go back";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("c.json: send 1: 63 commands sent"), std::string::npos)
+            << e.what();
+    }
+    // counts from before send marks: none, and no send times
+    EXPECT_TRUE(price(parse_guest_counts(head.substr(0, head.size() - 1) + "}", "c"), profile())
+                    .sends.empty());
+}
+
 TEST(HostCost, BadProfilesAndCountsAreRefusedNamingWhatIsWrong) {
     auto refused = [](const std::string& json, const std::string& says) {
         try {

@@ -42,8 +42,8 @@ TEST(PeriodRender, ASun360HostPrintsItsPhasesAndTheSplit) {
 // report's SPARC lines: register-window traps per phase and the stand-ins' share.
 TEST(PeriodRender, ASun4HostPrintsItsWindowTrapsAndStandInsAndTheSplit) {
     const std::string stats = (test_dir() / "s4.json").string();
-    CliRun r = run_fb89("render " + kScenes + "/A.json --size 256x195 --host sun4-260 --classes 5 " +
-                        "--stats " + stats);
+    CliRun r = run_fb89("render " + kScenes +
+                        "/A.json --size 256x195 --host sun4-260 --classes 5 " + "--stats " + stats);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // the classes that take most of each phase: five lines under each heading
     const size_t heading = r.out.find("hidden_surface phase, the classes that take most of its ");
@@ -67,6 +67,43 @@ TEST(PeriodRender, ASun4HostPrintsItsWindowTrapsAndStandInsAndTheSplit) {
     EXPECT_GE(hs["stand_in_ms"].get<double>(), 0);
     EXPECT_LT(hs["stand_in_ms"].get<double>(), hs["ms"].get<double>());
     EXPECT_TRUE(hs["events"].contains("@window_overflow"));
+}
+
+// On a 1989 host the send times are counted from the emulated instructions: the frame goes
+// through the pipeline in time, and two runs write the same timeline byte for byte.
+TEST(PeriodRender, TheSendTimesAreCountedTheSameTwice) {
+    for (const std::string host : {"sun3-60", "sun4-260"}) {
+        SCOPED_TRACE(host);
+        std::string timelines[2];
+        for (int i = 0; i < 2; ++i) {
+            const std::string path = (test_dir() / (host + std::to_string(i) + ".json")).string();
+            const std::string stats = (test_dir() / (host + "-stats.json")).string();
+            CliRun r = run_fb89("render " + kScenes + "/A.json --size 128x98 -m scanline --host " +
+                                host + " --timeline " + path + " --stats " + stats);
+            ASSERT_EQ(r.exit_code, 0) << r.err;
+            EXPECT_NE(r.out.find("pipeline (send times counted, buffer unbounded): frame "),
+                      std::string::npos)
+                << r.out;
+            timelines[i] = slurp(path);
+            const auto j = nlohmann::json::parse(slurp(stats));
+            EXPECT_EQ(j["pipeline"]["send_times"], "counted");
+            // the host's work in the pipeline is its set-up and hidden-surface time
+            EXPECT_NEAR(j["pipeline"]["host_ms"].get<double>(),
+                        j["period_host"]["phases"]["setup"]["ms"].get<double>() +
+                            j["period_host"]["phases"]["hidden_surface"]["ms"].get<double>(),
+                        1e-9);
+        }
+        EXPECT_EQ(timelines[0], timelines[1]);
+        const auto t = nlohmann::json::parse(timelines[0]);
+        EXPECT_EQ(t["otherData"]["send_times"], "counted");
+        double last = 0;
+        for (const auto& e : t["traceEvents"])
+            if (e["ph"] == "i") {
+                EXPECT_GE(e["ts"].get<double>(), last);
+                last = e["ts"];
+            }
+        EXPECT_GT(last, 0);
+    }
 }
 
 TEST(PeriodRender, NativeRunsEndWithTheSplitToo) {
