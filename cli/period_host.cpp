@@ -143,13 +143,6 @@ std::string split_line(const std::string& host_name, double host_ms, const std::
 
 namespace {
 
-// The share of the smaller side the pipeline hides: 0 when the frame is host + controller
-// (no overlap), 1 when it is max(host, controller).
-double overlap(double frame_ms, double host_ms, double controller_ms) {
-    const double smaller = std::min(host_ms, controller_ms);
-    return smaller > 0 ? (host_ms + controller_ms - frame_ms) / smaller : 1;
-}
-
 std::string buffer_text(uint64_t bytes) {
     return bytes == controller::kUnboundedBuffer ? std::string("unbounded")
                                                  : fmt::format("{} bytes", bytes);
@@ -165,7 +158,8 @@ std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
         "{:.3f}; {:.1f}% of the smaller side overlapped), host stalled {:.3f} ms, utilization "
         "host {:.1f}% controller {:.1f}%\n",
         sends, buffer_text(p.buffer_bytes), frame_ms, std::max(host_ms, controller_ms),
-        host_ms + controller_ms, 100 * overlap(frame_ms, host_ms, controller_ms),
+        host_ms + controller_ms,
+        100 * experiments::pipeline_overlap(frame_ms, host_ms, controller_ms),
         p.host_stalled_us / 1e3, 100 * p.host_utilization(), 100 * p.controller_utilization());
 }
 
@@ -179,7 +173,7 @@ nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_m
             {"frame_ms", frame_ms},
             {"max_ms", std::max(host_ms, controller_ms)},
             {"sum_ms", host_ms + controller_ms},
-            {"overlap", overlap(frame_ms, host_ms, controller_ms)},
+            {"overlap", experiments::pipeline_overlap(frame_ms, host_ms, controller_ms)},
             {"host_ms", p.host_us / 1e3},
             {"host_stalled_ms", p.host_stalled_us / 1e3},
             {"host_stalls", p.stalls},

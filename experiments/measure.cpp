@@ -1,5 +1,7 @@
 #include "experiments/measure.h"
 
+#include "experiments/render_job.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +11,7 @@
 
 #include "controller_sim/controller.h"
 #include "experiments/period_runs.h"
+#include "experiments/render_job.h"
 #include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
 
@@ -77,6 +80,18 @@ std::string progress_label(const ExperimentSettings& s, const std::string& file)
     return label;
 }
 
+// A frame's send times from the hidden-surface pass's start, moved to the set-up's start,
+// FRAME_BEGIN sent as the set-up starts (so that the clear overlaps it); none unless there
+// is one for every command.
+void set_send_times(Measured& m, std::vector<double> hs_us, double setup_ms) {
+    m.send_us.clear();
+    if (hs_us.empty() || hs_us.size() != m.commands.size()) return;
+    for (double& t : hs_us)
+        t += setup_ms * 1e3;
+    hs_us.front() = 0;
+    m.send_us = std::move(hs_us);
+}
+
 }  // namespace
 
 std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
@@ -95,6 +110,8 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
             for (Measured& m : out)
                 m.setup += projection;
         }
+        for (Measured& m : out)
+            set_send_times(m, m.commands.send_times_us(), m.setup.cpu_ms);
         return out;
     }
     // commands and counts from one frame here, untimed
@@ -108,6 +125,7 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
         // the whole set-up stage: projection and the method's own
         const double setup = phases[static_cast<int>(period::Phase::Setup)].ms;
         out[m].setup = {setup, setup};
+        set_send_times(out[m], period_send_times_us(runs[m].cost, out[m].commands.size()), setup);
     }
     return out;
 }

@@ -48,6 +48,9 @@ struct Measured {
     host::Timing setup;  // the whole set-up stage, once: projection and the method's own
     host::Counters counters;
     protocol::MemoryBuffer commands;
+    // measure_settings(): each command's send time in microseconds from the set-up's start
+    // (FRAME_BEGIN's 0): measured natively, counted on a 1989 host; empty when there are none
+    std::vector<double> send_us;
 };
 // The interleaved rounds over renderers already set up on `screen`: each one's median
 // hidden-surface time, last frame and counters (setup left at zero).

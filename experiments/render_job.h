@@ -7,6 +7,7 @@
 // experiments time their settings through the same engine (measure_settings()).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -97,6 +98,13 @@ controller::PipelineFigures pipeline_figures(
     const protocol::MemoryBuffer& commands, const std::vector<double>& send_us, double host_end_us,
     const controller::CostProfile& profile, uint64_t buffer_bytes = controller::kUnboundedBuffer,
     std::vector<controller::CommandTiming>* timings = nullptr);
+
+// The share of the smaller side the pipeline in time hides: 0 when its frame takes host +
+// controller (no overlap), 1 when it takes max(host, controller).
+inline double pipeline_overlap(double frame_ms, double host_ms, double controller_ms) {
+    const double smaller = std::min(host_ms, controller_ms);
+    return smaller > 0 ? (host_ms + controller_ms - frame_ms) / smaller : 1;
+}
 
 // Each of a frame's `commands` commands' send time on a 1989 host in microseconds from the
 // start of the hidden-surface phase: the time of the send mark that closed its packet

@@ -2,7 +2,9 @@
 // the host's time per frame (set-up + hidden-surface) beside the controller's modelled
 // frame time, the frame time of the two-stage pipeline (host makes frame n + 1 while the
 // controller tiles frame n: the larger of the two) and the side that bounds it. With a
-// 1989 --host both sides are of one era.
+// 1989 --host both sides are of one era. Beside it, the frame through the pipeline in time
+// from the commands' send times (docs/COST_MODEL.md): its frame time, the overlap it
+// achieves, the host's stalls and both sides' utilization.
 #include <algorithm>
 
 #include <fmt/format.h>
@@ -10,12 +12,14 @@
 #include "experiments/experiments.h"
 #include "experiments/measure.h"
 #include "experiments/period_runs.h"
+#include "experiments/render_job.h"
 
 namespace fb89::experiments {
 
 Table experiment_split(const ExperimentSettings& s) {
     Table table({"scene", "method", "host", "host_setup_ms", "host_hs_ms", "host_frame_ms",
-                 "controller_ms", "frame_ms", "bound_by", "ratio", "commands"});
+                 "controller_ms", "frame_ms", "bound_by", "ratio", "commands", "sum_ms",
+                 "pipeline_ms", "overlap", "host_stalled_ms", "host_util", "controller_util"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
     const std::string host = s.period ? s.period->profile().name : "native";
     std::vector<host::MethodOptions> settings = every_method();
@@ -30,11 +34,34 @@ Table experiment_split(const ExperimentSettings& s) {
             const double setup_ms = r[m].setup.cpu_ms;
             const double host_ms = setup_ms + r[m].median.cpu_ms;
             const FrameSplit split = frame_split(host_ms, ctl.frame_ms);
-            table.add({file, std::string(host::method_info(settings[m].method).name), host,
-                       fixed(setup_ms, 3), fixed(r[m].median.cpu_ms, 3), fixed(host_ms, 3),
-                       fixed(ctl.frame_ms, 3), fixed(split.frame_ms, 3),
-                       split.host_bounds ? "host" : "controller",
-                       split.ratio > 0 ? fixed(split.ratio, 2) : "", std::to_string(ctl.commands)});
+            std::vector<std::string> row = {file,
+                                            std::string(host::method_info(settings[m].method).name),
+                                            host,
+                                            fixed(setup_ms, 3),
+                                            fixed(r[m].median.cpu_ms, 3),
+                                            fixed(host_ms, 3),
+                                            fixed(ctl.frame_ms, 3),
+                                            fixed(split.frame_ms, 3),
+                                            split.host_bounds ? "host" : "controller",
+                                            split.ratio > 0 ? fixed(split.ratio, 2) : "",
+                                            std::to_string(ctl.commands),
+                                            fixed(host_ms + ctl.frame_ms, 3)};
+            // the pipeline in time from the send times (none: a 1989 host's counts from
+            // before send marks, or an untimed run): empty cells
+            if (!r[m].send_us.empty()) {
+                const controller::PipelineFigures p =
+                    pipeline_figures(r[m].commands, r[m].send_us, host_ms * 1e3, profile,
+                                     profile.command_buffer_bytes);
+                const double frame = p.frame_us / 1e3;
+                row.insert(
+                    row.end(),
+                    {fixed(frame, 3), fixed(pipeline_overlap(frame, host_ms, ctl.frame_ms), 4),
+                     fixed(p.host_stalled_us / 1e3, 3), fixed(p.host_utilization(), 4),
+                     fixed(p.controller_utilization(), 4)});
+            } else {
+                row.resize(row.size() + 5);
+            }
+            table.add(std::move(row));
         }
     }
     return table;
