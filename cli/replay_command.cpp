@@ -9,6 +9,10 @@
 //                         as F with the call number inserted: out.png -> out-000123.png
 //   --stats F.json        {"stream": ..., "controller": <controller stats>, "benchmark": ...}
 //   --benchmark           wall time of the replay (reading + executing), commands/s, Mpixels/s
+//   --buffer N|unbounded  each frame also through the pipeline in time with a command buffer
+//                         of N bytes (docs/COST_MODEL.md); a version-1 stream carries no
+//                         send times, so every command is ready at 0, and the line says so
+//   --timeline F          the last complete frame through that pipeline as trace-event JSON
 //
 // A truncated or corrupt stream: every complete frame is reported, then the StreamError on
 // stderr, and exit 2 with no output file written or changed (the snapshots already taken
@@ -25,6 +29,8 @@
 #include "cli/stream_tools.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
+#include "experiments/render_job.h"
+#include "experiments/timeline.h"
 
 namespace fb89::cli {
 
@@ -33,7 +39,7 @@ namespace {
 struct ReplayArgs {
     std::string stream;
     std::string profile = std::string(controller::kDefaultProfile);
-    std::string png, snapshot, stats;
+    std::string png, snapshot, stats, buffer, timeline;
     bool benchmark = false;
     bool salvage = false;
     bool quiet = false;
@@ -45,7 +51,25 @@ struct ReplayRun {
     std::string last_snapshot;
     double wall_s = 0;
     std::optional<protocol::StreamError> error;
+    // --buffer / --timeline: each complete frame through the pipeline in time, and the last
+    // one's commands
+    std::optional<uint64_t> buffer;
+    std::vector<controller::PipelineFigures> pipelines;
+    protocol::MemoryBuffer frame, last_frame_commands;
 };
+
+// The frame so far, through the pipeline in time when it ends (every command ready at 0:
+// the stream has no send times).
+void follow_pipeline(const protocol::Command& c, const controller::CostProfile& profile,
+                     ReplayRun& run) {
+    if (std::holds_alternative<protocol::FrameBegin>(c)) run.frame.clear();
+    run.frame.submit(c);
+    if (!std::holds_alternative<protocol::FrameEnd>(c)) return;
+    run.pipelines.push_back(experiments::pipeline_figures(
+        run.frame, std::vector<double>(run.frame.size(), 0.0), 0, profile, *run.buffer));
+    std::swap(run.last_frame_commands, run.frame);
+    run.frame.clear();
+}
 
 // Commands read and executed at a time by the replay loop: enough to leave the per-batch
 // costs behind, few enough to stay in the cache (40 bytes each).
@@ -78,6 +102,9 @@ void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
         } else {
             while (const std::size_t n = reader.read_batch(batch)) {
                 ctl.execute(std::span(batch).first(n));
+                if (run.buffer)
+                    for (std::size_t i = 0; i < n; ++i)
+                        follow_pipeline(batch[i], ctl.profile(), run);
                 if (keep_last && std::holds_alternative<protocol::FrameEnd>(batch[n - 1]))
                     run.last_frame = ctl.framebuffer();
             }
@@ -118,7 +145,8 @@ nlohmann::json stats_json(const ReplayArgs& args, const protocol::StreamReader& 
 int run_replay(const ReplayArgs& args) {
     Console console{args.quiet};
     protocol::CallSet snapshots;
-    const bool stdout_taken = claims_stdout({{"--png", args.png}, {"--stats", args.stats}});
+    const bool stdout_taken = claims_stdout(
+        {{"--png", args.png}, {"--stats", args.stats}, {"--timeline", args.timeline}});
     if (!args.snapshot.empty()) {
         if (args.png.empty() || args.png == "-")
             throw UsageError("--snapshot needs --png F: snapshots are written as F-<call>.png");
@@ -129,6 +157,10 @@ int run_replay(const ReplayArgs& args) {
     controller::Controller ctl(profile);
 
     ReplayRun run;
+    run.buffer = parse_buffer_option(args.buffer, args.profile);
+    if (!run.buffer && !args.timeline.empty()) run.buffer = profile.command_buffer_bytes;
+    if (run.buffer && !snapshots.empty())
+        throw UsageError("--buffer and --timeline replay whole frames; not with --snapshot");
     replay(args, snapshots, reader, ctl, run);
     const bool write = !run.error || args.salvage;  // a failed replay leaves nothing
 
@@ -144,12 +176,38 @@ int run_replay(const ReplayArgs& args) {
     if (write && !snapshots.empty())
         console.note(fmt::format("{} snapshot(s) written{}", run.snapshots,
                                  run.snapshots ? ", the last " + run.last_snapshot : ""));
+    if (write && !args.timeline.empty()) {
+        if (run.pipelines.empty())
+            throw std::runtime_error(args.stream + ": no complete frame; " + args.timeline +
+                                     " not written");
+        experiments::TimelineFrame frame;
+        frame.title = fmt::format("{}, frame {}, controller {}", args.stream,
+                                  run.pipelines.size() - 1, profile.name);
+        frame.send_times = "";
+        write_text(args.timeline, experiments::timeline_json(
+                                      run.last_frame_commands,
+                                      std::vector<double>(run.last_frame_commands.size(), 0.0),
+                                      frame, profile, *run.buffer));
+    }
     if (write && !args.stats.empty()) write_json(args.stats, stats_json(args, reader, ctl, run));
 
     if (!args.quiet && !stdout_taken) {
         fmt::print("{}\nprofile {}\n", header_line(reader), profile.name);
         fmt::print("{}", frame_table(ctl));
         fmt::print("{}", ctl.stats().summary());
+        for (std::size_t i = 0; i < run.pipelines.size(); ++i) {
+            const controller::PipelineFigures& p = run.pipelines[i];
+            fmt::print(
+                "pipeline, frame {} (no send times in the stream: every command ready at 0; "
+                "buffer {}): frame {:.3f} ms, host stalled {:.3f} ms, controller idle {:.3f} "
+                "ms, buffer high water {} bytes\n",
+                i,
+                p.buffer_bytes == controller::kUnboundedBuffer
+                    ? std::string("unbounded")
+                    : fmt::format("{} bytes", p.buffer_bytes),
+                p.frame_us / 1e3, p.host_stalled_us / 1e3, p.controller_idle_us / 1e3,
+                p.high_water_bytes);
+        }
         if (args.benchmark) {
             const controller::OpcodeCounters all = sum(ctl.stats().totals);
             const nlohmann::json b = benchmark_json(run, all);
@@ -194,6 +252,13 @@ void register_replay(CLI::App& app, int& exit_code) {
                     "(e.g. 'frame', '100-200/10/span')");
     sub->add_option("--stats", args->stats,
                     "Write the controller's stats as JSON ('-' for stdout)");
+    sub->add_option("--buffer", args->buffer,
+                    "Also run each frame through the pipeline in time with a command buffer of "
+                    "this many bytes, or unbounded (the stream has no send times: every command "
+                    "ready at 0)");
+    sub->add_option("--timeline", args->timeline,
+                    "Write the last complete frame through the pipeline in time as Chrome "
+                    "trace-event JSON (Perfetto, chrome://tracing)");
     sub->add_flag("--benchmark", args->benchmark,
                   "Time the replay (wall) and report commands/s and Mpixels/s");
     sub->add_flag("--salvage", args->salvage,

@@ -110,6 +110,36 @@ TEST(ReplayCommand, ReplaysUnderAnotherProfileWithTheRendersChecksum) {
     EXPECT_NE(text.out.find("checksum"), std::string::npos) << text.out;
 }
 
+// --buffer and --timeline: each frame through the pipeline in time, every command ready at 0
+// (a version-1 stream has no send times, and the line says so); a buffer smaller than the
+// largest command is a usage error, and a timeline that cannot be written leaves nothing.
+TEST(ReplayCommand, TheBufferAndTheTimelineRunTheStreamsFramesThroughThePipeline) {
+    const std::string stream = record_a(), timeline = scratch("replay_timeline.json");
+    CliRun r = fb89("replay " + stream + " --buffer 64 --timeline " + timeline);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("pipeline, frame 0 (no send times in the stream: every command ready at "
+                         "0; buffer 64 bytes): frame "),
+              std::string::npos)
+        << r.out;
+    const nlohmann::json t = nlohmann::json::parse(slurp(timeline));
+    EXPECT_EQ(t["otherData"]["send_times"], "none: every command ready at 0");
+    EXPECT_EQ(t["otherData"]["buffer_bytes"], 64);
+    EXPECT_LE(t["otherData"]["high_water_bytes"].get<uint64_t>(), 64u);
+    double controller_us = 0;
+    for (const auto& e : t["traceEvents"])
+        if (e["ph"] == "X" && e["tid"] == 3) controller_us += e["dur"].get<double>();
+    EXPECT_NEAR(controller_us, t["otherData"]["controller_busy_us"].get<double>(),
+                1e-6 * controller_us);
+    r = fb89("replay " + stream + " --buffer 5");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--buffer: 5 bytes cannot hold a command"), std::string::npos) << r.err;
+    const std::string blocked = scratch("not-a-folder");
+    { std::ofstream(blocked) << "x"; }
+    r = fb89("replay " + stream + " -q --timeline " + blocked + "/t.json");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("not-a-folder"), std::string::npos) << r.err;
+}
+
 TEST(ReplayCommand, PngOfTheLastFrameEqualsTheRendersImage) {
     const std::string stream = scratch("a.fb89"), rendered = scratch("r.png"),
                       replayed = scratch("p.png");
