@@ -56,7 +56,7 @@ std::vector<host::MethodOptions> settings_of(const CompareArgs& a, std::string& 
 
 nlohmann::json rows_json(const Comparison& c) {
     nlohmann::json rows = nlohmann::json::array();
-    for (const CompareRow& r : c.rows)
+    for (const CompareRow& r : c.rows) {
         rows.push_back({{"scene", c.scene},
                         {"method", r.method},
                         {"host", c.host},
@@ -70,6 +70,10 @@ nlohmann::json rows_json(const Comparison& c) {
                         {"pixels_differing", r.ids.total()},
                         {"px_coverage", r.ids.coverage},
                         {"px_other_face", r.ids.other_face}});
+        if (r.pipeline)
+            rows.back()["pipeline"] = pipeline_json(*r.pipeline, r.host_ms, r.controller.frame_ms,
+                                                    send_times_source(c.host != "native"));
+    }
     return rows;
 }
 

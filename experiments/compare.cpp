@@ -136,6 +136,7 @@ Comparison compare_methods(const std::string& file,
         row.frame_ms = run.split.frame_ms;
         row.host_bound = run.split.host_bounds;
         row.ids = id_differences(truth, ids_of(r.scene, run.options));
+        row.pipeline = run.pipeline;
         c.rows.push_back(row);
         c.frames.push_back(frame_of(run.commands));
     }
@@ -146,14 +147,35 @@ Comparison compare_methods(const std::string& file,
 Table comparison_table(const Comparison& c) {
     Table table({"scene", "method", "host", "host_ms", "commands", "fills", "spans",
                  "controller_ms", "frame_ms", "bound_by", "pixels_differing", "px_coverage",
-                 "px_other_face"});
-    for (const CompareRow& r : c.rows)
-        table.add({c.scene, r.method, c.host, fixed(r.host_ms, 3),
-                   std::to_string(r.controller.commands), std::to_string(r.controller.fills),
-                   std::to_string(r.controller.spans), fixed(r.controller.frame_ms, 3),
-                   fixed(r.frame_ms, 3), r.host_bound ? "host" : "controller",
-                   std::to_string(r.ids.total()), std::to_string(r.ids.coverage),
-                   std::to_string(r.ids.other_face)});
+                 "px_other_face", "pipeline_ms", "overlap", "host_stalled_ms", "host_util",
+                 "controller_util"});
+    for (const CompareRow& r : c.rows) {
+        std::vector<std::string> row = {c.scene,
+                                        r.method,
+                                        c.host,
+                                        fixed(r.host_ms, 3),
+                                        std::to_string(r.controller.commands),
+                                        std::to_string(r.controller.fills),
+                                        std::to_string(r.controller.spans),
+                                        fixed(r.controller.frame_ms, 3),
+                                        fixed(r.frame_ms, 3),
+                                        r.host_bound ? "host" : "controller",
+                                        std::to_string(r.ids.total()),
+                                        std::to_string(r.ids.coverage),
+                                        std::to_string(r.ids.other_face)};
+        if (r.pipeline) {
+            const double frame = r.pipeline->frame_us / 1e3;
+            row.insert(row.end(),
+                       {fixed(frame, 3),
+                        fixed(pipeline_overlap(frame, r.host_ms, r.controller.frame_ms), 4),
+                        fixed(r.pipeline->host_stalled_us / 1e3, 3),
+                        fixed(r.pipeline->host_utilization(), 4),
+                        fixed(r.pipeline->controller_utilization(), 4)});
+        } else {
+            row.resize(row.size() + 5);
+        }
+        table.add(std::move(row));
+    }
     return table;
 }
 

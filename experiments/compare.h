@@ -6,10 +6,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "controller_sim/framebuffer.h"
+#include "controller_sim/timed_pipeline.h"
 #include "experiments/measure.h"
 #include "experiments/settings.h"
 #include "experiments/table.h"
@@ -35,6 +37,8 @@ struct CompareRow {
     double frame_ms = 0;
     bool host_bound = false;  // the host's time bounds the frame, not the controller's
     IdDifferences ids;        // face ids that differ from the Z-buffer's
+    // the frame through the pipeline in time (render_job.h), when it has send times
+    std::optional<controller::PipelineFigures> pipeline;
 };
 
 struct Comparison {
@@ -54,7 +58,9 @@ Comparison compare_methods(const std::string& file,
                            const ExperimentSettings& s);
 
 // The rows as a table: scene, method, host, host_ms, commands, fills, spans, controller_ms,
-// frame_ms, bound_by, pixels_differing (px_coverage + px_other_face).
+// frame_ms, bound_by, pixels_differing (px_coverage + px_other_face), then the pipeline in
+// time: pipeline_ms, overlap, host_stalled_ms, host_util, controller_util (empty without
+// send times).
 Table comparison_table(const Comparison& c);
 
 // Where things go on the contact sheet: a title band, then `columns` x `rows` tiles, each

@@ -344,6 +344,64 @@ def split_hosts(root):
     save(fig, os.path.join(root, "split_hosts.png"))
 
 
+def timeline_png(json_path, png_path):
+    """One frame through the pipeline in time (fb89 render --timeline): the host's, the bus's
+    and the controller's lanes in time, host stalls in red, the command buffer's fill below,
+    the utilizations in the title."""
+    import json
+    with open(json_path) as f:
+        trace = json.load(f)
+    other = trace["otherData"]
+    lanes = {1: ("host", 2), 2: ("bus", 1), 3: ("controller", 0)}
+    bars = {1: [], 2: [], 3: []}
+    stalls, setup, counter = [], [], []
+    for e in trace["traceEvents"]:
+        ph = e.get("ph")
+        if ph == "X":
+            span = (e["ts"] / 1e3, e["dur"] / 1e3)
+            if e["tid"] == 1 and e["name"] == "stall":
+                stalls.append(span)
+            elif e["tid"] == 1 and e["name"] == "set-up":
+                setup.append(span)
+            else:
+                bars[e["tid"]].append(span)
+        elif ph == "C":
+            counter.append((e["ts"] / 1e3, e["args"]["bytes"]))
+    fig, (ax, buf) = plt.subplots(2, 1, figsize=(9, 3.6), sharex=True,
+                                  gridspec_kw={"height_ratios": [3, 1]})
+    for tid, (name, row) in lanes.items():
+        colour = "#4477aa" if tid != 2 else "#777777"
+        # an edge as wide as a hairline, so that a slice narrower than a pixel still shows
+        ax.broken_barh(bars[tid], (row - 0.35, 0.7), facecolor=colour, edgecolor=colour,
+                       linewidth=0.3)
+    ax.broken_barh(setup, (2 - 0.35, 0.7), color="#88ccee", linewidth=0, label="set-up")
+    ax.broken_barh(stalls, (2 - 0.35, 0.7), facecolor="#cc3311", edgecolor="#cc3311",
+                   linewidth=0.3, label="host stalled")
+    ax.set_yticks([lanes[t][1] for t in lanes], [lanes[t][0] for t in lanes])
+    ax.legend(fontsize=7, loc="upper right")
+    if counter:
+        xs, ys = zip(*counter)
+        buf.step(xs, [y / 1024 for y in ys], where="post", color="#228833", linewidth=0.8)
+    buf.set_ylabel("buffer KiB", fontsize=8)
+    buf.set_xlabel("ms from the start of the host's set-up", fontsize=8)
+    ax.set_title(f"{other['title']}: frame {other['frame_us'] / 1e3:,.1f} ms, utilization host "
+                 f"{100 * other['host_utilization']:.1f}%, controller "
+                 f"{100 * other['controller_utilization']:.1f}% (send times "
+                 f"{other['send_times']})", fontsize=8)
+    fig.tight_layout()
+    save(fig, png_path)
+    plt.close(fig)
+
+
+def timelines(folder):
+    """Every *.json timeline under FOLDER drawn beside itself as .png."""
+    for root, _, files in os.walk(folder):
+        for name in sorted(files):
+            if name.endswith(".json"):
+                path = os.path.join(root, name)
+                timeline_png(path, path[:-5] + ".png")
+
+
 def write_text(path, text):
     """A table written by the rule every fb89 output follows (output_file.py's, for bytes)."""
     class Text:  # what save() needs of a figure: savefig into a binary file
@@ -356,6 +414,9 @@ def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "docs/figures"
     if "--split-hosts" in sys.argv:
         split_hosts(folder)
+        return
+    if "--timelines" in sys.argv:
+        timelines(folder)
         return
     if os.path.exists(os.path.join(folder, "split.csv")):
         split_both_sides(folder)

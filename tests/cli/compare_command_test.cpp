@@ -76,7 +76,8 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
 
     const std::string text = slurp(csv);
     EXPECT_EQ(text.rfind("scene,method,host,host_ms,commands,fills,spans,controller_ms,frame_ms,"
-                         "bound_by,pixels_differing,px_coverage,px_other_face\n",
+                         "bound_by,pixels_differing,px_coverage,px_other_face,pipeline_ms,"
+                         "overlap,host_stalled_ms,host_util,controller_util\n",
                          0),
               0u)
         << text;
@@ -89,6 +90,13 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
         if (m == "zbuffer" || m == "scanline" || m == "warnock" || m == "hybrid") {
             EXPECT_EQ(row.at("pixels_differing"), "0") << m;  // the exact methods
         }
+        // the pipeline in time: never faster than the larger side, never slower than both
+        // in turn with the host's stalls
+        const double pipeline = std::stod(row.at("pipeline_ms"));
+        EXPECT_GE(pipeline + 1e-3, std::stod(row.at("frame_ms"))) << m;
+        EXPECT_LE(pipeline, std::stod(row.at("host_ms")) + std::stod(row.at("controller_ms")) +
+                                std::stod(row.at("host_stalled_ms")) + 1e-3)
+            << m;
         // the two kinds of difference add up to all of them
         EXPECT_EQ(std::stoull(row.at("pixels_differing")),
                   std::stoull(row.at("px_coverage")) + std::stoull(row.at("px_other_face")))
