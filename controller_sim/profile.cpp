@@ -34,11 +34,23 @@ constexpr const char* kUnlimited = "unlimited";
 // The value of command_buffer_bytes for a buffer without a bound.
 constexpr const char* kUnbounded = "unbounded";
 
-constexpr std::array<std::string_view, 16> kKnownKeys = {
+constexpr std::array<std::string_view, 17> kKnownKeys = {
     "name",          "description",  "f_cyc_hz",   "bpp",
     "C_cmd",         "C_setup",      "C_op",       "C_row",
     "span_as",       "C_line_setup", "C_line_pix", "B_bus_bytes_per_s",
-    "t_handshake_s", "bytes",        "sources",    "command_buffer_bytes"};
+    "t_handshake_s", "bytes",        "sources",    "command_buffer_bytes",
+    "bands"};
+
+// The figures a band may be given for; the cycle counts first.
+constexpr std::array<std::string_view, 9> kBandable = {"C_cmd",
+                                                       "C_setup",
+                                                       "C_op",
+                                                       "C_row",
+                                                       "C_line_setup",
+                                                       "C_line_pix",
+                                                       "B_bus_bytes_per_s",
+                                                       "t_handshake_s",
+                                                       "command_buffer_bytes"};
 
 bool is_known_key(std::string_view key) {
     return std::find(kKnownKeys.begin(), kKnownKeys.end(), key) != kKnownKeys.end();
@@ -143,6 +155,75 @@ void read_sources(const FieldReader& r, const json& j, CostProfile& p) {
     }
 }
 
+// A banded figure's value in `p`, and a pointer to set it (null for the bus and the buffer,
+// which are not cycle counts).
+double band_value(const CostProfile& p, std::string_view field) {
+    if (field == "C_cmd") return p.c_cmd;
+    if (field == "C_setup") return p.c_setup;
+    if (field == "C_op") return p.c_op;
+    if (field == "C_row") return p.c_row;
+    if (field == "C_line_setup") return p.c_line_setup;
+    if (field == "C_line_pix") return p.c_line_pix;
+    if (field == "B_bus_bytes_per_s") return p.b_bus_bytes_per_s;
+    if (field == "t_handshake_s") return p.t_handshake_s;
+    return static_cast<double>(p.command_buffer_bytes);
+}
+
+void read_bands(const FieldReader& r, const json& j, CostProfile& p) {
+    auto it = j.find("bands");
+    if (it == j.end()) return;
+    if (!it->is_object()) r.fail("bands", "expected an object of field name -> band");
+    for (const auto& [key, band] : it->items()) {
+        const std::string field = "bands." + key;
+        if (std::find(kBandable.begin(), kBandable.end(), key) == kBandable.end())
+            r.fail(field,
+                   "names no figure that can have a band (C_*, B_bus_bytes_per_s, "
+                   "t_handshake_s, command_buffer_bytes)");
+        if (!band.is_object())
+            r.fail(field, "expected {\"low\": ..., \"high\": ..., \"why\": ...}");
+        const bool buffer = key == "command_buffer_bytes";
+        for (const auto& [k, v] : band.items())
+            if (k != "low" && k != "why" && (buffer || k != "high"))
+                r.fail(field + "." + k, buffer ? "unknown (a buffer's band has low and why)"
+                                               : "unknown (a band has low, high and why)");
+        const auto number = [&](const char* end) {
+            auto e = band.find(end);
+            if (e == band.end()) r.fail(field + "." + end, "missing");
+            if (!e->is_number() || !std::isfinite(e->get<double>()) || e->get<double>() < 0)
+                r.fail(field + "." + end,
+                       fmt::format("expected a number not below 0, got {}", e->dump()));
+            return e->get<double>();
+        };
+        CostProfile::Band b;
+        b.low = number("low");
+        const double value = band_value(p, key);
+        b.high = buffer ? value : number("high");
+        auto why = band.find("why");
+        if (why == band.end() || !why->is_string() || why->get<std::string>().empty())
+            r.fail(field + ".why", "missing: a band says why it is that wide");
+        b.why = why->get<std::string>();
+        if (!(b.low <= value && value <= b.high))
+            r.fail(field, fmt::format("the figure {:g} must lie within its band, {:g} to {:g}",
+                                      value, b.low, b.high));
+        if (buffer) {
+            const uint32_t largest = *std::max_element(p.bytes.begin(), p.bytes.end());
+            if (b.low != std::floor(b.low) || b.low < largest)
+                r.fail(field + ".low",
+                       fmt::format("expected a whole number of bytes from the largest "
+                                   "command's {}, got {:g}",
+                                   largest, b.low));
+        } else if (key.rfind("C_", 0) == 0 &&
+                   (b.low != std::floor(b.low) || b.high != std::floor(b.high) ||
+                    b.high > kMaxCycleFigure)) {
+            r.fail(field,
+                   fmt::format("a band of cycles is whole numbers up to {}", kMaxCycleFigure));
+        } else if (key == "B_bus_bytes_per_s" && b.low <= 0) {
+            r.fail(field + ".low", "a bus band starts above 0 bytes/s");
+        }
+        p.bands[key] = std::move(b);
+    }
+}
+
 std::string read_text_file(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in)
@@ -212,10 +293,40 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         }
     }
     read_sources(r, j, p);
+    read_bands(r, j, p);
+    return p;
+}
+
+CostProfile band_end(const CostProfile& profile, bool dear) {
+    CostProfile p = profile;
+    p.name += dear ? " (dear end)" : " (cheap end)";
+    for (const auto& [field, band] : profile.bands) {
+        // more cycles and a longer handshake are dearer; a faster bus and a bigger buffer
+        // cheaper
+        const bool more_is_dear = field != "B_bus_bytes_per_s" && field != "command_buffer_bytes";
+        const double v = dear == more_is_dear ? band.high : band.low;
+        const auto cycles = static_cast<uint32_t>(v);
+        if (field == "C_cmd") p.c_cmd = cycles;
+        if (field == "C_setup") p.c_setup = cycles;
+        if (field == "C_op") p.c_op = cycles;
+        if (field == "C_row") p.c_row = cycles;
+        if (field == "C_line_setup") p.c_line_setup = cycles;
+        if (field == "C_line_pix") p.c_line_pix = cycles;
+        if (field == "B_bus_bytes_per_s") p.b_bus_bytes_per_s = v;
+        if (field == "t_handshake_s") p.t_handshake_s = v;
+        if (field == "command_buffer_bytes")
+            p.command_buffer_bytes =
+                dear ? static_cast<uint64_t>(band.low) : profile.command_buffer_bytes;
+    }
     return p;
 }
 
 nlohmann::json CostProfile::to_json() const {
+    json bands_json = json::object();
+    for (const auto& [field, band] : bands) {
+        bands_json[field] = {{"low", band.low}, {"why", band.why}};
+        if (field != "command_buffer_bytes") bands_json[field]["high"] = band.high;
+    }
     json bytes_json = json::object();
     for (int i = 0; i < protocol::kOpcodeCount; ++i)
         bytes_json[protocol::to_string(static_cast<protocol::Opcode>(i + 1))] = bytes[i];
@@ -237,7 +348,8 @@ nlohmann::json CostProfile::to_json() const {
         {"bytes", bytes_json},
         {"command_buffer_bytes",
          command_buffer_bytes == kUnboundedBuffer ? json(kUnbounded) : json(command_buffer_bytes)},
-        {"sources", sources}};
+        {"sources", sources},
+        {"bands", bands_json}};
 }
 
 std::string CostProfile::to_string() const {

@@ -54,6 +54,15 @@ struct CostProfile {
     uint64_t command_buffer_bytes = kUnboundedBuffer;
     // Where each figure comes from: field name -> "[EMU] ..." or "[EST] ...".
     std::map<std::string, std::string> sources;
+    // The range an estimated figure may lie in, and why ("bands"): field name -> band. Fields
+    // that can have one: C_cmd, C_setup, C_op, C_row, C_line_setup, C_line_pix,
+    // B_bus_bytes_per_s, t_handshake_s (low <= the figure <= high) and command_buffer_bytes
+    // (low only: the smallest buffer it may be; its high end is the figure).
+    struct Band {
+        double low = 0, high = 0;
+        std::string why;
+    };
+    std::map<std::string, Band> bands;
 
     // P: pixels per 16-bit word.
     uint32_t pixels_per_word() const { return 16 / bpp; }
@@ -62,6 +71,12 @@ struct CostProfile {
     nlohmann::json to_json() const;  // the same fields as the profile file
     std::string to_string() const;   // one line for logs and test messages
 };
+
+// The profile with every banded figure at the end of its band that makes the controller
+// dearer (`dear`: more cycles, a slower bus, a longer handshake, the smaller buffer) or
+// cheaper; figures without a band stay as they are. Its name gets " (dear end)" or
+// " (cheap end)".
+CostProfile band_end(const CostProfile& profile, bool dear);
 
 // A profile compiled into the library.
 struct BuiltinProfile {

@@ -4,7 +4,9 @@
 // controller tiles frame n: the larger of the two) and the side that bounds it. With a
 // 1989 --host both sides are of one era. Beside it, the frame through the pipeline in time
 // from the commands' send times (docs/COST_MODEL.md): its frame time, the overlap it
-// achieves, the host's stalls and both sides' utilization.
+// achieves, the host's stalls and both sides' utilization; and the band those frame times
+// and the host's ratio to the controller lie in when the controller's estimated figures
+// range over their bands (the profile's "bands": docs/COST_MODEL.md).
 #include <algorithm>
 
 #include <fmt/format.h>
@@ -17,10 +19,33 @@
 namespace fb89::experiments {
 
 Table experiment_split(const ExperimentSettings& s) {
-    Table table({"scene", "method", "host", "host_setup_ms", "host_hs_ms", "host_frame_ms",
-                 "controller_ms", "frame_ms", "bound_by", "ratio", "commands", "sum_ms",
-                 "pipeline_ms", "overlap", "host_stalled_ms", "host_util", "controller_util"});
+    Table table({"scene",
+                 "method",
+                 "host",
+                 "host_setup_ms",
+                 "host_hs_ms",
+                 "host_frame_ms",
+                 "controller_ms",
+                 "frame_ms",
+                 "bound_by",
+                 "ratio",
+                 "commands",
+                 "sum_ms",
+                 "pipeline_ms",
+                 "overlap",
+                 "host_stalled_ms",
+                 "host_util",
+                 "controller_util",
+                 "controller_ms_low",
+                 "controller_ms_high",
+                 "pipeline_ms_low",
+                 "pipeline_ms_high",
+                 "ratio_low",
+                 "ratio_high"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
+    // the controller's estimated figures at the ends of their bands (the profile's "bands")
+    const controller::CostProfile cheap = controller::band_end(profile, false);
+    const controller::CostProfile dear = controller::band_end(profile, true);
     const std::string host = s.period ? s.period->profile().name : "native";
     std::vector<host::MethodOptions> settings = every_method();
     for (host::MethodOptions& o : settings)
@@ -61,6 +86,23 @@ Table experiment_split(const ExperimentSettings& s) {
             } else {
                 row.resize(row.size() + 5);
             }
+            // the band: the controller's frame and the pipeline's at the two ends, and the
+            // host's ratio to the controller between them
+            const double low_ms = controller_figures(r[m].commands, cheap).frame_ms;
+            const double high_ms = controller_figures(r[m].commands, dear).frame_ms;
+            row.insert(row.end(), {fixed(low_ms, 3), fixed(high_ms, 3)});
+            if (!r[m].send_us.empty()) {
+                for (const controller::CostProfile* end : {&cheap, &dear})
+                    row.push_back(fixed(pipeline_figures(r[m].commands, r[m].send_us, host_ms * 1e3,
+                                                         *end, end->command_buffer_bytes)
+                                                .frame_us /
+                                            1e3,
+                                        3));
+            } else {
+                row.resize(row.size() + 2);
+            }
+            row.insert(row.end(), {high_ms > 0 ? fixed(host_ms / high_ms, 2) : "",
+                                   low_ms > 0 ? fixed(host_ms / low_ms, 2) : ""});
             table.add(std::move(row));
         }
     }

@@ -21,8 +21,12 @@ namespace {
 using nlohmann::json;
 using protocol::Opcode;
 
+// The default profile's fields without its bands, so that a test may set a figure anywhere
+// (with a band, a figure outside it is refused: Profile.BandsHoldTheirFiguresAndSayWhy).
 json default_profile_json() {
-    return load_profile("tms34010-50mhz").to_json();
+    json j = load_profile("tms34010-50mhz").to_json();
+    j.erase("bands");
+    return j;
 }
 
 // The message parse_profile throws for `j`, or "" when it loads.
@@ -100,6 +104,52 @@ TEST(Profile, TheCommandBufferIsUnboundedOrHoldsTheLargestCommand) {
                 << e.what();
         }
     }
+}
+
+// Bands: every built-in profile's estimates have one, with the figure inside it; the two
+// ends bound the controller's time on a frame; a band without its reason, outside its
+// figure or on a figure that cannot have one is refused, naming it.
+TEST(Profile, BandsHoldTheirFiguresAndSayWhy) {
+    for (const char* name : {"tms34010-50mhz", "tms34020-40mhz"}) {
+        const CostProfile p = load_profile(name);
+        for (const char* field : {"C_cmd", "C_line_setup", "B_bus_bytes_per_s", "t_handshake_s",
+                                  "command_buffer_bytes"})
+            EXPECT_TRUE(p.bands.count(field)) << name << " " << field;
+        const CostProfile cheap = band_end(p, false), dear = band_end(p, true);
+        EXPECT_LE(cheap.c_cmd, p.c_cmd);
+        EXPECT_GE(dear.c_cmd, p.c_cmd);
+        EXPECT_GE(cheap.b_bus_bytes_per_s, p.b_bus_bytes_per_s);
+        EXPECT_LE(dear.b_bus_bytes_per_s, p.b_bus_bytes_per_s);
+        EXPECT_EQ(dear.command_buffer_bytes, 1024u);
+        EXPECT_EQ(cheap.command_buffer_bytes, p.command_buffer_bytes);
+        EXPECT_EQ(dear.name, std::string(name) + " (dear end)");
+    }
+    const CostProfile p = load_profile("tms34010-50mhz");
+    const CostProfile dear = band_end(p, true);
+    EXPECT_EQ(dear.c_cmd, 50u);
+    EXPECT_EQ(dear.c_line_setup, 24u);
+    EXPECT_EQ(dear.b_bus_bytes_per_s, 4e6);
+    EXPECT_EQ(dear.t_handshake_s, 3e-6);
+    EXPECT_EQ(band_end(p, false).c_cmd, 12u);
+    // a band needs its reason, must hold its figure and may only be on a banded figure
+    json j = load_profile("tms34010-50mhz").to_json();
+    j["bands"]["C_cmd"].erase("why");
+    EXPECT_NE(load_error(j).find("\"bands.C_cmd.why\": missing"), std::string::npos)
+        << load_error(j);
+    j = load_profile("tms34010-50mhz").to_json();
+    j["C_cmd"] = 60;
+    EXPECT_NE(load_error(j).find("\"bands.C_cmd\": the figure 60 must lie within its band"),
+              std::string::npos)
+        << load_error(j);
+    j = load_profile("tms34010-50mhz").to_json();
+    j["bands"]["bpp"] = {{"low", 4}, {"high", 16}, {"why", "x"}};
+    EXPECT_NE(load_error(j).find("\"bands.bpp\": names no figure that can have a band"),
+              std::string::npos)
+        << load_error(j);
+    j = load_profile("tms34010-50mhz").to_json();
+    j["bands"]["command_buffer_bytes"]["low"] = 8;  // FILL_RECT takes 12
+    EXPECT_NE(load_error(j).find("\"bands.command_buffer_bytes.low\""), std::string::npos)
+        << load_error(j);
 }
 
 TEST(Profile, ToJsonLoadsBackToTheSameProfile) {
