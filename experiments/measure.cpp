@@ -1,7 +1,5 @@
 #include "experiments/measure.h"
 
-#include "experiments/render_job.h"
-
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -80,18 +78,6 @@ std::string progress_label(const ExperimentSettings& s, const std::string& file)
     return label;
 }
 
-// A frame's send times from the hidden-surface pass's start, moved to the set-up's start,
-// FRAME_BEGIN sent as the set-up starts (so that the clear overlaps it); none unless there
-// is one for every command.
-void set_send_times(Measured& m, std::vector<double> hs_us, double setup_ms) {
-    m.send_us.clear();
-    if (hs_us.empty() || hs_us.size() != m.commands.size()) return;
-    for (double& t : hs_us)
-        t += setup_ms * 1e3;
-    hs_us.front() = 0;
-    m.send_us = std::move(hs_us);
-}
-
 }  // namespace
 
 std::vector<Measured> measure_settings(const std::string& file, const host::ScreenScene& screen,
@@ -111,7 +97,8 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
                 m.setup += projection;
         }
         for (Measured& m : out)
-            set_send_times(m, m.commands.send_times_us(), m.setup.cpu_ms);
+            m.send_us = frame_send_times(m.commands.send_times_us(), m.setup.cpu_ms * 1e3,
+                                         m.commands.size());
         return out;
     }
     // commands and counts from one frame here, untimed
@@ -125,7 +112,9 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
         // the whole set-up stage: projection and the method's own
         const double setup = phases[static_cast<int>(period::Phase::Setup)].ms;
         out[m].setup = {setup, setup};
-        set_send_times(out[m], period_send_times_us(runs[m].cost, out[m].commands.size()), setup);
+        out[m].send_us =
+            frame_send_times(period_send_times_us(runs[m].cost, out[m].commands.size()),
+                             setup * 1e3, out[m].commands.size());
     }
     return out;
 }
@@ -150,6 +139,10 @@ ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
                                      const controller::CostProfile& profile) {
     controller::Controller ctl(profile);
     commands.replay_into(ctl);
+    return controller_figures(ctl);
+}
+
+ControllerFigures controller_figures(const controller::Controller& ctl) {
     const auto& frame = ctl.frames().at(0);
     ControllerFigures f;
     f.commands = frame.total().commands;

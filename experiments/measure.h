@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "controller_sim/controller.h"
 #include "controller_sim/profile.h"
 #include "experiments/progress.h"
 #include "experiments/settings.h"
@@ -96,6 +97,8 @@ struct ControllerFigures {
 };
 ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
                                      const controller::CostProfile& profile);
+// The same of a controller that has run one frame.
+ControllerFigures controller_figures(const controller::Controller& ctl);
 
 // Loads a scene file (into `scene`, which the result points into), at the settings' size
 // when one is given, and projects it shaded.

@@ -72,7 +72,7 @@ std::vector<double> period_send_times_us(const period::HostCost& cost, std::size
 controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
                                              const std::vector<double>& send_us, double host_end_us,
                                              const controller::CostProfile& profile,
-                                             uint64_t buffer_bytes,
+                                             uint64_t buffer_bytes, ControllerFigures* controller,
                                              std::vector<controller::CommandTiming>* timings) {
     controller::Controller ctl(profile);
     controller::TimedPipeline pipe(buffer_bytes);
@@ -92,7 +92,17 @@ controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& comma
         pipe.push({send_us[i], cost.bytes, cost.bus_us, cost.exec_us},
                   timings ? &(*timings)[i] : nullptr);
     }
+    if (controller) *controller = controller_figures(ctl);
     return pipe.finish(host_end_us);
+}
+
+std::vector<double> frame_send_times(std::vector<double> hs_us, double setup_us,
+                                     std::size_t commands) {
+    if (hs_us.empty() || hs_us.size() != commands) return {};
+    for (double& t : hs_us)
+        t += setup_us;
+    hs_us.front() = 0;  // FRAME_BEGIN: the clear starts as the host sets up
+    return hs_us;
 }
 
 uint64_t frames_differing(const protocol::MemoryBuffer& a, const protocol::MemoryBuffer& b,
@@ -176,23 +186,24 @@ RenderResult run_render_job(const RenderJob& job) {
     // the controller tiles what the host decided; its cost is modelled, never timed
     for (size_t m = 0; m < result.runs.size(); ++m) {
         MethodRun& run = result.runs[m];
-        run.controller = controller_figures(run.commands, profile);
-        run.split = frame_split(run.host_frame_ms, run.controller.frame_ms);
         // the pipeline in time from the send times: measured natively (a job of 0 rounds
-        // renders once, untimed, and has none), counted on a 1989 host
-        std::vector<double>& sends = send_us[m];
+        // renders once, untimed, and has none), counted on a 1989 host; the controller's
+        // figures come from the same pass
+        const std::size_t n = run.commands.size();
         const double setup_us =
             run.period ? run.period->cost.phases[kSetup].ms * 1e3 : run.stats.setup.cpu_ms * 1e3;
-        if (run.period) sends = period_send_times_us(run.period->cost, run.commands.size());
-        if (sends.size() != run.commands.size() || sends.empty()) continue;
-        for (double& t : sends)
-            t += setup_us;
-        sends.front() = 0;  // FRAME_BEGIN: the clear starts as the host sets up
-        run.buffer_bytes = job.buffer_bytes.value_or(profile.command_buffer_bytes);
-        run.pipeline = pipeline_figures(run.commands, sends, run.host_frame_ms * 1e3, profile,
-                                        run.buffer_bytes);
-        run.send_us = std::move(sends);
-        run.setup_end_us = setup_us;
+        run.send_us = frame_send_times(
+            run.period ? period_send_times_us(run.period->cost, n) : std::move(send_us[m]),
+            setup_us, n);
+        if (run.send_us.empty()) {
+            run.controller = controller_figures(run.commands, profile);
+        } else {
+            run.buffer_bytes = job.buffer_bytes.value_or(profile.command_buffer_bytes);
+            run.pipeline = pipeline_figures(run.commands, run.send_us, run.host_frame_ms * 1e3,
+                                            profile, run.buffer_bytes, &run.controller);
+            run.setup_end_us = setup_us;
+        }
+        run.split = frame_split(run.host_frame_ms, run.controller.frame_ms);
     }
     return result;
 }

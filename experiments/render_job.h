@@ -91,13 +91,21 @@ struct RenderResult {
 RenderResult run_render_job(const RenderJob& job);
 
 // A frame's commands through the pipeline in time under `profile`: command i sent at
-// send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`; where
-// each command went in `timings` when given. Throws std::invalid_argument for a buffer
-// smaller than the profile's largest command and as TimedPipeline::push does.
+// send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`; what the
+// controller made of the frame (controller_figures(), from the same pass) in `controller`
+// and where each command went in `timings`, when given. Throws std::invalid_argument for a
+// buffer smaller than the profile's largest command and as TimedPipeline::push does.
 controller::PipelineFigures pipeline_figures(
     const protocol::MemoryBuffer& commands, const std::vector<double>& send_us, double host_end_us,
     const controller::CostProfile& profile, uint64_t buffer_bytes = controller::kUnboundedBuffer,
+    ControllerFigures* controller = nullptr,
     std::vector<controller::CommandTiming>* timings = nullptr);
+
+// A frame's send times from the start of the set-up: `hs_us`, counted from the start of the
+// hidden-surface pass, moved by the set-up's `setup_us`, with FRAME_BEGIN sent as the set-up
+// starts (so that the clear overlaps it). Empty unless there is one for each of `commands`.
+std::vector<double> frame_send_times(std::vector<double> hs_us, double setup_us,
+                                     std::size_t commands);
 
 // The share of the smaller side the pipeline in time hides: 0 when its frame takes host +
 // controller (no overlap), 1 when it takes max(host, controller).

@@ -8,6 +8,7 @@
 // and the host's ratio to the controller lie in when the controller's estimated figures
 // range over their bands (the profile's "bands": docs/COST_MODEL.md).
 #include <algorithm>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -55,15 +56,32 @@ Table experiment_split(const ExperimentSettings& s) {
         const host::ScreenScene screen = load_screen(file, s, scene);
         const std::vector<Measured> r = measure_settings(file, screen, settings, s);
         for (size_t m = 0; m < settings.size(); ++m) {
-            const ControllerFigures ctl = controller_figures(r[m].commands, profile);
-            const double setup_ms = r[m].setup.cpu_ms;
-            const double host_ms = setup_ms + r[m].median.cpu_ms;
+            const Measured& run = r[m];
+            const double setup_ms = run.setup.cpu_ms;
+            const double host_ms = setup_ms + run.median.cpu_ms;
+            // the frame under a profile: the controller's figures and, with send times, the
+            // pipeline in time, from one pass (none: a 1989 host's counts from before send
+            // marks, or an untimed run)
+            const auto frame_under =
+                [&](const controller::CostProfile& p,
+                    ControllerFigures& ctl) -> std::optional<controller::PipelineFigures> {
+                if (run.send_us.empty()) {
+                    ctl = controller_figures(run.commands, p);
+                    return std::nullopt;
+                }
+                return pipeline_figures(run.commands, run.send_us, host_ms * 1e3, p,
+                                        p.command_buffer_bytes, &ctl);
+            };
+            ControllerFigures ctl, low, high;
+            const auto pipe = frame_under(profile, ctl);
+            const auto pipe_low = frame_under(cheap, low);
+            const auto pipe_high = frame_under(dear, high);
             const FrameSplit split = frame_split(host_ms, ctl.frame_ms);
             std::vector<std::string> row = {file,
                                             std::string(host::method_info(settings[m].method).name),
                                             host,
                                             fixed(setup_ms, 3),
-                                            fixed(r[m].median.cpu_ms, 3),
+                                            fixed(run.median.cpu_ms, 3),
                                             fixed(host_ms, 3),
                                             fixed(ctl.frame_ms, 3),
                                             fixed(split.frame_ms, 3),
@@ -71,38 +89,23 @@ Table experiment_split(const ExperimentSettings& s) {
                                             split.ratio > 0 ? fixed(split.ratio, 2) : "",
                                             std::to_string(ctl.commands),
                                             fixed(host_ms + ctl.frame_ms, 3)};
-            // the pipeline in time from the send times (none: a 1989 host's counts from
-            // before send marks, or an untimed run): empty cells
-            if (!r[m].send_us.empty()) {
-                const controller::PipelineFigures p =
-                    pipeline_figures(r[m].commands, r[m].send_us, host_ms * 1e3, profile,
-                                     profile.command_buffer_bytes);
-                const double frame = p.frame_us / 1e3;
+            if (pipe) {
+                const double frame = pipe->frame_us / 1e3;
                 row.insert(
                     row.end(),
                     {fixed(frame, 3), fixed(pipeline_overlap(frame, host_ms, ctl.frame_ms), 4),
-                     fixed(p.host_stalled_us / 1e3, 3), fixed(p.host_utilization(), 4),
-                     fixed(p.controller_utilization(), 4)});
+                     fixed(pipe->host_stalled_us / 1e3, 3), fixed(pipe->host_utilization(), 4),
+                     fixed(pipe->controller_utilization(), 4)});
             } else {
                 row.resize(row.size() + 5);
             }
             // the band: the controller's frame and the pipeline's at the two ends, and the
             // host's ratio to the controller between them
-            const double low_ms = controller_figures(r[m].commands, cheap).frame_ms;
-            const double high_ms = controller_figures(r[m].commands, dear).frame_ms;
-            row.insert(row.end(), {fixed(low_ms, 3), fixed(high_ms, 3)});
-            if (!r[m].send_us.empty()) {
-                for (const controller::CostProfile* end : {&cheap, &dear})
-                    row.push_back(fixed(pipeline_figures(r[m].commands, r[m].send_us, host_ms * 1e3,
-                                                         *end, end->command_buffer_bytes)
-                                                .frame_us /
-                                            1e3,
-                                        3));
-            } else {
-                row.resize(row.size() + 2);
-            }
-            row.insert(row.end(), {high_ms > 0 ? fixed(host_ms / high_ms, 2) : "",
-                                   low_ms > 0 ? fixed(host_ms / low_ms, 2) : ""});
+            row.insert(row.end(), {fixed(low.frame_ms, 3), fixed(high.frame_ms, 3)});
+            for (const auto* end : {&pipe_low, &pipe_high})
+                row.push_back(*end ? fixed((*end)->frame_us / 1e3, 3) : "");
+            row.insert(row.end(), {high.frame_ms > 0 ? fixed(host_ms / high.frame_ms, 2) : "",
+                                   low.frame_ms > 0 ? fixed(host_ms / low.frame_ms, 2) : ""});
             table.add(std::move(row));
         }
     }

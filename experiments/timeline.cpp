@@ -45,8 +45,8 @@ std::string timeline_json(const protocol::MemoryBuffer& commands,
                           const controller::CostProfile& profile, uint64_t buffer_bytes,
                           controller::PipelineFigures* figures) {
     std::vector<controller::CommandTiming> timings;
-    const controller::PipelineFigures f =
-        pipeline_figures(commands, send_us, frame.host_end_us, profile, buffer_bytes, &timings);
+    const controller::PipelineFigures f = pipeline_figures(
+        commands, send_us, frame.host_end_us, profile, buffer_bytes, nullptr, &timings);
     if (figures) *figures = f;
     const auto& all = commands.commands();
 
