@@ -141,15 +141,6 @@ std::string split_line(const std::string& host_name, double host_ms, const std::
                     : "the other side takes no time");
 }
 
-namespace {
-
-std::string buffer_text(uint64_t bytes) {
-    return bytes == controller::kUnboundedBuffer ? std::string("unbounded")
-                                                 : fmt::format("{} bytes", bytes);
-}
-
-}  // namespace
-
 std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
                           double controller_ms, std::string_view sends) {
     const double frame_ms = p.frame_us / 1e3;
@@ -157,8 +148,8 @@ std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
         "pipeline (send times {}, buffer {}): frame {:.3f} ms (max {:.3f}, sum "
         "{:.3f}; {:.1f}% of the smaller side overlapped), host stalled {:.3f} ms, utilization "
         "host {:.1f}% controller {:.1f}%\n",
-        sends, buffer_text(p.buffer_bytes), frame_ms, std::max(host_ms, controller_ms),
-        host_ms + controller_ms,
+        sends, controller::command_buffer_text(p.buffer_bytes), frame_ms,
+        std::max(host_ms, controller_ms), host_ms + controller_ms,
         100 * experiments::pipeline_overlap(frame_ms, host_ms, controller_ms),
         p.host_stalled_us / 1e3, 100 * p.host_utilization(), 100 * p.controller_utilization());
 }
@@ -167,9 +158,7 @@ nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_m
                              double controller_ms, std::string_view sends) {
     const double frame_ms = p.frame_us / 1e3;
     return {{"send_times", sends},
-            {"buffer_bytes", p.buffer_bytes == controller::kUnboundedBuffer
-                                 ? nlohmann::json("unbounded")
-                                 : nlohmann::json(p.buffer_bytes)},
+            {"buffer_bytes", controller::command_buffer_json(p.buffer_bytes)},
             {"frame_ms", frame_ms},
             {"max_ms", std::max(host_ms, controller_ms)},
             {"sum_ms", host_ms + controller_ms},

@@ -201,12 +201,8 @@ int run_replay(const ReplayArgs& args) {
                 "pipeline, frame {} (no send times in the stream: every command ready at 0; "
                 "buffer {}): frame {:.3f} ms, host stalled {:.3f} ms, controller idle {:.3f} "
                 "ms, buffer high water {} bytes\n",
-                i,
-                p.buffer_bytes == controller::kUnboundedBuffer
-                    ? std::string("unbounded")
-                    : fmt::format("{} bytes", p.buffer_bytes),
-                p.frame_us / 1e3, p.host_stalled_us / 1e3, p.controller_idle_us / 1e3,
-                p.high_water_bytes);
+                i, controller::command_buffer_text(p.buffer_bytes), p.frame_us / 1e3,
+                p.host_stalled_us / 1e3, p.controller_idle_us / 1e3, p.high_water_bytes);
         }
         if (args.benchmark) {
             const controller::OpcodeCounters all = sum(ctl.stats().totals);

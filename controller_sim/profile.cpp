@@ -41,16 +41,31 @@ constexpr std::array<std::string_view, 17> kKnownKeys = {
     "t_handshake_s", "bytes",        "sources",    "command_buffer_bytes",
     "bands"};
 
-// The figures a band may be given for; the cycle counts first.
-constexpr std::array<std::string_view, 9> kBandable = {"C_cmd",
-                                                       "C_setup",
-                                                       "C_op",
-                                                       "C_row",
-                                                       "C_line_setup",
-                                                       "C_line_pix",
-                                                       "B_bus_bytes_per_s",
-                                                       "t_handshake_s",
-                                                       "command_buffer_bytes"};
+// The figures a band may be given for: a cycle count, a real number, or (neither) the
+// command buffer; and whether more of it makes the controller dearer.
+struct Bandable {
+    std::string_view name;
+    uint32_t CostProfile::*cycles;
+    double CostProfile::*real;
+    bool more_is_dear;
+};
+constexpr std::array<Bandable, 9> kBandable = {{
+    {"C_cmd", &CostProfile::c_cmd, nullptr, true},
+    {"C_setup", &CostProfile::c_setup, nullptr, true},
+    {"C_op", &CostProfile::c_op, nullptr, true},
+    {"C_row", &CostProfile::c_row, nullptr, true},
+    {"C_line_setup", &CostProfile::c_line_setup, nullptr, true},
+    {"C_line_pix", &CostProfile::c_line_pix, nullptr, true},
+    {"B_bus_bytes_per_s", nullptr, &CostProfile::b_bus_bytes_per_s, false},
+    {"t_handshake_s", nullptr, &CostProfile::t_handshake_s, true},
+    {"command_buffer_bytes", nullptr, nullptr, false},
+}};
+
+const Bandable* bandable(std::string_view name) {
+    for (const Bandable& b : kBandable)
+        if (b.name == name) return &b;
+    return nullptr;
+}
 
 bool is_known_key(std::string_view key) {
     return std::find(kKnownKeys.begin(), kKnownKeys.end(), key) != kKnownKeys.end();
@@ -155,17 +170,10 @@ void read_sources(const FieldReader& r, const json& j, CostProfile& p) {
     }
 }
 
-// A banded figure's value in `p`, and a pointer to set it (null for the bus and the buffer,
-// which are not cycle counts).
-double band_value(const CostProfile& p, std::string_view field) {
-    if (field == "C_cmd") return p.c_cmd;
-    if (field == "C_setup") return p.c_setup;
-    if (field == "C_op") return p.c_op;
-    if (field == "C_row") return p.c_row;
-    if (field == "C_line_setup") return p.c_line_setup;
-    if (field == "C_line_pix") return p.c_line_pix;
-    if (field == "B_bus_bytes_per_s") return p.b_bus_bytes_per_s;
-    if (field == "t_handshake_s") return p.t_handshake_s;
+// A banded figure's value in `p`.
+double band_value(const CostProfile& p, const Bandable& figure) {
+    if (figure.cycles) return p.*figure.cycles;
+    if (figure.real) return p.*figure.real;
     return static_cast<double>(p.command_buffer_bytes);
 }
 
@@ -175,7 +183,8 @@ void read_bands(const FieldReader& r, const json& j, CostProfile& p) {
     if (!it->is_object()) r.fail("bands", "expected an object of field name -> band");
     for (const auto& [key, band] : it->items()) {
         const std::string field = "bands." + key;
-        if (std::find(kBandable.begin(), kBandable.end(), key) == kBandable.end())
+        const Bandable* figure = bandable(key);
+        if (!figure)
             r.fail(field,
                    "names no figure that can have a band (C_*, B_bus_bytes_per_s, "
                    "t_handshake_s, command_buffer_bytes)");
@@ -196,7 +205,7 @@ void read_bands(const FieldReader& r, const json& j, CostProfile& p) {
         };
         CostProfile::Band b;
         b.low = number("low");
-        const double value = band_value(p, key);
+        const double value = band_value(p, *figure);
         b.high = buffer ? value : number("high");
         auto why = band.find("why");
         if (why == band.end() || !why->is_string() || why->get<std::string>().empty())
@@ -212,9 +221,8 @@ void read_bands(const FieldReader& r, const json& j, CostProfile& p) {
                        fmt::format("expected a whole number of bytes from the largest "
                                    "command's {}, got {:g}",
                                    largest, b.low));
-        } else if (key.rfind("C_", 0) == 0 &&
-                   (b.low != std::floor(b.low) || b.high != std::floor(b.high) ||
-                    b.high > kMaxCycleFigure)) {
+        } else if (figure->cycles && (b.low != std::floor(b.low) || b.high != std::floor(b.high) ||
+                                      b.high > kMaxCycleFigure)) {
             r.fail(field,
                    fmt::format("a band of cycles is whole numbers up to {}", kMaxCycleFigure));
         } else if (key == "B_bus_bytes_per_s" && b.low <= 0) {
@@ -297,26 +305,26 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     return p;
 }
 
+nlohmann::json command_buffer_json(uint64_t bytes) {
+    return bytes == kUnboundedBuffer ? json(kUnbounded) : json(bytes);
+}
+
+std::string command_buffer_text(uint64_t bytes) {
+    return bytes == kUnboundedBuffer ? std::string(kUnbounded) : fmt::format("{} bytes", bytes);
+}
+
 CostProfile band_end(const CostProfile& profile, bool dear) {
     CostProfile p = profile;
     p.name += dear ? " (dear end)" : " (cheap end)";
     for (const auto& [field, band] : profile.bands) {
-        // more cycles and a longer handshake are dearer; a faster bus and a bigger buffer
-        // cheaper
-        const bool more_is_dear = field != "B_bus_bytes_per_s" && field != "command_buffer_bytes";
-        const double v = dear == more_is_dear ? band.high : band.low;
-        const auto cycles = static_cast<uint32_t>(v);
-        if (field == "C_cmd") p.c_cmd = cycles;
-        if (field == "C_setup") p.c_setup = cycles;
-        if (field == "C_op") p.c_op = cycles;
-        if (field == "C_row") p.c_row = cycles;
-        if (field == "C_line_setup") p.c_line_setup = cycles;
-        if (field == "C_line_pix") p.c_line_pix = cycles;
-        if (field == "B_bus_bytes_per_s") p.b_bus_bytes_per_s = v;
-        if (field == "t_handshake_s") p.t_handshake_s = v;
-        if (field == "command_buffer_bytes")
-            p.command_buffer_bytes =
-                dear ? static_cast<uint64_t>(band.low) : profile.command_buffer_bytes;
+        const Bandable& figure = *bandable(field);  // parse_profile admits no other
+        const double v = dear == figure.more_is_dear ? band.high : band.low;
+        if (figure.cycles)
+            p.*figure.cycles = static_cast<uint32_t>(v);  // whole, at most kMaxCycleFigure
+        else if (figure.real)
+            p.*figure.real = v;
+        else if (dear)  // the buffer: its band's high end is the figure itself
+            p.command_buffer_bytes = static_cast<uint64_t>(band.low);
     }
     return p;
 }
@@ -330,26 +338,24 @@ nlohmann::json CostProfile::to_json() const {
     json bytes_json = json::object();
     for (int i = 0; i < protocol::kOpcodeCount; ++i)
         bytes_json[protocol::to_string(static_cast<protocol::Opcode>(i + 1))] = bytes[i];
-    return json{
-        {"name", name},
-        {"description", description},
-        {"f_cyc_hz", f_cyc_hz},
-        {"bpp", bpp},
-        {"C_cmd", c_cmd},
-        {"C_setup", c_setup},
-        {"C_op", c_op},
-        {"C_row", c_row},
-        {"span_as", controller::to_string(span_as)},
-        {"C_line_setup", c_line_setup},
-        {"C_line_pix", c_line_pix},
-        {"B_bus_bytes_per_s",
-         std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
-        {"t_handshake_s", t_handshake_s},
-        {"bytes", bytes_json},
-        {"command_buffer_bytes",
-         command_buffer_bytes == kUnboundedBuffer ? json(kUnbounded) : json(command_buffer_bytes)},
-        {"sources", sources},
-        {"bands", bands_json}};
+    return json{{"name", name},
+                {"description", description},
+                {"f_cyc_hz", f_cyc_hz},
+                {"bpp", bpp},
+                {"C_cmd", c_cmd},
+                {"C_setup", c_setup},
+                {"C_op", c_op},
+                {"C_row", c_row},
+                {"span_as", controller::to_string(span_as)},
+                {"C_line_setup", c_line_setup},
+                {"C_line_pix", c_line_pix},
+                {"B_bus_bytes_per_s",
+                 std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
+                {"t_handshake_s", t_handshake_s},
+                {"bytes", bytes_json},
+                {"command_buffer_bytes", command_buffer_json(command_buffer_bytes)},
+                {"sources", sources},
+                {"bands", bands_json}};
 }
 
 std::string CostProfile::to_string() const {

@@ -78,6 +78,11 @@ struct CostProfile {
 // " (cheap end)".
 CostProfile band_end(const CostProfile& profile, bool dear);
 
+// A command buffer's size as the profile file and the JSON outputs give it: "unbounded" or
+// the number of bytes; and as text: "unbounded" or "N bytes".
+nlohmann::json command_buffer_json(uint64_t bytes);
+std::string command_buffer_text(uint64_t bytes);
+
 // A profile compiled into the library.
 struct BuiltinProfile {
     std::string_view name;  // file stem, e.g. "tms34010-50mhz"

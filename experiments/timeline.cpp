@@ -126,9 +126,7 @@ std::string timeline_json(const protocol::MemoryBuffer& commands,
         {"title", frame.title},
         {"send_times",
          frame.send_times.empty() ? "none: every command ready at 0" : frame.send_times},
-        {"buffer_bytes", buffer_bytes == controller::kUnboundedBuffer
-                             ? nlohmann::json("unbounded")
-                             : nlohmann::json(buffer_bytes)},
+        {"buffer_bytes", controller::command_buffer_json(buffer_bytes)},
         {"commands", all.size()},
         {"frame_us", f.frame_us},
         {"host_us", f.host_us},
