@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <unordered_map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -149,13 +150,20 @@ double HostCost::end_to_end_ms() const {
 HostCost price(const GuestCounts& counts, const HostProfile& profile) {
     HostCost cost;
     cost.profile = profile.name;
+    const double cpu_khz = profile.cpu_clock_mhz * 1e3, fpu_khz = profile.fpu_clock_mhz * 1e3;
+    // each key matched against the rules once: the send marks repeat the phases' keys
+    std::unordered_map<std::string, KeyPrice> priced;
+    auto price_of = [&](const std::string& key) -> const KeyPrice& {
+        auto it = priced.find(key);
+        if (it == priced.end()) it = priced.emplace(key, price_key(profile, key)).first;
+        return it->second;
+    };
     for (const PhaseCounts& c : counts.phases) {
         if (c.phase < 0 || c.phase >= kPhases) continue;
         PhaseCost& out = cost.phases[c.phase];
         out.instructions += c.instructions;
-        const double cpu_khz = profile.cpu_clock_mhz * 1e3, fpu_khz = profile.fpu_clock_mhz * 1e3;
         for (const auto& [key, n] : c.classes) {
-            const KeyPrice k = price_key(profile, key);
+            const KeyPrice& k = price_of(key);
             const double cpu = k.cpu * static_cast<double>(n), fpu = k.fpu * static_cast<double>(n);
             if (key.starts_with('@') && (k.cpu > 0 || k.fpu > 0)) out.events[key] += n;
             auto& [executions, ms] = out.classes[key];
@@ -174,13 +182,12 @@ HostCost price(const GuestCounts& counts, const HostProfile& profile) {
         out.ms = out.cpu_cycles / cpu_khz + out.fpu_cycles / fpu_khz;
     }
     // each send mark at the time its phase had run to it, priced as the phase is
-    const double cpu_khz = profile.cpu_clock_mhz * 1e3, fpu_khz = profile.fpu_clock_mhz * 1e3;
     double cpu = 0, fpu = 0;
     int phase = -1;
     for (const SendCounts& s : counts.sends) {
         if (s.phase != phase) cpu = fpu = 0, phase = s.phase;
         for (const auto& [key, n] : s.classes) {
-            const KeyPrice k = price_key(profile, key);
+            const KeyPrice& k = price_of(key);
             cpu += k.cpu * static_cast<double>(n);
             fpu += k.fpu * static_cast<double>(n);
         }
