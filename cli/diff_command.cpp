@@ -10,7 +10,9 @@
 // the rest A's pixels dimmed to a third. Exit 0 when every frame is identical, 1 when any
 // differs, 2 on usage or a truncated or corrupt stream (after the frames compared so far).
 // A frame that ends without FRAME_END (the next FRAME_BEGIN, or the end of a cut stream)
-// is compared as it stands then, as the controller closes it.
+// is compared as it stands then, as the controller closes it. When either stream carries send
+// times (version 2), each frame's host end in both is shown beside it (times do not count as
+// a difference: the frames do).
 #include <iostream>
 
 #include <fmt/format.h>
@@ -34,15 +36,26 @@ int run_diff(const DiffArgs& args_in) {
     const DiffOutcome out = diff_streams(args.a, args.b, args.image);
     if (!args.quiet) {
         fmt::print("A: {}\nB: {}\n", out.header_a, out.header_b);
-        fmt::print("{:>6} {:>11} {:>11} {:>17}\n", "frame", "size A", "size B", "differing px");
+        // with send times in either stream, when the host's work on each frame ended
+        const auto host_ends = [&](const FrameDiff& f) -> std::string {
+            if (!out.timed) return "";
+            const auto ms = [](const std::optional<double>& v) {
+                return v ? fmt::format("{:.3f}", *v) : std::string("-");
+            };
+            return fmt::format(" {:>14} {:>14}", ms(f.host_end_ms_a), ms(f.host_end_ms_b));
+        };
+        fmt::print(
+            "{:>6} {:>11} {:>11} {:>17}{}\n", "frame", "size A", "size B", "differing px",
+            out.timed ? fmt::format(" {:>14} {:>14}", "host end A ms", "host end B ms") : "");
         for (const FrameDiff& f : out.frames) {
             const auto size = [](const std::string& s) { return s.empty() ? "-" : s; };
             if (f.size_a.empty() || f.size_b.empty())
-                fmt::print("{:>6} {:>11} {:>11} {:>17}\n", f.frame, size(f.size_a), size(f.size_b),
-                           fmt::format("only in {}", f.size_b.empty() ? "A" : "B"));
+                fmt::print("{:>6} {:>11} {:>11} {:>17}{}\n", f.frame, size(f.size_a),
+                           size(f.size_b), fmt::format("only in {}", f.size_b.empty() ? "A" : "B"),
+                           host_ends(f));
             else
-                fmt::print("{:>6} {:>11} {:>11} {:>17}{}\n", f.frame, f.size_a, f.size_b,
-                           grouped(f.differing),
+                fmt::print("{:>6} {:>11} {:>11} {:>17}{}{}\n", f.frame, f.size_a, f.size_b,
+                           grouped(f.differing), host_ends(f),
                            f.differing ? fmt::format("  ({:.3f}%)",
                                                      100.0 * static_cast<double>(f.differing) /
                                                          static_cast<double>(f.compared))

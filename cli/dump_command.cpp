@@ -3,7 +3,9 @@
 //       12 @236       FILL_RECT x=0 y=0 w=64 h=64 color=#ff0000
 //
 // command number, '@' and the byte offset of its record, then the command's to_string()
-// with marker text escaped. `--calls CALLSET` keeps the commands in the set; `--grep RE`
+// with marker text escaped; in a stream with send times (version 2) the line ends with the
+// command's ("sent 1234.567 us", from the start of its frame's set-up) and FRAME_END's with
+// the host's end. `--calls CALLSET` keeps the commands in the set; `--grep RE`
 // (ECMAScript std::regex, searched anywhere in the command's text) keeps those matching.
 // With a call set that starts late, dump seeks through the frame index to the frame
 // holding its first call; with a bounded one it stops reading after its last call. So
@@ -32,6 +34,16 @@ void print_header(const protocol::StreamReader& reader) {
     fmt::print("# fb89 stream {}, format version {}\n", reader.name(), reader.version());
     for (const auto& [key, value] : reader.properties())
         fmt::print("# {} = {}\n", printable(key), printable(value));
+}
+
+// A timed stream's line ends with the command's send time, and FRAME_END's with the host's
+// end when the frame has one, in microseconds (nanoseconds exact).
+void append_send_time(std::string& out, const protocol::StreamReader& reader,
+                      const protocol::Command& c) {
+    const auto us = [](int64_t ns) { return fmt::format("{}.{:03}", ns / 1000, ns % 1000); };
+    out += "  sent " + us(reader.send_time_ns()) + " us";
+    if (std::holds_alternative<protocol::FrameEnd>(c) && reader.host_end_ns())
+        out += ", host end " + us(*reader.host_end_ns()) + " us";
 }
 
 int run_dump(const DumpArgs& args) {
@@ -65,7 +77,9 @@ int run_dump(const DumpArgs& args) {
             if (!calls.contains(n, c)) continue;
             const std::string text = printable(protocol::to_string(c));
             if (grep && !std::regex_search(text, *grep)) continue;
-            out += fmt::format("{:>7} @{:<9} {}\n", n, reader.command_offset(), text);
+            out += fmt::format("{:>7} @{:<9} {}", n, reader.command_offset(), text);
+            if (reader.timed()) append_send_time(out, reader, c);
+            out += '\n';
             if (out.size() > (1u << 16)) {
                 std::fwrite(out.data(), 1, out.size(), stdout);
                 out.clear();

@@ -1,7 +1,8 @@
 // fb89 info STREAM [--json]: what a stream holds (apitrace's `apitrace info`): the header
 // (format version, properties), whether it ends in a frame index, and per frame the
 // commands by opcode, the pixels written (the FRAME_BEGIN clear included), the modelled
-// bus bytes, the bytes the frame takes in the file, and the frame's checksum.
+// bus bytes, the bytes the frame takes in the file, and the frame's checksum; in a stream with
+// send times (version 2), each frame's last send time and the host's end.
 //
 // Pixels, bus bytes and checksums come from replaying the stream through the controller
 // (the default profile, tms34010-50mhz, unless --profile says otherwise: modelled bus bytes
@@ -33,6 +34,9 @@ struct InfoArgs {
 struct StreamInfo {
     std::vector<uint64_t> frame_bytes;  // bytes in the file, by closed frame
     uint64_t open_frame_bytes = 0;      // of the frame still open at the end
+    // a timed stream's last send time and host end (its HOST_END, or without one its last
+    // send time), by frame as frame_bytes, then the open one's
+    std::vector<int64_t> last_send_ns, host_end_ns;
     std::optional<protocol::StreamError> error;
 };
 
@@ -48,6 +52,11 @@ uint64_t record_size(const protocol::Command& c) {
 StreamInfo scan(protocol::StreamReader& reader, controller::Controller& ctl) {
     StreamInfo info;
     uint64_t begin_offset = 0, end_offset = 0;
+    int64_t last_send = 0, host_end = 0;  // of the frame so far
+    const auto keep_times = [&] {
+        info.last_send_ns.push_back(last_send);
+        info.host_end_ns.push_back(host_end);
+    };
     protocol::Command c;
     try {
         while (reader.next(c)) {
@@ -55,14 +64,23 @@ StreamInfo scan(protocol::StreamReader& reader, controller::Controller& ctl) {
             ctl.execute(c);
             const bool is_begin = std::holds_alternative<protocol::FrameBegin>(c);
             end_offset = at + record_size(c);
-            if (ctl.frames().size() > info.frame_bytes.size())  // this command closed a frame
+            if (!is_begin) {  // (a FRAME_BEGIN that closes a frame starts the next's times)
+                last_send = reader.send_time_ns();
+                host_end = reader.host_end_ns().value_or(last_send);
+            }
+            if (ctl.frames().size() > info.frame_bytes.size()) {  // this command closed a frame
                 info.frame_bytes.push_back((is_begin ? at : end_offset) - begin_offset);
-            if (is_begin) begin_offset = at;
+                keep_times();
+            }
+            if (is_begin) begin_offset = at, last_send = host_end = 0;
         }
     } catch (const protocol::StreamError& e) {
         info.error = e;
     }
-    if (ctl.in_frame()) info.open_frame_bytes = end_offset - begin_offset;
+    if (ctl.in_frame()) {
+        info.open_frame_bytes = end_offset - begin_offset;
+        keep_times();
+    }
     return info;
 }
 
@@ -95,6 +113,12 @@ json info_json(const protocol::StreamReader& reader, const controller::Controlle
     for (std::size_t i = 0; i < ctl.frames().size(); ++i)
         frames.push_back(frame_json(ctl.frames()[i], info.frame_bytes[i], false));
     if (ctl.in_frame()) frames.push_back(frame_json(ctl.open_frame(), info.open_frame_bytes, true));
+    if (reader.timed()) {
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            frames[i]["last_send_us"] = static_cast<double>(info.last_send_ns[i]) / 1e3;
+            frames[i]["host_end_us"] = static_cast<double>(info.host_end_ns[i]) / 1e3;
+        }
+    }
     json j{{"stream", reader.name()},
            {"version", reader.version()},
            {"properties", reader.properties()},
@@ -105,6 +129,7 @@ json info_json(const protocol::StreamReader& reader, const controller::Controlle
            {"unframed_commands", sum(ctl.stats().unframed).commands},
            {"bytes_profile", ctl.profile().name},
            {"frames", std::move(frames)}};
+    if (reader.timed()) j["send_times"] = send_times_of(reader);
     if (file_size) j["file_bytes"] = *file_size;
     if (info.error) {
         j["error"] = {{"message", info.error->what()},
@@ -144,6 +169,13 @@ void print_text(const json& j) {
                                                 : "");
     }
     fmt::print("bus bytes modelled under profile {}\n", j["bytes_profile"].get<std::string>());
+    if (!j.contains("send_times")) return;
+    fmt::print("\nsend times     {}, from the start of each frame's set-up\n",
+               printable(j["send_times"].get<std::string>()));
+    fmt::print("{:>6} {:>14} {:>14}\n", "frame", "last send ms", "host end ms");
+    for (const json& f : j["frames"])
+        fmt::print("{:>6} {:>14.6f} {:>14.6f}\n", f["frame"].get<uint32_t>(),
+                   f["last_send_us"].get<double>() / 1e3, f["host_end_us"].get<double>() / 1e3);
 }
 
 int run_info(const InfoArgs& args) {

@@ -57,6 +57,7 @@ struct RenderArgs {
     std::string host = "native";
     int repeat = 1;
     int classes = 0;
+    bool untimed_stream = false;
     bool quiet = false;
 };
 
@@ -113,19 +114,34 @@ void write_beam_mask(const std::string& path, const controller::Framebuffer& fra
     controller::write_png(path, experiments::masked_by_beams(frame, beam.beam_mask()));
 }
 
+// The stream carries the frame's send times (format version 2) when it has them, unless
+// asked not to (version 1: the same bytes every run, as measured times are not).
+protocol::Timing stream_timing(const RenderArgs& args, const experiments::RenderResult& job) {
+    return job.runs.front().send_us.empty() || args.untimed_stream ? protocol::Timing::Untimed
+                                                                   : protocol::Timing::Timed;
+}
+
 protocol::Properties stream_properties(const RenderArgs& args,
                                        const experiments::RenderResult& job) {
     // a bundled scene by its name: the stream's bytes do not depend on where the checkout is
-    return {{"scene", scene_display_name(args.scene)},
-            {"method", args.method},
-            {"resolution", fmt::format("{}x{}", job.screen.width, job.screen.height)},
-            {"tool", std::string("fb89 ") + FB89_VERSION}};
+    protocol::Properties p{
+        {"scene", scene_display_name(args.scene)},
+        {"method", args.method},
+        {"resolution", fmt::format("{}x{}", job.screen.width, job.screen.height)},
+        {"tool", std::string("fb89 ") + FB89_VERSION}};
+    const experiments::MethodRun& run = job.runs.front();
+    if (stream_timing(args, job) == protocol::Timing::Timed) {
+        p[protocol::kPropertyHost] = args.host;
+        p[protocol::kPropertySendTimes] = send_times_source(run.period.has_value());
+    }
+    return p;
 }
 
 void write_stream(const RenderArgs& args, const experiments::RenderResult& job) {
     make_parent_dirs(args.stream);
-    protocol::StreamWriter writer(args.stream, stream_properties(args, job));
-    job.runs.front().commands.replay_into(writer);
+    protocol::StreamWriter writer(args.stream, stream_properties(args, job),
+                                  stream_timing(args, job));
+    experiments::write_commands(writer, job.runs.front());
     writer.close();
 }
 
@@ -137,10 +153,10 @@ int send_to_controller(const RenderArgs& args, const experiments::RenderResult& 
     const protocol::MemoryBuffer& commands = job.runs.front().commands;
     protocol::UniqueFd socket = protocol::connect_socket(args.connect);  // names the path
     protocol::StreamWriter writer(socket.get(), "socket " + args.connect,
-                                  stream_properties(args, job));
+                                  stream_properties(args, job), stream_timing(args, job));
     const std::size_t total = commands.size();
     try {
-        commands.replay_into(writer);
+        experiments::write_commands(writer, job.runs.front());
         writer.close();
     } catch (const std::runtime_error& e) {
         fmt::print(stderr,
@@ -407,7 +423,12 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--ids-view", args->ids_view,
                     "Write the face-id buffer in false colour as PNG, for people: each id a "
                     "distinct colour, background black");
-    sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
+    sub->add_option("--stream", args->stream,
+                    "Record the command stream ('-' for stdout), with each command's send time "
+                    "(format version 2)");
+    sub->add_flag("--untimed-stream", args->untimed_stream,
+                  "Record the stream without send times (format version 1: the same bytes "
+                  "every run)");
     sub->add_option("--connect", args->connect,
                     "Also stream the commands to `fb89 controller --listen PATH` on this socket");
     sub->add_option("--stats", args->stats,

@@ -10,8 +10,9 @@
 //   --stats F.json        {"stream": ..., "controller": <controller stats>, "benchmark": ...}
 //   --benchmark           wall time of the replay (reading + executing), commands/s, Mpixels/s
 //   --buffer N|unbounded  each frame also through the pipeline in time with a command buffer
-//                         of N bytes (docs/COST_MODEL.md); a version-1 stream carries no
-//                         send times, so every command is ready at 0, and the line says so
+//                         of N bytes (docs/COST_MODEL.md), from the send times a version-2
+//                         stream carries; a version-1 stream has none, so every command is
+//                         ready at 0, and the line says so
 //   --timeline F          the last complete frame through that pipeline as trace-event JSON
 //
 // A truncated or corrupt stream: every complete frame is reported, then the StreamError on
@@ -51,24 +52,36 @@ struct ReplayRun {
     std::string last_snapshot;
     double wall_s = 0;
     std::optional<protocol::StreamError> error;
-    // --buffer / --timeline: each complete frame through the pipeline in time, and the last
-    // one's commands
+    // --buffer / --timeline: each complete frame through the pipeline in time from the
+    // stream's send times (a version-1 stream has none: every command ready at 0), and the
+    // last one's commands, send times and host end
     std::optional<uint64_t> buffer;
     std::vector<controller::PipelineFigures> pipelines;
     protocol::MemoryBuffer frame, last_frame_commands;
+    std::vector<double> frame_send_us, last_frame_send_us;
+    double last_host_end_us = 0;
 };
 
-// The frame so far, through the pipeline in time when it ends (every command ready at 0:
-// the stream has no send times).
-void follow_pipeline(const protocol::Command& c, const controller::CostProfile& profile,
+// The frame so far, through the pipeline in time when it ends: the host's end is its HOST_END,
+// or without one its last send time.
+void follow_pipeline(const protocol::Command& c, int64_t send_ns,
+                     const protocol::StreamReader& reader, const controller::CostProfile& profile,
                      ReplayRun& run) {
-    if (std::holds_alternative<protocol::FrameBegin>(c)) run.frame.clear();
+    if (std::holds_alternative<protocol::FrameBegin>(c)) {
+        run.frame.clear();
+        run.frame_send_us.clear();
+    }
     run.frame.submit(c);
+    run.frame_send_us.push_back(static_cast<double>(send_ns) / 1e3);
     if (!std::holds_alternative<protocol::FrameEnd>(c)) return;
-    run.pipelines.push_back(experiments::pipeline_figures(
-        run.frame, std::vector<double>(run.frame.size(), 0.0), 0, profile, *run.buffer));
+    const double host_end_us = static_cast<double>(reader.host_end_ns().value_or(send_ns)) / 1e3;
+    run.pipelines.push_back(experiments::pipeline_figures(run.frame, run.frame_send_us, host_end_us,
+                                                          profile, *run.buffer));
     std::swap(run.last_frame_commands, run.frame);
+    std::swap(run.last_frame_send_us, run.frame_send_us);
+    run.last_host_end_us = host_end_us;
     run.frame.clear();
+    run.frame_send_us.clear();
 }
 
 // Commands read and executed at a time by the replay loop: enough to leave the per-batch
@@ -95,16 +108,17 @@ void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
             protocol::StreamReader& reader, controller::Controller& ctl, ReplayRun& run) {
     const bool keep_last = !args.png.empty() && snapshots.empty();
     std::vector<protocol::Command> batch(kBatch);
+    std::vector<int64_t> send_ns(run.buffer ? kBatch : 0);  // the batch's send times
     const auto start = std::chrono::steady_clock::now();
     try {
         if (!snapshots.empty()) {
             replay_snapshots(args, snapshots, reader, ctl, run);
         } else {
-            while (const std::size_t n = reader.read_batch(batch)) {
+            while (const std::size_t n = reader.read_batch(batch, send_ns)) {
                 ctl.execute(std::span(batch).first(n));
                 if (run.buffer)
                     for (std::size_t i = 0; i < n; ++i)
-                        follow_pipeline(batch[i], ctl.profile(), run);
+                        follow_pipeline(batch[i], send_ns[i], reader, ctl.profile(), run);
                 if (keep_last && std::holds_alternative<protocol::FrameEnd>(batch[n - 1]))
                     run.last_frame = ctl.framebuffer();
             }
@@ -183,11 +197,11 @@ int run_replay(const ReplayArgs& args) {
         experiments::TimelineFrame frame;
         frame.title = fmt::format("{}, frame {}, controller {}", args.stream,
                                   run.pipelines.size() - 1, profile.name);
-        frame.send_times = "";
-        write_text(args.timeline, experiments::timeline_json(
-                                      run.last_frame_commands,
-                                      std::vector<double>(run.last_frame_commands.size(), 0.0),
-                                      frame, profile, *run.buffer));
+        frame.send_times = send_times_of(reader);
+        frame.host_end_us = run.last_host_end_us;
+        write_text(args.timeline,
+                   experiments::timeline_json(run.last_frame_commands, run.last_frame_send_us,
+                                              frame, profile, *run.buffer));
     }
     if (write && !args.stats.empty()) write_json(args.stats, stats_json(args, reader, ctl, run));
 
@@ -195,14 +209,17 @@ int run_replay(const ReplayArgs& args) {
         fmt::print("{}\nprofile {}\n", header_line(reader), profile.name);
         fmt::print("{}", frame_table(ctl));
         fmt::print("{}", ctl.stats().summary());
+        const std::string sends =
+            reader.timed() ? fmt::format("send times from the stream, {}", send_times_of(reader))
+                           : "no send times in the stream: every command ready at 0";
         for (std::size_t i = 0; i < run.pipelines.size(); ++i) {
             const controller::PipelineFigures& p = run.pipelines[i];
             fmt::print(
-                "pipeline, frame {} (no send times in the stream: every command ready at 0; "
-                "buffer {}): frame {:.3f} ms, host stalled {:.3f} ms, controller idle {:.3f} "
-                "ms, buffer high water {} bytes\n",
-                i, controller::command_buffer_text(p.buffer_bytes), p.frame_us / 1e3,
-                p.host_stalled_us / 1e3, p.controller_idle_us / 1e3, p.high_water_bytes);
+                "pipeline, frame {} ({}; buffer {}): frame {:.3f} ms, host {:.3f} ms, host "
+                "stalled {:.3f} ms, controller idle {:.3f} ms, buffer high water {} bytes\n",
+                i, sends, controller::command_buffer_text(p.buffer_bytes), p.frame_us / 1e3,
+                p.host_us / 1e3, p.host_stalled_us / 1e3, p.controller_idle_us / 1e3,
+                p.high_water_bytes);
         }
         if (args.benchmark) {
             const controller::OpcodeCounters all = sum(ctl.stats().totals);
@@ -250,8 +267,8 @@ void register_replay(CLI::App& app, int& exit_code) {
                     "Write the controller's stats as JSON ('-' for stdout)");
     sub->add_option("--buffer", args->buffer,
                     "Also run each frame through the pipeline in time with a command buffer of "
-                    "this many bytes, or unbounded (the stream has no send times: every command "
-                    "ready at 0)");
+                    "this many bytes, or unbounded, from the stream's send times (a version-1 "
+                    "stream has none: every command ready at 0)");
     sub->add_option("--timeline", args->timeline,
                     "Write the last complete frame through the pipeline in time as Chrome "
                     "trace-event JSON (Perfetto, chrome://tracing)");

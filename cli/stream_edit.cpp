@@ -49,8 +49,9 @@ class Trimmer {
     void set_next_frame_position(uint64_t p) { m_next_position = p; }
     uint64_t frames_kept() const { return m_frames_kept; }
 
-    // Handles command n; false when nothing after it can be selected.
-    bool take(uint64_t n, const protocol::Command& c) {
+    // Handles command n, read from `reader` (whose send times go with it into a timed
+    // output); false when nothing after it can be selected.
+    bool take(uint64_t n, const protocol::Command& c, const protocol::StreamReader& reader) {
         if (m_has_calls && n > m_calls.last()) return false;
         if (const auto* begin = std::get_if<protocol::FrameBegin>(&c)) {
             close_frame();
@@ -69,8 +70,17 @@ class Trimmer {
             m_emitted = true;
             ++m_frames_kept;
         }
-        if (selected && !is_framing) m_writer.submit(c);
-        if (std::holds_alternative<protocol::FrameEnd>(c)) close_frame();
+        if (selected && !is_framing) {
+            if (m_writer.timed()) m_writer.send_time(reader.send_time_ns());
+            m_writer.submit(c);
+        }
+        if (std::holds_alternative<protocol::FrameEnd>(c)) {
+            if (m_writer.timed() && m_emitted) {  // the kept frame ends as the input's did
+                m_writer.send_time(reader.send_time_ns());
+                if (const auto end = reader.host_end_ns()) m_writer.host_end(*end);
+            }
+            close_frame();
+        }
         return true;
     }
 
@@ -120,12 +130,14 @@ class FrameSource {
     bool next_frame() {
         if (m_pending) m_ctl.execute(*m_pending);
         m_pending.reset();
+        m_host_end_ns = 0;
         protocol::Command c;
         while (m_reader.next(c)) {
             if (std::holds_alternative<protocol::FrameBegin>(c) && m_ctl.in_frame()) {
                 m_pending = c;  // closes the open frame: compare it before clearing
                 return true;
             }
+            m_host_end_ns = m_reader.host_end_ns().value_or(m_reader.send_time_ns());
             const std::size_t closed = m_ctl.frames().size();
             m_ctl.execute(c);
             if (m_ctl.frames().size() > closed) return true;
@@ -139,8 +151,14 @@ class FrameSource {
 
     const controller::Framebuffer& framebuffer() const { return m_ctl.framebuffer(); }
     const protocol::StreamReader& reader() const { return m_reader; }
+    // The frame's host end in a timed stream: its HOST_END, or without one its last send.
+    std::optional<double> host_end_ms() const {
+        if (!m_reader.timed()) return std::nullopt;
+        return static_cast<double>(m_host_end_ns) / 1e6;
+    }
 
   private:
+    int64_t m_host_end_ns = 0;
     protocol::StreamReader m_reader;
     controller::Controller m_ctl;
     std::optional<protocol::Command> m_pending;
@@ -210,7 +228,9 @@ TrimOutcome trim_stream(const TrimRequest& args) {
     if (!args.frames.empty()) properties["trim_frames"] = property_text(args.frames);
 
     make_parent_dirs(args.output);
-    protocol::StreamWriter writer(args.output, properties);
+    protocol::StreamWriter writer(
+        args.output, properties,
+        reader.timed() ? protocol::Timing::Timed : protocol::Timing::Untimed);
     Trimmer trimmer(selection, writer);
 
     // seek through the frame index to where the selection starts
@@ -225,7 +245,7 @@ TrimOutcome trim_stream(const TrimRequest& args) {
     out.output = writer.path();
     protocol::Command c;
     try {
-        while (reader.next(c) && trimmer.take(reader.command_number(), c)) {
+        while (reader.next(c) && trimmer.take(reader.command_number(), c, reader)) {
         }
     } catch (const protocol::StreamError& e) {
         out.error = e;
@@ -253,14 +273,15 @@ DiffOutcome diff_streams(const std::string& path_a, const std::string& path_b,
     DiffOutcome out;
     out.header_a = header_line(a.reader());
     out.header_b = header_line(b.reader());
+    out.timed = a.reader().timed() || b.reader().timed();
     try {
         for (uint64_t frame = 0;; ++frame) {
             const bool has_a = a.next_frame(), has_b = b.next_frame();
             if (!has_a && !has_b) break;
             FrameDiff f;
             f.frame = frame;
-            if (has_a) f.size_a = size_of(a.framebuffer());
-            if (has_b) f.size_b = size_of(b.framebuffer());
+            if (has_a) f.size_a = size_of(a.framebuffer()), f.host_end_ms_a = a.host_end_ms();
+            if (has_b) f.size_b = size_of(b.framebuffer()), f.host_end_ms_b = b.host_end_ms();
             if (has_a && has_b) {
                 const Comparison cmp = compare(a.framebuffer(), b.framebuffer());
                 f.differing = cmp.differing;

@@ -35,10 +35,13 @@ struct FrameDiff {
     std::string size_a, size_b;  // "WxH"; "" when only the other stream has the frame
     uint64_t differing = 0;      // pixels (a frame only one stream has: 0, and it differs)
     uint64_t compared = 0;       // pixels of the larger frame's extent
+    // in a stream with send times (version 2): when the host's work on the frame ended
+    std::optional<double> host_end_ms_a, host_end_ms_b;
     bool differs() const { return size_a.empty() || size_b.empty() || differing > 0; }
 };
 struct DiffOutcome {
     std::string header_a, header_b;  // header_line() of each
+    bool timed = false;              // either stream has send times
     std::vector<FrameDiff> frames;
     uint64_t differing_frames = 0;
     std::optional<uint64_t> image_frame;         // the frame whose diff image was written

@@ -86,7 +86,17 @@ std::string header_line(const protocol::StreamReader& reader) {
         if (it != reader.properties().end())
             out += fmt::format(", {} {}", key, printable(it->second));
     }
+    if (reader.timed()) out += ", send times " + printable(send_times_of(reader));
     return out;
+}
+
+std::string send_times_of(const protocol::StreamReader& reader) {
+    if (!reader.timed()) return "";
+    const auto& p = reader.properties();
+    const auto source = p.find(protocol::kPropertySendTimes);
+    const auto host = p.find(protocol::kPropertyHost);
+    return fmt::format("{} on {}", source == p.end() ? "of unstated source" : source->second,
+                       host == p.end() ? "an unnamed host" : host->second);
 }
 
 namespace {

@@ -46,8 +46,12 @@ double modelled_ms(const controller::CostProfile& p, uint64_t cycles);
 // byte offset and the command number.
 void report_stream_error(const protocol::StreamError& e);
 
-// One line describing the stream's header: name, version and the conventional properties.
+// One line describing the stream's header: name, version, the conventional properties and
+// where a timed stream's send times come from.
 std::string header_line(const protocol::StreamReader& reader);
+// A timed stream's send times as its header names them: "measured on native", "counted on
+// sun4-260"; "" for a stream without times.
+std::string send_times_of(const protocol::StreamReader& reader);
 
 // A frame table for humans: frame, commands, pixels, cycles, modelled ms, bus ms, frame
 // ms and checksum, one row per closed frame plus the open one (if any) marked "open".

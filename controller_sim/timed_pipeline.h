@@ -13,12 +13,20 @@
 // room, only on the bus.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <deque>
 
 #include "controller_sim/profile.h"
 
 namespace fb89::controller {
+
+// A time in microseconds to the nearest whole nanosecond: the grain at which streams keep
+// send times (docs/PROTOCOL.md, "Version 2"), so that a frame replayed from its stream goes
+// through the pipeline exactly as it did when rendered.
+inline double whole_ns(double us) {
+    return std::round(us * 1e3) / 1e3;
+}
 
 // One command as the pipeline sees it.
 struct TimedCommand {

@@ -1,5 +1,7 @@
 #include "experiments/render_job.h"
 
+#include <cmath>
+
 #include "controller_sim/controller.h"
 #include "experiments/period_runs.h"
 #include "host/raster/screen_setup.h"
@@ -89,11 +91,31 @@ controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& comma
     for (std::size_t i = 0; i < all.size(); ++i) {
         ctl.execute(all[i]);
         const auto& cost = ctl.last_cost();
-        pipe.push({send_us[i], cost.bytes, cost.bus_us, cost.exec_us},
+        pipe.push({controller::whole_ns(send_us[i]), cost.bytes, cost.bus_us, cost.exec_us},
                   timings ? &(*timings)[i] : nullptr);
     }
     if (controller) *controller = controller_figures(ctl);
-    return pipe.finish(host_end_us);
+    return pipe.finish(controller::whole_ns(host_end_us));
+}
+
+void write_commands(protocol::StreamWriter& writer, const MethodRun& run) {
+    const auto& all = run.commands.commands();
+    if (!writer.timed() || run.send_us.size() != all.size()) {
+        for (const protocol::Command& c : all)
+            writer.submit(c);
+        return;
+    }
+    // whole nanoseconds, as the pipeline takes them; FRAME_BEGIN is sent at 0 by definition
+    const auto ns = [](double us) { return static_cast<int64_t>(std::llround(us * 1e3)); };
+    int64_t last = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        const bool begin = std::holds_alternative<protocol::FrameBegin>(all[i]);
+        if (!begin) writer.send_time(last = std::max(last, ns(run.send_us[i])));
+        if (std::holds_alternative<protocol::FrameEnd>(all[i]))
+            writer.host_end(std::max(last, ns(run.host_frame_ms * 1e3)));
+        writer.submit(all[i]);
+        if (begin) last = 0;
+    }
 }
 
 std::vector<double> frame_send_times(std::vector<double> hs_us, double setup_us,

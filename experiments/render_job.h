@@ -23,6 +23,7 @@
 #include "host/stats.h"
 #include "period/host_cost.h"
 #include "protocol/memory_buffer.h"
+#include "protocol/stream_writer.h"
 
 namespace fb89::experiments {
 
@@ -100,6 +101,11 @@ controller::PipelineFigures pipeline_figures(
     const controller::CostProfile& profile, uint64_t buffer_bytes = controller::kUnboundedBuffer,
     ControllerFigures* controller = nullptr,
     std::vector<controller::CommandTiming>* timings = nullptr);
+
+// Writes a run's commands to `writer`; a timed writer (a version-2 stream) also gets their
+// send times and the host's end, in whole nanoseconds (each SEND_TIME where the time changes,
+// HOST_END before FRAME_END), when the run has them.
+void write_commands(protocol::StreamWriter& writer, const MethodRun& run);
 
 // A frame's send times from the start of the set-up: `hs_us`, counted from the start of the
 // hidden-surface pass, moved by the set-up's `setup_us`, with FRAME_BEGIN sent as the set-up

@@ -12,7 +12,12 @@
 
 namespace fb89::protocol {
 
-inline constexpr uint16_t kFormatVersion = 1;
+// The newest stream format this fb89 reads (docs/PROTOCOL.md): version 1, the commands;
+// version 2, the commands with the host's send times. A stream without times is written as
+// version 1, so that every fb89 reads it.
+inline constexpr uint16_t kFormatVersion = 2;
+inline constexpr uint16_t kUntimedVersion = 1;
+inline constexpr uint16_t kTimedVersion = 2;
 
 enum class Opcode : uint8_t {
     FrameBegin = 0x01,

@@ -1,4 +1,4 @@
-// Wire encoding of the fb89 command stream, version 1: byte-exact little-endian helpers,
+// Wire encoding of the fb89 command stream, versions 1 and 2: byte-exact little-endian helpers,
 // record encoders and decoders, and the field checks shared by the writer and the reader.
 // The layout implemented here is the one docs/PROTOCOL.md specifies, field for field.
 #include "protocol/stream_format.h"
@@ -51,6 +51,14 @@ void put_i32(std::vector<uint8_t>& out, int32_t v) {
     put_u32(out, static_cast<uint32_t>(v));
 }
 
+void put_i64(std::vector<uint8_t>& out, int64_t v) {
+    put_u64(out, static_cast<uint64_t>(v));
+}
+
+const char* time_record_name(uint8_t opcode) {
+    return opcode == kSendTimeOpcode ? "SEND_TIME" : "HOST_END";
+}
+
 // --- encoders ------------------------------------------------------------------------
 
 namespace {
@@ -95,11 +103,13 @@ struct EncodePayload {
 
 }  // namespace
 
-void encode_header(std::vector<uint8_t>& out, const Properties& properties) {
+void encode_header(std::vector<uint8_t>& out, const Properties& properties, uint16_t version) {
     if (auto problem = check_properties(properties)) throw std::invalid_argument(*problem);
+    if (version != kUntimedVersion && version != kTimedVersion)
+        throw std::invalid_argument(fmt::format("no stream format version {}", version));
     out.insert(out.end(), kMagic.begin(), kMagic.end());
-    put_u16(out, kFormatVersion);
-    put_u16(out, 0);  // flags: reserved, zero in version 1
+    put_u16(out, version);
+    put_u16(out, 0);  // flags: reserved, zero in versions 1 and 2
     put_u32(out, static_cast<uint32_t>(properties.size()));
     for (const auto& [key, value] : properties) {  // std::map: ascending key order
         put_u16(out, static_cast<uint16_t>(key.size()));
@@ -129,6 +139,11 @@ void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Foot
     put_u64(out, footer.index_offset);
     put_u64(out, footer.command_count);
     out.insert(out.end(), kFooterMagic.begin(), kFooterMagic.end());
+}
+
+void encode_time(std::vector<uint8_t>& out, uint8_t opcode, int64_t ns) {
+    put_u8(out, opcode);
+    put_i64(out, ns);
 }
 
 // --- decoders ------------------------------------------------------------------------

@@ -1,4 +1,5 @@
-// Wire encoding of the fb89 command stream, version 1 (normative spec: docs/PROTOCOL.md).
+// Wire encoding of the fb89 command stream, versions 1 and 2 (normative spec:
+// docs/PROTOCOL.md; version 2 adds the send-time records).
 //
 // Little-endian throughout. A stream is a header (magic "FB89", u16 version, u16 flags,
 // u32 property count, properties), then one record per command (u8 opcode + a fixed
@@ -36,6 +37,10 @@ inline constexpr const char* kPropertyScene = "scene";
 inline constexpr const char* kPropertyMethod = "method";
 inline constexpr const char* kPropertyThreshold = "threshold";
 inline constexpr const char* kPropertyResolution = "resolution";  // e.g. "1024x780"
+// Version 2: where the send times come from -- "measured" (this machine's clock) or
+// "counted" (a 1989 host's instructions) -- and the host ("native", "sun4-260", ...).
+inline constexpr const char* kPropertySendTimes = "send_times";
+inline constexpr const char* kPropertyHost = "host";
 
 // --- records -------------------------------------------------------------------------
 inline constexpr uint8_t kIndexOpcode = 0xFE;  // trailing frame index; not a command
@@ -48,6 +53,17 @@ inline constexpr std::size_t kFrameBeginRecordSize = 16;  // opcode + 15-byte pa
 inline constexpr std::size_t kFillRectRecordSize = 20;    // opcode + 19-byte payload
 inline constexpr std::size_t kDrawSpanRecordSize = 16;    // opcode + 15-byte payload
 inline constexpr std::size_t kMaxRecordSize = 1 + 2 + kMaxMarkerLength;
+
+// Version 2's time records: not commands (they get no command number). SEND_TIME: the
+// frame's commands after it were sent this many nanoseconds after the start of the host's
+// set-up; HOST_END: the host's own work on the frame ended then.
+inline constexpr uint8_t kSendTimeOpcode = 0x06;
+inline constexpr uint8_t kHostEndOpcode = 0x07;
+inline constexpr std::size_t kTimeRecordSize = 9;  // opcode, i64 nanoseconds
+inline bool is_time_opcode(uint8_t opcode) {
+    return opcode == kSendTimeOpcode || opcode == kHostEndOpcode;
+}
+const char* time_record_name(uint8_t opcode);  // "SEND_TIME" or "HOST_END"
 
 // --- trailing index ------------------------------------------------------------------
 struct FrameIndexEntry {
@@ -90,6 +106,7 @@ void put_u16(std::vector<uint8_t>& out, uint16_t v);
 void put_u32(std::vector<uint8_t>& out, uint32_t v);
 void put_u64(std::vector<uint8_t>& out, uint64_t v);
 void put_i32(std::vector<uint8_t>& out, int32_t v);  // two's complement
+void put_i64(std::vector<uint8_t>& out, int64_t v);  // two's complement
 // Inline: the reader decodes every record with them. Compilers turn each into one load
 // (plus a byte swap on big-endian hosts).
 inline uint16_t get_u16(const uint8_t* p) {
@@ -105,12 +122,19 @@ inline uint64_t get_u64(const uint8_t* p) {
 inline int32_t get_i32(const uint8_t* p) {
     return static_cast<int32_t>(get_u32(p));
 }
+inline int64_t get_i64(const uint8_t* p) {
+    return static_cast<int64_t>(get_u64(p));
+}
 
 // --- encoders (append to out) --------------------------------------------------------
 // Throw std::invalid_argument for what version 1 cannot carry (see check_*).
-void encode_header(std::vector<uint8_t>& out, const Properties& properties);
+// The header of a stream of `version` (kUntimedVersion or kTimedVersion).
+void encode_header(std::vector<uint8_t>& out, const Properties& properties,
+                   uint16_t version = kUntimedVersion);
 void encode_command(std::vector<uint8_t>& out, const Command& c);
 void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Footer& footer);
+// A SEND_TIME or HOST_END record (version 2).
+void encode_time(std::vector<uint8_t>& out, uint8_t opcode, int64_t ns);
 
 // --- decoders ------------------------------------------------------------------------
 // Decodes a fixed-size command record's payload (not MARKER); p points after the opcode

@@ -226,30 +226,67 @@ void StreamReader::read_property(uint32_t i) {
 // --- commands ------------------------------------------------------------------------
 
 bool StreamReader::next(Command& out) {
-    // (an error also sets m_done: decode_buffered reads nothing then)
-    if (decode_buffered({&out, 1}) == 1) return true;
-    if (m_error) throw *m_error;
-    if (m_done) return false;
-    const uint64_t at = offset();
-    if (!fill(1)) {  // a clean cut after a complete command: no index
-        m_done = true;
-        return false;
+    for (;;) {
+        // (an error also sets m_done: decode_buffered reads nothing then)
+        if (decode_buffered({&out, 1}) == 1) return true;
+        if (m_error) throw *m_error;
+        if (m_done) return false;
+        const uint64_t at = offset();
+        if (!fill(1)) {  // a clean cut after a complete record: no index
+            m_done = true;
+            return false;
+        }
+        const uint8_t opcode = m_buf[m_pos];
+        if (opcode == kIndexOpcode) {
+            read_index(at);
+            m_done = true;
+            return false;
+        }
+        if (is_time_opcode(opcode) && timed()) {  // not a command: on to the next record
+            read_time(opcode, at);
+            continue;
+        }
+        Command c = read_record(opcode, at);
+        if (auto problem = check_command(c)) fail_command(to_string(opcode_of(c)), at, *problem);
+        if (const auto* begin = std::get_if<FrameBegin>(&c)) {
+            if (m_seen_all) m_seen.push_back(FrameIndexEntry{begin->frame, m_next_command, at});
+            m_in_frame = true;
+            m_send_ns = 0;
+            m_host_end_ns.reset();
+        } else if (std::holds_alternative<FrameEnd>(c)) {
+            m_in_frame = false;
+        }
+        out = std::move(c);
+        m_last_offset = at;
+        m_last_number = m_next_command++;
+        return true;
     }
-    const uint8_t opcode = m_buf[m_pos];
-    if (opcode == kIndexOpcode) {
-        read_index(at);
-        m_done = true;
-        return false;
+}
+
+// A SEND_TIME or HOST_END record at m_pos (version 2): checked against the frame's times so
+// far and kept for the commands after it.
+void StreamReader::read_time(uint8_t opcode, uint64_t at) {
+    const char* name = time_record_name(opcode);
+    if (!fill(kTimeRecordSize)) {
+        fail_command(fmt::format("truncated {}", name), at,
+                     fmt::format("the stream ends at byte {}", stream_end()));
     }
-    Command c = read_record(opcode, at);
-    if (auto problem = check_command(c)) fail_command(to_string(opcode_of(c)), at, *problem);
-    if (const auto* begin = std::get_if<FrameBegin>(&c); begin && m_seen_all) {
-        m_seen.push_back(FrameIndexEntry{begin->frame, m_next_command, at});
+    const int64_t ns = get_i64(&m_buf[m_pos + 1]);
+    if (!m_in_frame) fail_command(name, at, "outside a frame");
+    if (ns < 0) fail_command(name, at, fmt::format("{} ns is before the frame's set-up", ns));
+    if (ns < m_send_ns) {
+        fail_command(
+            name, at,
+            fmt::format("{} ns goes back from the frame's send time {} ns", ns, m_send_ns));
     }
-    out = std::move(c);
-    m_last_offset = at;
-    m_last_number = m_next_command++;
-    return true;
+    if (m_host_end_ns) {
+        fail_command(name, at, fmt::format("after the frame's HOST_END ({} ns)", *m_host_end_ns));
+    }
+    if (opcode == kSendTimeOpcode)
+        m_send_ns = ns;
+    else
+        m_host_end_ns = ns;
+    m_pos += kTimeRecordSize;
 }
 
 // The fast path of next() and read_batch(), for the records that make up almost every
@@ -269,7 +306,10 @@ std::size_t StreamReader::decode_buffered(std::span<Command> out) {
         last = pos;
         pos += size;
         ++n;
-        if (size == 1) break;  // FRAME_END
+        if (size == 1) {  // FRAME_END
+            m_in_frame = false;
+            break;
+        }
     }
     if (n > 0) {
         m_last_offset = m_buf_offset + last;
@@ -280,14 +320,18 @@ std::size_t StreamReader::decode_buffered(std::span<Command> out) {
     return n;
 }
 
-std::size_t StreamReader::read_batch(std::span<Command> out) {
+std::size_t StreamReader::read_batch(std::span<Command> out, std::span<int64_t> send_ns) {
+    if (!send_ns.empty() && send_ns.size() < out.size())
+        throw std::logic_error("read_batch: fewer send times than commands");
     std::size_t n = 0;
     try {
         while (n < out.size()) {
             const std::size_t fast = decode_buffered(out.subspan(n));
+            if (!send_ns.empty()) std::fill_n(send_ns.begin() + n, fast, m_send_ns);
             n += fast;
             if (fast > 0 && std::holds_alternative<FrameEnd>(out[n - 1])) break;
             if (n == out.size() || !next(out[n])) break;
+            if (!send_ns.empty()) send_ns[n] = m_send_ns;
             if (std::holds_alternative<FrameEnd>(out[n++])) break;
         }
     } catch (const StreamError&) {
@@ -442,6 +486,7 @@ void StreamReader::seek(const FrameIndexEntry& entry) {
     m_seen.clear();
     m_seen_all = false;
     m_done = false;
+    m_in_frame = false;
 }
 
 }  // namespace fb89::protocol

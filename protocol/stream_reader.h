@@ -1,5 +1,6 @@
 // StreamReader: reads an fb89 stream (any version up to kFormatVersion, docs/PROTOCOL.md)
-// from a file, stdin ("-") or a byte buffer, one command at a time.
+// from a file, stdin ("-") or a byte buffer, one command at a time, with its send time in a
+// version-2 stream.
 //
 // The header is read on construction. next() then returns the commands in order with
 // their command numbers and byte offsets, without loading the stream into memory. A
@@ -52,8 +53,17 @@ class StreamReader {
     // Reads up to out.size() commands into out's first elements, in order, and returns how
     // many; a batch ends after a FRAME_END, so that the caller sees each frame as it ends.
     // 0 at the end of the stream. A StreamError is thrown only when no command precedes it
-    // in the batch: a batch stops short of the error, and the next call throws it.
-    std::size_t read_batch(std::span<Command> out);
+    // in the batch: a batch stops short of the error, and the next call throws it. With
+    // send_ns (at least as long as out), each command's send time goes beside it.
+    std::size_t read_batch(std::span<Command> out, std::span<int64_t> send_ns = {});
+
+    // The send times of a version-2 stream (docs/PROTOCOL.md, "Version 2"), read with the
+    // commands: the last command's send time in nanoseconds from the start of its frame's
+    // set-up (0 before a frame's first SEND_TIME, and always in a version-1 stream), and the
+    // HOST_END of the last command's frame once read (nullopt before it, or without one).
+    bool timed() const { return m_version >= kTimedVersion; }
+    int64_t send_time_ns() const { return m_send_ns; }
+    std::optional<int64_t> host_end_ns() const { return m_host_end_ns; }
 
     uint64_t command_number() const { return m_last_number; }  // of the last command read
     uint64_t command_offset() const { return m_last_offset; }  // byte offset of its record
@@ -87,6 +97,7 @@ class StreamReader {
     void read_property(uint32_t i);
     std::size_t decode_buffered(std::span<Command> out);
     Command read_record(uint8_t opcode, uint64_t at);
+    void read_time(uint8_t opcode, uint64_t at);
     void read_index(uint64_t at);
     [[noreturn]] void fail(const std::string& what, uint64_t at, const std::string& where,
                            const std::string& detail);
@@ -117,6 +128,10 @@ class StreamReader {
     bool m_done = false;
     std::optional<StreamError> m_error;
     std::optional<FrameIndex> m_index;
+    // the time records of the frame being read (version 2)
+    bool m_in_frame = false;
+    int64_t m_send_ns = 0;
+    std::optional<int64_t> m_host_end_ns;
 };
 
 }  // namespace fb89::protocol

@@ -1,5 +1,6 @@
 // StreamWriter: a CommandSink that encodes the commands it receives as an fb89 stream
-// (version 1, docs/PROTOCOL.md) into a file, stdout ("-") or memory.
+// (docs/PROTOCOL.md) into a file, stdout ("-") or memory: version 1, or with
+// Timing::Timed version 2, whose send_time() and host_end() say when the host sent them.
 //
 // The header (with its properties) is written on construction, each command as it
 // arrives. close() appends the trailing frame index and footer and flushes. Bytes reach
@@ -25,18 +26,23 @@
 
 namespace fb89::protocol {
 
+// Whether a stream carries the host's send times (format version 2) or not (version 1).
+enum class Timing : bool { Untimed, Timed };
+
 class StreamWriter final : public CommandSink {
   public:
     // Writes to path ("-" is stdout; a regular file is replaced, a device, FIFO or socket
     // written in place). Throws std::runtime_error naming the path if it cannot be opened
-    // or written, std::invalid_argument for properties version 1 cannot carry.
-    StreamWriter(const std::string& path, const Properties& properties);
+    // or written, std::invalid_argument for properties the format cannot carry.
+    StreamWriter(const std::string& path, const Properties& properties,
+                 Timing timing = Timing::Untimed);
     // Encodes into memory; read the bytes with bytes() or take_bytes().
-    explicit StreamWriter(const Properties& properties);
+    explicit StreamWriter(const Properties& properties, Timing timing = Timing::Untimed);
     // Writes to an open descriptor it does not own (e.g. a connected socket; close() then
     // leaves it open); name stands for it in messages. On a socket, writes never raise
     // SIGPIPE: a vanished reader is a std::runtime_error ("Broken pipe").
-    StreamWriter(int fd, std::string name, const Properties& properties);
+    StreamWriter(int fd, std::string name, const Properties& properties,
+                 Timing timing = Timing::Untimed);
     ~StreamWriter() override;
     StreamWriter(const StreamWriter&) = delete;
     StreamWriter& operator=(const StreamWriter&) = delete;
@@ -49,6 +55,16 @@ class StreamWriter final : public CommandSink {
     void draw_span(const DrawSpan& c) override;
     void marker(const Marker& c) override;
     void frame_end(const FrameEnd& c) override;
+
+    // Timed streams only, inside a frame (after its FRAME_BEGIN, before its FRAME_END): the
+    // frame's commands from here on were sent `ns` nanoseconds after the start of the
+    // host's set-up (a SEND_TIME record, written only when the time changes); the host's own
+    // work on the frame ended at `ns` (HOST_END, once a frame, after its last send time).
+    // Throw std::logic_error on an untimed writer, std::invalid_argument for a time outside a
+    // frame, negative, going back, or after the frame's HOST_END.
+    void send_time(int64_t ns);
+    void host_end(int64_t ns);
+    bool timed() const { return m_timed; }
 
     // Writes the frame index and footer, flushes and closes the file. Does nothing if
     // already closed. Throws std::runtime_error naming the path on a write error.
@@ -73,6 +89,7 @@ class StreamWriter final : public CommandSink {
 
   private:
     void write_command(const Command& c);
+    void write_time(uint8_t opcode, int64_t ns);
     void flush_buffer();
     void close_file() noexcept;
     [[noreturn]] void fail(const std::string& what);
@@ -89,10 +106,15 @@ class StreamWriter final : public CommandSink {
     uint64_t m_command_count = 0;
     uint64_t m_commands_flushed = 0;
     FrameIndex m_index;
+    // the time records' state, in the frame being written
+    bool m_timed = false;
+    bool m_in_frame = false;
+    bool m_host_ended = false;
+    int64_t m_send_ns = 0;
 };
 
-// Encodes a whole stream in memory: header, commands, and (if with_index) the trailing
-// frame index and footer.
+// Encodes a whole (version 1) stream in memory: header, commands, and (if with_index) the
+// trailing frame index and footer.
 std::vector<uint8_t> encode_stream(const std::vector<Command>& commands,
                                    const Properties& properties = {}, bool with_index = true);
 

@@ -13,7 +13,7 @@ namespace fb89::python {
 
 struct StreamFile {
     std::string path;  // "" when it was not read from a file
-    uint16_t version = protocol::kFormatVersion;
+    uint16_t version = protocol::kUntimedVersion;
     protocol::Properties header;
     CommandRows commands;
     // With a call set: each row's command number in the file; else none (row i is command i).

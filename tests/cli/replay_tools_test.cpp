@@ -5,6 +5,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
+
+#include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 
@@ -65,10 +68,11 @@ std::string write_stream(const std::string& name, const std::vector<pr::Command>
     return path;
 }
 
-// Records scenes/A.json at 256x195 with the Z-buffer.
-std::string record_a(const std::string& name = "a.fb89") {
+// Records scenes/A.json at 256x195 with the Z-buffer (with its send times: version 2).
+std::string record_a(const std::string& name = "a.fb89", const std::string& extra = "") {
     const std::string path = scratch(name);
-    CliRun r = fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + path);
+    CliRun r =
+        fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + path + " " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return path;
 }
@@ -114,7 +118,8 @@ TEST(ReplayCommand, ReplaysUnderAnotherProfileWithTheRendersChecksum) {
 // (a version-1 stream has no send times, and the line says so); a buffer smaller than the
 // largest command is a usage error, and a timeline that cannot be written leaves nothing.
 TEST(ReplayCommand, TheBufferAndTheTimelineRunTheStreamsFramesThroughThePipeline) {
-    const std::string stream = record_a(), timeline = scratch("replay_timeline.json");
+    const std::string stream = record_a("a_untimed.fb89", "--untimed-stream"),
+                      timeline = scratch("replay_timeline.json");
     CliRun r = fb89("replay " + stream + " --buffer 64 --timeline " + timeline);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("pipeline, frame 0 (no send times in the stream: every command ready at "
@@ -203,6 +208,93 @@ TEST(ReplayCommand, TruncatedStreamExitsTwoWritingNothingAndSalvageKeepsComplete
     EXPECT_EQ(image.pixels[(2 * 8 + 2) * 3], 9);
 }
 
+// The number after `label` in `text` (e.g. "frame " -> 12.345), or -1.
+double number_after(const std::string& text, const std::string& label) {
+    const std::size_t at = text.find(label);
+    return at == std::string::npos ? -1 : std::stod(text.substr(at + label.size()));
+}
+
+TEST(ReplayCommand, ATimedStreamGoesThroughThePipelineAtItsSendTimesAsRendered) {
+    const std::string stream = scratch("timed.fb89"), timeline = scratch("timed_timeline.json");
+    CliRun render = fb89("render " + kScenes + "/A.json --size 256x195 --method scanline " +
+                         "--buffer 2048 --stream " + stream);
+    ASSERT_EQ(render.exit_code, 0) << render.err;
+    CliRun r = fb89("replay " + stream + " --buffer 2048 --timeline " + timeline);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("format version 2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("pipeline, frame 0 (send times from the stream, measured on native; "
+                         "buffer 2048 bytes): frame "),
+              std::string::npos)
+        << r.out;
+    // the render's frame and stalls, to the printed microsecond, without the host
+    const double frame_ms = number_after(render.out, "buffer 2048 bytes): frame ");
+    EXPECT_GT(frame_ms, 0) << render.out;
+    EXPECT_EQ(number_after(r.out, "buffer 2048 bytes): frame "), frame_ms) << r.out;
+    EXPECT_EQ(number_after(r.out, "host stalled "), number_after(render.out, "host stalled "));
+    const nlohmann::json t = nlohmann::json::parse(slurp(timeline));
+    EXPECT_EQ(t["otherData"]["send_times"], "measured on native");
+    EXPECT_NEAR(t["otherData"]["frame_us"].get<double>() / 1e3, frame_ms, 0.0005);
+}
+
+TEST(StreamTools, InfoDumpTrimAndDiffShowAndKeepTheSendTimes) {
+    const std::string stream = record_a("timed_a.fb89"), trimmed = scratch("timed_trim.fb89");
+    CliRun info = fb89("info " + stream + " --json");
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    const nlohmann::json j = nlohmann::json::parse(info.out);
+    EXPECT_EQ(j["version"], 2);
+    EXPECT_EQ(j["send_times"], "measured on native");
+    const double host_end_us = j["frames"][0]["host_end_us"].get<double>();
+    EXPECT_GT(host_end_us, 0);
+    EXPECT_GE(host_end_us, j["frames"][0]["last_send_us"].get<double>());
+    info = fb89("info " + stream);
+    EXPECT_NE(info.out.find("send times     measured on native"), std::string::npos) << info.out;
+
+    CliRun dump = fb89("dump " + stream);
+    ASSERT_EQ(dump.exit_code, 0) << dump.err;
+    const auto lines = lines_of(dump.out);
+    ASSERT_GT(lines.size(), 2u);
+    EXPECT_NE(lines.front().find("FRAME_BEGIN"), std::string::npos);
+    EXPECT_NE(lines.front().find("  sent 0.000 us"), std::string::npos) << lines.front();
+    EXPECT_NE(lines.back().find("FRAME_END  sent "), std::string::npos) << lines.back();
+    EXPECT_NE(lines.back().find(", host end "), std::string::npos) << lines.back();
+
+    // a frame kept whole keeps every command's time: the same dump, line for line, but for
+    // the byte offsets (the trimmed stream's header says where it came from)
+    ASSERT_EQ(fb89("trim " + stream + " --frames 0 -q -o " + trimmed).exit_code, 0);
+    const std::regex offset(" @[0-9]+ +");
+    EXPECT_TRUE(std::regex_replace(fb89("dump " + trimmed).out, offset, " ") ==
+                std::regex_replace(dump.out, offset, " "));
+    CliRun diff = fb89("diff " + stream + " " + trimmed);
+    EXPECT_EQ(diff.exit_code, 0) << diff.out << diff.err;
+    EXPECT_NE(diff.out.find("host end A ms"), std::string::npos) << diff.out;
+    const std::string end_ms = fmt::format("{:.3f}", host_end_us / 1e3);
+    EXPECT_NE(diff.out.find(end_ms + " " + std::string(14 - end_ms.size(), ' ') + end_ms),
+              std::string::npos)
+        << diff.out;
+}
+
+TEST(StreamTools, ATimeThatGoesBackIsRefusedNamingItsByteAndCommand) {
+    std::vector<uint8_t> bytes;
+    pr::encode_header(bytes, {}, pr::kTimedVersion);
+    pr::encode_command(bytes, pr::FrameBegin{0, 8, 6, pr::Rgb{}});
+    pr::encode_time(bytes, pr::kSendTimeOpcode, 2000);
+    pr::encode_command(bytes, pr::FillRect{0, 0, 2, 2, pr::Rgb{}});
+    pr::encode_time(bytes, pr::kSendTimeOpcode, 1000);  // byte 57
+    pr::encode_command(bytes, pr::FrameEnd{});
+    const std::string path = scratch("back.fb89");
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+    for (const std::string& tool : {"replay", "dump", "info"}) {
+        CliRun r = fb89(tool + " " + path + (tool == "replay" ? " --buffer unbounded" : ""));
+        EXPECT_EQ(r.exit_code, 2) << tool;
+        EXPECT_NE(r.err.find("back.fb89: SEND_TIME at byte 57 (command 2): 1000 ns goes back "
+                             "from the frame's send time 2000 ns"),
+                  std::string::npos)
+            << tool << ": " << r.err;
+    }
+}
+
 TEST(DumpCommand, PrintsOneNumberedLinePerCommand) {
     const std::string stream = write_stream("three.fb89", three_frames());
     CliRun r = fb89("dump " + stream);
@@ -287,7 +379,7 @@ TEST(InfoCommand, TextShowsHeaderAndOneRowPerFrame) {
     const std::string stream = record_a();
     CliRun r = fb89("info " + stream);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("format version 1"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("format version 2"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("zbuffer"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("256x195"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("frame index    present"), std::string::npos) << r.out;
@@ -304,7 +396,7 @@ TEST(InfoCommand, NewerVersionNamesBothVersions) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("v3.fb89"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("version 3"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("up to 1"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("up to 2"), std::string::npos) << r.err;
 }
 
 TEST(TrimCommand, WholeFramesKeepTheirChecksums) {

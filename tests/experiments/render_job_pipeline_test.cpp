@@ -5,6 +5,7 @@
 #include <string>
 
 #include "experiments/render_job.h"
+#include "protocol/stream_reader.h"
 
 namespace fb89::experiments {
 namespace {
@@ -35,6 +36,52 @@ TEST(RenderJobPipeline, NativelyTheFrameLiesBetweenTheLargerSideAndTheirSum) {
         EXPECT_GT(p.controller_utilization(), 0);
         EXPECT_LE(p.controller_utilization(), 1 + 1e-12);
     }
+}
+
+// A frame's stream keeps its send times (a version-2 stream, whole nanoseconds): through the
+// pipeline from the stream alone, without the host, the frame's figures are the render's,
+// exactly -- the replay `fb89 replay --buffer` does.
+TEST(RenderJobPipeline, TheFramesStreamReplaysThroughThePipelineAsItWasRendered) {
+    RenderJob job;
+    job.scene = std::string(FB89_SCENES_DIR) + "/A.json";
+    job.size = {256, 195};
+    job.repeat = 1;
+    job.buffer_bytes = 2048;  // small enough to stall the host
+    job.methods.emplace_back(host::Method::ScanLine);
+    const RenderResult result = run_render_job(job);
+    const MethodRun& run = result.runs.front();
+    ASSERT_TRUE(run.pipeline.has_value());
+
+    protocol::StreamWriter writer(protocol::Properties{}, protocol::Timing::Timed);
+    write_commands(writer, run);
+    writer.close();
+    protocol::StreamReader reader(writer.bytes());
+    protocol::MemoryBuffer frame;
+    std::vector<double> send_us;
+    protocol::Command c;
+    while (reader.next(c)) {
+        frame.submit(c);
+        send_us.push_back(static_cast<double>(reader.send_time_ns()) / 1e3);
+    }
+    ASSERT_EQ(frame.size(), run.commands.size());
+    ASSERT_TRUE(reader.host_end_ns().has_value());
+    // monotone within the frame, FRAME_BEGIN at 0, each within half a nanosecond of the render's
+    EXPECT_EQ(send_us.front(), 0);
+    for (std::size_t i = 0; i < send_us.size(); ++i) {
+        if (i > 0) EXPECT_GE(send_us[i], send_us[i - 1]);
+        EXPECT_NEAR(send_us[i], run.send_us[i], 0.5e-3) << i;
+    }
+    const controller::PipelineFigures p =
+        pipeline_figures(frame, send_us, static_cast<double>(*reader.host_end_ns()) / 1e3,
+                         controller::load_profile("tms34010-50mhz"), 2048);
+    const controller::PipelineFigures& r = *run.pipeline;
+    EXPECT_EQ(p.frame_us, r.frame_us);
+    EXPECT_EQ(p.host_us, r.host_us);
+    EXPECT_EQ(p.host_stalled_us, r.host_stalled_us);
+    EXPECT_EQ(p.stalls, r.stalls);
+    EXPECT_EQ(p.controller_idle_us, r.controller_idle_us);
+    EXPECT_EQ(p.high_water_bytes, r.high_water_bytes);
+    EXPECT_GT(r.stalls, 0u);  // the buffer did bind
 }
 
 }  // namespace

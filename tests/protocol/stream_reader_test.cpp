@@ -110,12 +110,12 @@ TEST(StreamReader, RefusesANewerVersionNamingBothVersions) {
     const ReadResult r = read_all(bytes);
     ASSERT_TRUE(r.error);
     EXPECT_STREQ(r.error->what(),
-                 "stream.fb89: stream is format version 3; this fb89 reads versions up to 1");
+                 "stream.fb89: stream is format version 3; this fb89 reads versions up to 2");
     // a newer version may lay out everything after the version differently
     const ReadResult short_header = read_all(Bytes{'F', 'B', '8', '9', 0x00, 0x01});
     ASSERT_TRUE(short_header.error);
     EXPECT_STREQ(short_header.error->what(),
-                 "stream.fb89: stream is format version 256; this fb89 reads versions up to 1");
+                 "stream.fb89: stream is format version 256; this fb89 reads versions up to 2");
 }
 
 TEST(StreamReader, RefusesVersionZeroAndNonZeroFlags) {
