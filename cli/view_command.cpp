@@ -5,7 +5,11 @@
 // Pacing: each wall-clock tick adds wall seconds x speed of modelled time to a budget;
 // commands execute while the budget lasts, each spending what the controller's pipeline
 // says it took (Controller::elapsed_us(): bus and execution, DESIGN.md "Controller and its
-// cost model"). Time between frames is not modelled, so frames follow each other at once.
+// cost model"). A stream with send times (format version 2) plays at the pace of the
+// pipeline in time instead -- the host's sends, its stalls on a full command buffer
+// (`--buffer`), the controller's waits for commands -- and the status line shows the frame's
+// host stalls and controller idle time so far. Time between frames is not modelled, so
+// frames follow each other at once.
 // The stream is read incrementally (StreamReader); going back re-reads it, through the
 // frame index when the stream has one.
 #include <chrono>
@@ -16,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "cli/common.h"
+#include "cli/stream_tools.h"
 #include "controller_sim/display.h"
 #include "controller_sim/png_io.h"
 #include "controller_sim/view_player.h"
@@ -25,6 +30,7 @@ namespace fb89::cli {
 namespace {
 
 using controller::InputEvent;
+using controller::PipelineFigures;
 using controller::ViewGoal;
 using controller::ViewPlayer;
 using Clock = std::chrono::steady_clock;
@@ -37,7 +43,7 @@ struct ViewArgs {
     int64_t start_call = -1, start_frame = -1;
     bool overlay = false;
     double scale = 1;
-    std::string screenshot;
+    std::string screenshot, buffer;
     bool exit_at_end = false;
 };
 
@@ -94,6 +100,15 @@ controller::Hud make_hud(const ViewPlayer& p, const Ui& ui, int columns) {
         inspect = fmt::format("({},{}) {}", x, y, protocol::to_string(fb.pixel(x, y)));
         if (const auto w = p.recorder().writer(x, y))
             inspect += fmt::format(" by #{} {}", w->number, protocol::to_string(*w->command));
+    }
+    if (p.timed()) {  // the pipeline in time: who waited on whom, in this frame so far
+        const PipelineFigures& f = p.pipeline_so_far();
+        hud.status.push_back(fit(fmt::format(
+            "pipeline (send times {}, buffer {}): host stalled {:.3f} ms, controller idle "
+            "{:.3f} ms, buffer high water {} bytes",
+            send_times_of(p.reader()), controller::command_buffer_text(p.buffer_bytes()),
+            f.host_stalled_us / 1e3, std::max(0.0, p.frame_us() - f.controller_busy_us) / 1e3,
+            f.high_water_bytes)));
     }
     hud.status.push_back(fit(inspect));
     hud.status.push_back(fit(!p.error().empty() ? "stream error: " + p.error()
@@ -171,7 +186,8 @@ void save_screenshot(controller::Display& display, const ViewPlayer& p, const Ui
 }
 
 int run_view(const ViewArgs& args) {
-    ViewPlayer player(args.stream, controller::load_profile(args.profile));
+    ViewPlayer player(args.stream, controller::load_profile(args.profile),
+                      parse_buffer_option(args.buffer, args.profile));
     if (args.start_frame >= 0) player.seek_frame_number(static_cast<uint32_t>(args.start_frame));
     if (args.start_call >= 0) player.seek_command(static_cast<uint64_t>(args.start_call));
 
@@ -251,6 +267,9 @@ void register_view(CLI::App& app, int& exit_code) {
                     "Start at the FRAME_BEGIN carrying this frame number")
         ->check(CLI::NonNegativeNumber)
         ->excludes(call);
+    sub->add_option("--buffer", args->buffer,
+                    "A stream with send times plays at the pace of the pipeline in time with a "
+                    "command buffer of this many bytes, or unbounded (default: the profile's)");
     sub->add_flag("--overlay", args->overlay, "Start with the opcode overlay on");
     sub->add_option("--scale", args->scale,
                     "Window pixels per framebuffer pixel, 0.125 to 8 (0.5: a 2048x1560 frame in "

@@ -75,6 +75,8 @@ class TimedPipeline {
     // The frame's figures, the host's own work ending at `host_end_us` (not before the last
     // send). The pipeline is then ready for the next frame, from 0.
     PipelineFigures finish(double host_end_us);
+    // The frame's figures so far (the sums; frame_us and host_us wait for finish()).
+    const PipelineFigures& so_far() const { return m_figures; }
 
   private:
     struct Held {

@@ -13,10 +13,17 @@
 
 namespace fb89::controller {
 
-ViewPlayer::ViewPlayer(std::string path, CostProfile profile)
-    : m_path(std::move(path)), m_profile(std::move(profile)) {
+ViewPlayer::ViewPlayer(std::string path, CostProfile profile, std::optional<uint64_t> buffer_bytes)
+    : m_path(std::move(path)),
+      m_profile(std::move(profile)),
+      m_buffer(buffer_bytes.value_or(m_profile.command_buffer_bytes)),
+      m_pipe(m_buffer) {
     reopen();
     if (m_path != "-") m_index = m_reader->read_trailing_index();
+}
+
+double ViewPlayer::elapsed_us() const {
+    return timed() ? m_pipe_frames_us + m_pipe_clock_us : m_controller->elapsed_us();
 }
 
 void ViewPlayer::reopen() {
@@ -34,6 +41,9 @@ void ViewPlayer::reset_state(int64_t ordinal) {
     m_ordinal = ordinal;
     m_frame_ended = false;
     m_in_frame_time = false;
+    m_pipe = TimedPipeline(m_buffer);
+    m_finished.reset();
+    m_pipe_frames_us = m_pipe_clock_us = 0;
 }
 
 bool ViewPlayer::step() {
@@ -46,8 +56,25 @@ bool ViewPlayer::step() {
             return false;
         }
         const auto* begin = std::get_if<protocol::FrameBegin>(&c);
-        const double before = m_controller->elapsed_us();
+        if (begin && timed()) {  // the pipeline starts the frame at its set-up
+            m_pipe_frames_us += m_pipe_clock_us;
+            m_pipe_clock_us = 0;
+            m_pipe = TimedPipeline(m_buffer);
+            m_finished.reset();
+        }
+        const double before = elapsed_us();
         m_controller->execute(c);
+        if (timed()) {
+            const Controller::CommandCost& cost = m_controller->last_cost();
+            const double send_us = static_cast<double>(m_reader->send_time_ns()) / 1e3;
+            m_pipe_clock_us = std::max(
+                m_pipe_clock_us, m_pipe.push({send_us, cost.bytes, cost.bus_us, cost.exec_us}));
+            if (std::holds_alternative<protocol::FrameEnd>(c)) {  // the host's end may be later
+                const auto end_ns = m_reader->host_end_ns().value_or(m_reader->send_time_ns());
+                m_finished = m_pipe.finish(static_cast<double>(end_ns) / 1e3);
+                m_pipe_clock_us = m_finished->frame_us;
+            }
+        }
         if (begin) {
             m_frame_start_us = before;
             m_in_frame_time = true;
@@ -69,9 +96,9 @@ bool ViewPlayer::step() {
 double ViewPlayer::play(double budget_us, Clock::time_point deadline) {
     for (int n = 1; budget_us > 0 && !m_at_end; ++n) {
         if (n % 256 == 0 && Clock::now() >= deadline) break;
-        const double before = m_controller->elapsed_us();
+        const double before = elapsed_us();
         if (!step()) break;
-        budget_us -= m_controller->elapsed_us() - before;
+        budget_us -= elapsed_us() - before;
     }
     return budget_us;
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "protocol/stream_writer.h"
@@ -29,6 +30,26 @@ std::string write_stream(const std::string& name, bool with_index) {
         w.frame_end(protocol::FrameEnd{});
     }
     if (with_index) w.close();
+    return path.string();
+}
+
+// Two 8x6 frames with send times (format version 2): frame 0 fills at 1000 µs and 1500 µs,
+// the host done at 2000 µs; frame 1 spans at 300 µs, with no HOST_END.
+std::string write_timed_stream(const std::string& name) {
+    const auto path = fb89::testing::scratch_path("view_player_" + name);
+    protocol::StreamWriter w(path.string(), {{"scene", "test"}}, protocol::Timing::Timed);
+    w.frame_begin(protocol::FrameBegin{0, 8, 6, Rgb{}});
+    w.send_time(1'000'000);
+    w.fill_rect(protocol::FillRect{0, 0, 4, 4, Rgb{1, 1, 1}});
+    w.send_time(1'500'000);
+    w.fill_rect(protocol::FillRect{4, 0, 4, 4, Rgb{2, 2, 2}});
+    w.host_end(2'000'000);
+    w.frame_end(protocol::FrameEnd{});
+    w.frame_begin(protocol::FrameBegin{1, 8, 6, Rgb{}});
+    w.send_time(300'000);
+    w.draw_span(protocol::DrawSpan{5, 0, 7, Rgb{3, 0, 0}});
+    w.frame_end(protocol::FrameEnd{});
+    w.close();
     return path.string();
 }
 
@@ -124,6 +145,68 @@ TEST(ViewPlayer, ToEndJumpsToTheLastFrameThroughTheIndex) {
     EXPECT_EQ(p.frame_number(), 12);
     EXPECT_EQ(p.controller().frames().size(), 1u);
     EXPECT_EQ(p.controller().framebuffer().pixel(0, 0), (Rgb{3, 3, 3}));
+}
+
+// A stream with send times plays at the pipeline's pace: under the ideal profile the
+// controller takes no time, so each frame lasts until the host's end (frame 0: 2000 µs) or,
+// without one, its last send (frame 1: 300 µs), and the controller idles all of it.
+TEST(ViewPlayer, ATimedStreamPlaysAtThePipelinesPace) {
+    ViewPlayer p(write_timed_stream("timed_ideal"), load_profile("ideal"));
+    ASSERT_TRUE(p.timed());
+    ASSERT_TRUE(p.step());  // FRAME_BEGIN, at 0
+    EXPECT_EQ(p.elapsed_us(), 0);
+    // 500 µs of budget: the fills are sent at 1000 µs and later, so the first is all it buys
+    // (its time spent after it ran: the budget goes into debt)
+    const double left = p.play(500, far());
+    EXPECT_EQ(p.next_command(), 2u);
+    EXPECT_EQ(p.elapsed_us(), 1000);
+    EXPECT_EQ(left, -500);
+    p.play(1e9, far());
+    EXPECT_TRUE(p.at_end());
+    EXPECT_EQ(p.elapsed_us(), 2000 + 300);
+    EXPECT_EQ(p.frame_us(), 300);
+    EXPECT_EQ(p.pipeline_so_far().controller_busy_us, 0);
+    EXPECT_EQ(p.pipeline_so_far().host_stalled_us, 0);
+
+    // the same stream untimed in the player's eyes: the controller's own pace, no waiting
+    ViewPlayer untimed(write_stream("untimed", true), load_profile("ideal"));
+    EXPECT_FALSE(untimed.timed());
+}
+
+// Under the TMS34010 with a buffer of one command, the host stalls on each fill until the
+// controller has drawn the one before: the player shows the stalls the pipeline counts.
+TEST(ViewPlayer, ABufferTooSmallStallsTheHostAndThePlayerSaysHowLong) {
+    const CostProfile profile = load_profile("tms34010-50mhz");
+    const uint64_t buffer = *std::max_element(profile.bytes.begin(), profile.bytes.end());
+    const std::string path = fb89::testing::scratch_path("view_player_stall").string();
+    {
+        protocol::StreamWriter w(path, {}, protocol::Timing::Timed);
+        w.frame_begin(protocol::FrameBegin{0, 64, 64, Rgb{}});
+        for (int i = 0; i < 4; ++i)
+            w.fill_rect(protocol::FillRect{0, 0, 64, 64, Rgb{9, 9, 9}});  // all sent at 0
+        w.frame_end(protocol::FrameEnd{});
+        w.close();
+    }
+    // the expectation from the pipeline and the controller directly
+    Controller ctl(profile);
+    TimedPipeline pipe(buffer);
+    protocol::StreamReader reader(path);
+    protocol::Command c;
+    while (reader.next(c)) {
+        ctl.execute(c);
+        pipe.push({0, ctl.last_cost().bytes, ctl.last_cost().bus_us, ctl.last_cost().exec_us});
+    }
+    const PipelineFigures want = pipe.finish(0);
+    ASSERT_GT(want.host_stalled_us, 0);
+
+    ViewPlayer p(path, profile, buffer);
+    p.play(1e9, far());
+    ASSERT_TRUE(p.at_end()) << p.error();
+    EXPECT_EQ(p.buffer_bytes(), buffer);
+    EXPECT_EQ(p.elapsed_us(), want.frame_us);
+    EXPECT_EQ(p.pipeline_so_far().host_stalled_us, want.host_stalled_us);
+    EXPECT_EQ(p.pipeline_so_far().controller_busy_us, want.controller_busy_us);
+    EXPECT_EQ(p.pipeline_so_far().high_water_bytes, buffer);
 }
 
 }  // namespace
