@@ -30,7 +30,7 @@
 #include "cli/stream_tools.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
-#include "experiments/render_job.h"
+#include "controller_sim/timed_pipeline.h"
 #include "experiments/timeline.h"
 
 namespace fb89::cli {
@@ -53,35 +53,43 @@ struct ReplayRun {
     double wall_s = 0;
     std::optional<protocol::StreamError> error;
     // --buffer / --timeline: each complete frame through the pipeline in time from the
-    // stream's send times (a version-1 stream has none: every command ready at 0), and the
-    // last one's commands, send times and host end
+    // stream's send times (a version-1 stream has none: every command ready at 0); with
+    // --timeline, the last one's commands, send times and host end
     std::optional<uint64_t> buffer;
+    bool keep_frame = false;
+    std::optional<controller::TimedPipeline> pipe;
     std::vector<controller::PipelineFigures> pipelines;
     protocol::MemoryBuffer frame, last_frame_commands;
     std::vector<double> frame_send_us, last_frame_send_us;
     double last_host_end_us = 0;
 };
 
-// The frame so far, through the pipeline in time when it ends: the host's end is its HOST_END,
-// or without one its last send time.
+// Command c, just executed by ctl, through the frame's pipeline in time at its send time,
+// with what the controller said it cost; at FRAME_END the frame's figures, the host's end
+// its HOST_END or, without one, its last send time.
 void follow_pipeline(const protocol::Command& c, int64_t send_ns,
-                     const protocol::StreamReader& reader, const controller::CostProfile& profile,
+                     const protocol::StreamReader& reader, const controller::Controller& ctl,
                      ReplayRun& run) {
+    const double send_us = static_cast<double>(send_ns) / 1e3;
     if (std::holds_alternative<protocol::FrameBegin>(c)) {
+        run.pipe.emplace(*run.buffer);
         run.frame.clear();
         run.frame_send_us.clear();
     }
-    run.frame.submit(c);
-    run.frame_send_us.push_back(static_cast<double>(send_ns) / 1e3);
+    if (!run.pipe) return;  // commands before the first frame
+    const controller::Controller::CommandCost& cost = ctl.last_cost();
+    run.pipe->push({send_us, cost.bytes, cost.bus_us, cost.exec_us});
+    if (run.keep_frame) {
+        run.frame.submit(c);
+        run.frame_send_us.push_back(send_us);
+    }
     if (!std::holds_alternative<protocol::FrameEnd>(c)) return;
     const double host_end_us = static_cast<double>(reader.host_end_ns().value_or(send_ns)) / 1e3;
-    run.pipelines.push_back(experiments::pipeline_figures(run.frame, run.frame_send_us, host_end_us,
-                                                          profile, *run.buffer));
+    run.pipelines.push_back(run.pipe->finish(host_end_us));
+    run.pipe.reset();
     std::swap(run.last_frame_commands, run.frame);
     std::swap(run.last_frame_send_us, run.frame_send_us);
     run.last_host_end_us = host_end_us;
-    run.frame.clear();
-    run.frame_send_us.clear();
 }
 
 // Commands read and executed at a time by the replay loop: enough to leave the per-batch
@@ -115,10 +123,14 @@ void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
             replay_snapshots(args, snapshots, reader, ctl, run);
         } else {
             while (const std::size_t n = reader.read_batch(batch, send_ns)) {
-                ctl.execute(std::span(batch).first(n));
-                if (run.buffer)
-                    for (std::size_t i = 0; i < n; ++i)
-                        follow_pipeline(batch[i], send_ns[i], reader, ctl.profile(), run);
+                if (run.buffer) {  // command by command: the pipeline takes each one's cost
+                    for (std::size_t i = 0; i < n; ++i) {
+                        ctl.execute(batch[i]);
+                        follow_pipeline(batch[i], send_ns[i], reader, ctl, run);
+                    }
+                } else {
+                    ctl.execute(std::span(batch).first(n));
+                }
                 if (keep_last && std::holds_alternative<protocol::FrameEnd>(batch[n - 1]))
                     run.last_frame = ctl.framebuffer();
             }
@@ -173,6 +185,7 @@ int run_replay(const ReplayArgs& args) {
     ReplayRun run;
     run.buffer = parse_buffer_option(args.buffer, args.profile);
     if (!run.buffer && !args.timeline.empty()) run.buffer = profile.command_buffer_bytes;
+    run.keep_frame = !args.timeline.empty();
     if (run.buffer && !snapshots.empty())
         throw UsageError("--buffer and --timeline replay whole frames; not with --snapshot");
     replay(args, snapshots, reader, ctl, run);
