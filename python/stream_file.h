@@ -18,9 +18,16 @@ struct StreamFile {
     CommandRows commands;
     // With a call set: each row's command number in the file; else none (row i is command i).
     std::optional<std::vector<uint64_t>> numbers;
+    // A stream with send times (format version 2): each row's send time in nanoseconds from
+    // its frame's set-up, and the HOST_ENDs as (row of the frame's FRAME_END, nanoseconds);
+    // both empty without times.
+    std::vector<int64_t> send_ns;
+    std::vector<std::pair<std::size_t, int64_t>> host_ends;
 };
 
-// Writes the stream as a file (version 1). Throws FileProblem when it cannot be written.
+// Writes the stream as a file: version 2 with its send times when it has them, else version 1.
+// Throws FileProblem when it cannot be written, std::invalid_argument for times the format
+// refuses (docs/PROTOCOL.md, "Version 2: send times").
 void save_rows(const StreamFile& stream, const std::string& path);
 
 }  // namespace fb89::python

@@ -52,11 +52,22 @@ std::shared_ptr<StreamFile> open_stream(const std::string& path,
     const auto bytes = std::filesystem::file_size(path, ec);
     if (!ec && !selection) out->commands.rows.reserve(bytes / protocol::kDrawSpanRecordSize + 1024);
     std::array<protocol::Command, 4096> batch;
+    std::vector<int64_t> send_ns(reader.timed() ? batch.size() : 0);
     if (selection) out->numbers.emplace();
     uint64_t number = 0;
-    for (std::size_t n; (n = reader.read_batch(batch)) > 0;) {
+    // a batch ends at a FRAME_END: the frame's HOST_END, if any, has been read by then
+    const auto keep_host_end = [&](const protocol::Command& last) {
+        if (reader.timed() && std::holds_alternative<protocol::FrameEnd>(last) &&
+            reader.host_end_ns())
+            out->host_ends.emplace_back(out->commands.rows.size() - 1, *reader.host_end_ns());
+    };
+    for (std::size_t n; (n = reader.read_batch(batch, send_ns)) > 0;) {
         if (!selection) {
             out->commands.add(std::span<const protocol::Command>(batch.data(), n));
+            out->send_ns.insert(
+                out->send_ns.end(), send_ns.begin(),
+                send_ns.begin() + static_cast<std::ptrdiff_t>(reader.timed() ? n : 0));
+            keep_host_end(batch[n - 1]);
             continue;
         }
         for (std::size_t i = 0; i < n; ++i, ++number) {
@@ -64,6 +75,8 @@ std::shared_ptr<StreamFile> open_stream(const std::string& path,
             if (!selection->contains(number, batch[i])) continue;
             out->numbers->push_back(number);
             out->commands.add(batch[i]);
+            if (reader.timed()) out->send_ns.push_back(send_ns[i]);
+            if (i + 1 == n) keep_host_end(batch[i]);
         }
     }
     return out;
@@ -104,10 +117,63 @@ py::array rows_view(const py::object& self) {
 
 }  // namespace
 
+namespace {
+
+// The rows into a timed writer, each with its send time, a FRAME_END with its frame's HOST_END.
+class TimedRows final : public protocol::CommandSink {
+  public:
+    TimedRows(const StreamFile& s, protocol::StreamWriter& writer) : m_s(s), m_writer(writer) {}
+    void frame_begin(const protocol::FrameBegin& c) override {
+        m_writer.frame_begin(c);  // at 0: the frame's origin
+        m_in_frame = true;
+        ++m_row;
+    }
+    void fill_rect(const protocol::FillRect& c) override { timed(c); }
+    void draw_span(const protocol::DrawSpan& c) override { timed(c); }
+    void marker(const protocol::Marker& c) override { timed(c); }
+    void frame_end(const protocol::FrameEnd& c) override {
+        if (m_in_frame) {
+            m_writer.send_time(m_s.send_ns.at(m_row));
+            while (m_end != m_s.host_ends.end() && m_end->first < m_row)
+                ++m_end;
+            if (m_end != m_s.host_ends.end() && m_end->first == m_row)
+                m_writer.host_end(m_end->second);
+        }
+        m_writer.frame_end(c);
+        m_in_frame = false;
+        ++m_row;
+    }
+
+  private:
+    template <class C>
+    void timed(const C& c) {  // (a command outside a frame, of a selection, has no time)
+        if (m_in_frame) m_writer.send_time(m_s.send_ns.at(m_row));
+        ++m_row;
+        m_writer.submit(c);
+    }
+    const StreamFile& m_s;
+    protocol::StreamWriter& m_writer;
+    std::size_t m_row = 0;
+    bool m_in_frame = false;
+    std::vector<std::pair<std::size_t, int64_t>>::const_iterator m_end = m_s.host_ends.begin();
+};
+
+}  // namespace
+
 void save_rows(const StreamFile& s, const std::string& path) {
+    if (!s.send_ns.empty() && s.send_ns.size() != s.commands.rows.size())
+        throw std::invalid_argument("send times: " + std::to_string(s.send_ns.size()) + " for " +
+                                    std::to_string(s.commands.rows.size()) + " commands");
     try {
-        protocol::StreamWriter writer(path, s.header);
-        s.commands.replay_into(writer);
+        const bool timed = !s.send_ns.empty();
+        protocol::StreamWriter writer(path, s.header,
+                                      timed ? protocol::Timing::Timed : protocol::Timing::Untimed);
+        if (timed) {
+            TimedRows rows(s, writer);
+            s.commands.replay_into(rows);
+        } else {
+            s.commands.replay_into(writer);
+        }
         writer.close();
     } catch (const std::invalid_argument&) {
         throw;
@@ -171,6 +237,20 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
             "markers", [](const StreamFile& s) { return s.commands.markers; },
             "The MARKER commands: (row, text) pairs.")
         .def_property_readonly(
+            "send_times",
+            [](const py::object& self) -> py::object {
+                const StreamFile& s = self.cast<const StreamFile&>();
+                if (s.send_ns.empty()) return py::none();
+                return py::array_t<int64_t>({static_cast<py::ssize_t>(s.send_ns.size())},
+                                            s.send_ns.data(), self);
+            },
+            "A stream with send times (format version 2): each row's send time in nanoseconds "
+            "from the start of its frame's set-up (int64, a view); else None.")
+        .def_property_readonly(
+            "host_ends", [](const StreamFile& s) { return s.host_ends; },
+            "A stream with send times: when the host's work on each frame ended, as (row of "
+            "the frame's FRAME_END, nanoseconds) pairs; frames without a HOST_END are absent.")
+        .def_property_readonly(
             "frames",
             [](const StreamFile& s) {
                 std::size_t n = 0;
@@ -186,7 +266,9 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
                 py::gil_scoped_release unlocked;
                 save_rows(s, path);
             },
-            py::arg("path"), "Writes the stream (format version 1), header and all.")
+            py::arg("path"),
+            "Writes the stream, header and all: format version 2 with its send times when it "
+            "has them, else version 1.")
         .def("__repr__", [](const StreamFile& s) {
             return "<fb89.Stream " + (s.path.empty() ? std::string("(in memory)") : s.path) + ": " +
                    std::to_string(s.commands.rows.size()) + " commands>";

@@ -79,6 +79,25 @@ def test_the_ids_are_the_command_lines_ids_png(method, tmp_path):
     assert np.array_equal(r.ids, expected)
 
 
+def test_a_streams_send_times_are_numpy_and_survive_a_save(tmp_path):
+    first, second = tmp_path / "timed.fb89", tmp_path / "again.fb89"
+    assert cli("render", "A", "--size", "128x98", "-q", "--stream", str(first)).returncode == 0
+    s = fb89.Stream.open(str(first))
+    assert s.version == 2 and s.header["send_times"] == "measured"
+    t = s.send_times
+    assert t.dtype == np.int64 and len(t) == len(s)
+    assert t[0] == 0 and np.all(np.diff(t) >= 0)  # one frame: from its set-up, never back
+    assert len(s.host_ends) == 1 and s.host_ends[0][0] == len(s) - 1
+    assert s.host_ends[0][1] >= t[-1]
+    s.save(str(second))  # nothing lost: the same bytes, times and all
+    assert first.read_bytes() == second.read_bytes()
+    # a stream without times has none
+    done = cli("render", "A", "--size", "128x98", "-q", "--untimed-stream", "--stream", str(first))
+    assert done.returncode == 0, done.stderr
+    u = fb89.Stream.open(str(first))
+    assert u.version == 1 and u.send_times is None and u.host_ends == []
+
+
 def test_a_stream_round_trips_through_python(tmp_path):
     r = fb89.render("G", method="beam", size="128x98")
     first, second = tmp_path / "a.fb89", tmp_path / "b.fb89"
