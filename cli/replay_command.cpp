@@ -64,12 +64,12 @@ struct ReplayRun {
     double last_host_end_us = 0;
 };
 
-// Command c, just executed by ctl, through the frame's pipeline in time at its send time,
-// with what the controller said it cost; at FRAME_END the frame's figures, the host's end
-// its HOST_END or, without one, its last send time.
+// Command c, just executed, through the frame's pipeline in time at its send time, with
+// what the controller said it cost; at FRAME_END the frame's figures, the host's end its
+// HOST_END or, without one, its last send time.
 void follow_pipeline(const protocol::Command& c, int64_t send_ns,
-                     const protocol::StreamReader& reader, const controller::Controller& ctl,
-                     ReplayRun& run) {
+                     const controller::Controller::CommandCost& cost,
+                     const protocol::StreamReader& reader, ReplayRun& run) {
     const double send_us = static_cast<double>(send_ns) / 1e3;
     if (std::holds_alternative<protocol::FrameBegin>(c)) {
         run.pipe.emplace(*run.buffer);
@@ -77,7 +77,6 @@ void follow_pipeline(const protocol::Command& c, int64_t send_ns,
         run.frame_send_us.clear();
     }
     if (!run.pipe) return;  // commands before the first frame
-    const controller::Controller::CommandCost& cost = ctl.last_cost();
     run.pipe->push({send_us, cost.bytes, cost.bus_us, cost.exec_us});
     if (run.keep_frame) {
         run.frame.submit(c);
@@ -116,21 +115,19 @@ void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
             protocol::StreamReader& reader, controller::Controller& ctl, ReplayRun& run) {
     const bool keep_last = !args.png.empty() && snapshots.empty();
     std::vector<protocol::Command> batch(kBatch);
-    std::vector<int64_t> send_ns(run.buffer ? kBatch : 0);  // the batch's send times
+    // with the pipeline: the batch's send times, and each command's cost as executed
+    std::vector<int64_t> send_ns(run.buffer ? kBatch : 0);
+    std::vector<controller::Controller::CommandCost> costs(run.buffer ? kBatch : 0);
     const auto start = std::chrono::steady_clock::now();
     try {
         if (!snapshots.empty()) {
             replay_snapshots(args, snapshots, reader, ctl, run);
         } else {
             while (const std::size_t n = reader.read_batch(batch, send_ns)) {
-                if (run.buffer) {  // command by command: the pipeline takes each one's cost
-                    for (std::size_t i = 0; i < n; ++i) {
-                        ctl.execute(batch[i]);
-                        follow_pipeline(batch[i], send_ns[i], reader, ctl, run);
-                    }
-                } else {
-                    ctl.execute(std::span(batch).first(n));
-                }
+                ctl.execute(std::span(batch).first(n), costs);
+                if (run.buffer)
+                    for (std::size_t i = 0; i < n; ++i)
+                        follow_pipeline(batch[i], send_ns[i], costs[i], reader, run);
                 if (keep_last && std::holds_alternative<protocol::FrameEnd>(batch[n - 1]))
                     run.last_frame = ctl.framebuffer();
             }

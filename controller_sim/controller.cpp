@@ -107,11 +107,18 @@ void Controller::execute(const Command& c) {
     if (m_observer) m_observer(m_next_command - 1, c);
 }
 
-void Controller::execute(std::span<const Command> commands) {
+void Controller::execute(std::span<const Command> commands, std::span<CommandCost> costs) {
+    if (!costs.empty() && costs.size() < commands.size())
+        throw std::logic_error("Controller::execute: fewer costs than commands");
+    CommandCost* const out = costs.empty() ? nullptr : costs.data();
     std::size_t i = 0;
     while (i < commands.size()) {
-        if (m_in_frame && !m_observer) i = execute_drawing(commands, i);
-        if (i < commands.size()) execute(commands[i++]);
+        if (m_in_frame && !m_observer) i = execute_drawing(commands, i, out);
+        if (i < commands.size()) {
+            execute(commands[i]);
+            if (out) out[i] = m_last_cost;
+            ++i;
+        }
     }
 }
 
@@ -247,7 +254,8 @@ void Controller::account(Opcode opcode, const Executed& x) {
 // locals and are added to the frame and the totals once at the end (integer sums: the order
 // does not matter). The clocks are copied into locals and written back: the same
 // floating-point additions as account(), in the same order, only kept in registers.
-std::size_t Controller::execute_drawing(std::span<const Command> commands, std::size_t i) {
+std::size_t Controller::execute_drawing(std::span<const Command> commands, std::size_t i,
+                                        CommandCost* costs) {
     const int fill_op = opcode_index(Opcode::FillRect), span_op = opcode_index(Opcode::DrawSpan);
     const OpcodeEntry& fill_entry = m_opcodes[fill_op];
     const OpcodeEntry& span_entry = m_opcodes[span_op];
@@ -261,6 +269,7 @@ std::size_t Controller::execute_drawing(std::span<const Command> commands, std::
         pipe.push(e.bus_us, exec_us);
         bus_busy_us += e.bus_us;
         controller_busy_us += exec_us;
+        if (costs) costs[i] = {e.bytes, e.bus_us, exec_us};
     };
 
     // execute: only drawing commands, which neither open nor close the frame

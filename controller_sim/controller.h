@@ -90,8 +90,10 @@ class Controller final : public protocol::CommandSink {
     // Executes commands in order: the same framebuffer, counters and times as execute() on
     // each, faster. The open frame's FILL_RECTs and DRAW_SPANs take a fast path that keeps
     // their counters and clocks in locals (execute_drawing); every other command goes
-    // through execute(c). With an observer set, every command does.
-    void execute(std::span<const protocol::Command> commands);
+    // through execute(c). With an observer set, every command does. With `costs` (at least
+    // as long as commands), each command's cost goes beside it, as last_cost() would give it.
+    struct CommandCost;
+    void execute(std::span<const protocol::Command> commands, std::span<CommandCost> costs = {});
 
     const CostProfile& profile() const { return m_stats.profile; }
     const Framebuffer& framebuffer() const { return m_fb; }
@@ -152,7 +154,8 @@ class Controller final : public protocol::CommandSink {
 
     // The fast path of execute(span): the open frame's drawing commands from commands[i]
     // on; returns the index of the first command it did not take.
-    std::size_t execute_drawing(std::span<const protocol::Command> commands, std::size_t i);
+    std::size_t execute_drawing(std::span<const protocol::Command> commands, std::size_t i,
+                                CommandCost* costs);
 
     void account(protocol::Opcode opcode, const Executed& x);
     void close_frame(bool complete);

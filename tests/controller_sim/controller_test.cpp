@@ -344,6 +344,32 @@ TEST(Controller, BatchesGiveWhatExecutingEachCommandGives) {
     }
 }
 
+// A batch asked for its costs gives each command's, as last_cost() does command by command
+// (the pipeline in time takes them), and runs the same.
+TEST(Controller, BatchesGiveEachCommandsCostBesideIt) {
+    const std::vector<protocol::Command> commands = mixed_commands();
+    for (const CostProfile& p : batch_profiles()) {
+        Controller one(p);
+        std::vector<Controller::CommandCost> want;
+        for (const protocol::Command& c : commands) {
+            one.execute(c);
+            want.push_back(one.last_cost());
+        }
+        Controller batched(p);
+        std::vector<Controller::CommandCost> got(commands.size());
+        for (std::size_t i = 0; i < commands.size(); i += 64) {
+            const std::size_t n = std::min<std::size_t>(64, commands.size() - i);
+            batched.execute(std::span(commands).subspan(i, n), std::span(got).subspan(i, n));
+        }
+        expect_same_run(one, batched, p.name + ", with costs");
+        for (std::size_t i = 0; i < commands.size(); ++i) {
+            ASSERT_EQ(got[i].bytes, want[i].bytes) << p.name << ", command " << i;
+            ASSERT_EQ(got[i].bus_us, want[i].bus_us) << p.name << ", command " << i;
+            ASSERT_EQ(got[i].exec_us, want[i].exec_us) << p.name << ", command " << i;
+        }
+    }
+}
+
 TEST(Controller, SinkCallsGiveWhatExecuteGivesWithAndWithoutAnObserver) {
     const std::vector<protocol::Command> commands = mixed_commands();
     Controller executed, sunk, observed;
