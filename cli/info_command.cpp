@@ -18,6 +18,7 @@
 
 #include "cli/common.h"
 #include "cli/stream_tools.h"
+#include "controller_sim/timed_pipeline.h"
 
 namespace fb89::cli {
 
@@ -66,7 +67,7 @@ StreamInfo scan(protocol::StreamReader& reader, controller::Controller& ctl) {
             end_offset = at + record_size(c);
             if (!is_begin) {  // (a FRAME_BEGIN that closes a frame starts the next's times)
                 last_send = reader.send_time_ns();
-                host_end = reader.host_end_ns().value_or(last_send);
+                host_end = reader.frame_host_end_ns();
             }
             if (ctl.frames().size() > info.frame_bytes.size()) {  // this command closed a frame
                 info.frame_bytes.push_back((is_begin ? at : end_offset) - begin_offset);
@@ -115,8 +116,8 @@ json info_json(const protocol::StreamReader& reader, const controller::Controlle
     if (ctl.in_frame()) frames.push_back(frame_json(ctl.open_frame(), info.open_frame_bytes, true));
     if (reader.timed()) {
         for (std::size_t i = 0; i < frames.size(); ++i) {
-            frames[i]["last_send_us"] = static_cast<double>(info.last_send_ns[i]) / 1e3;
-            frames[i]["host_end_us"] = static_cast<double>(info.host_end_ns[i]) / 1e3;
+            frames[i]["last_send_us"] = controller::from_ns(info.last_send_ns[i]);
+            frames[i]["host_end_us"] = controller::from_ns(info.host_end_ns[i]);
         }
     }
     json j{{"stream", reader.name()},

@@ -70,7 +70,7 @@ struct ReplayRun {
 void follow_pipeline(const protocol::Command& c, int64_t send_ns,
                      const controller::Controller::CommandCost& cost,
                      const protocol::StreamReader& reader, ReplayRun& run) {
-    const double send_us = static_cast<double>(send_ns) / 1e3;
+    const double send_us = controller::from_ns(send_ns);
     if (std::holds_alternative<protocol::FrameBegin>(c)) {
         run.pipe.emplace(*run.buffer);
         run.frame.clear();
@@ -83,7 +83,7 @@ void follow_pipeline(const protocol::Command& c, int64_t send_ns,
         run.frame_send_us.push_back(send_us);
     }
     if (!std::holds_alternative<protocol::FrameEnd>(c)) return;
-    const double host_end_us = static_cast<double>(reader.host_end_ns().value_or(send_ns)) / 1e3;
+    const double host_end_us = controller::from_ns(reader.frame_host_end_ns());
     run.pipelines.push_back(run.pipe->finish(host_end_us));
     run.pipe.reset();
     std::swap(run.last_frame_commands, run.frame);

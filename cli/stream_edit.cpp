@@ -8,6 +8,7 @@
 #include "cli/common.h"
 #include "cli/stream_tools.h"
 #include "controller_sim/png_io.h"
+#include "controller_sim/timed_pipeline.h"
 #include "protocol/stream_writer.h"
 
 namespace fb89::cli {
@@ -137,7 +138,7 @@ class FrameSource {
                 m_pending = c;  // closes the open frame: compare it before clearing
                 return true;
             }
-            m_host_end_ns = m_reader.host_end_ns().value_or(m_reader.send_time_ns());
+            m_host_end_ns = m_reader.frame_host_end_ns();
             const std::size_t closed = m_ctl.frames().size();
             m_ctl.execute(c);
             if (m_ctl.frames().size() > closed) return true;
@@ -154,7 +155,7 @@ class FrameSource {
     // The frame's host end in a timed stream: its HOST_END, or without one its last send.
     std::optional<double> host_end_ms() const {
         if (!m_reader.timed()) return std::nullopt;
-        return static_cast<double>(m_host_end_ns) / 1e6;
+        return controller::from_ns(m_host_end_ns) / 1e3;
     }
 
   private:

@@ -21,11 +21,18 @@
 
 namespace fb89::controller {
 
-// A time in microseconds to the nearest whole nanosecond: the grain at which streams keep
-// send times (docs/PROTOCOL.md, "Version 2"), so that a frame replayed from its stream goes
-// through the pipeline exactly as it did when rendered.
+// Times in microseconds and the whole nanoseconds streams keep them in (docs/PROTOCOL.md,
+// "Version 2"): to the nearest nanosecond, and back. The pipeline takes every time at that
+// grain (whole_ns), so that a frame replayed from its stream goes through it exactly as it
+// did when rendered.
+inline int64_t to_ns(double us) {
+    return static_cast<int64_t>(std::llround(us * 1e3));
+}
+inline double from_ns(int64_t ns) {
+    return static_cast<double>(ns) / 1e3;
+}
 inline double whole_ns(double us) {
-    return std::round(us * 1e3) / 1e3;
+    return from_ns(to_ns(us));
 }
 
 // One command as the pipeline sees it.

@@ -66,12 +66,11 @@ bool ViewPlayer::step() {
         m_controller->execute(c);
         if (timed()) {
             const Controller::CommandCost& cost = m_controller->last_cost();
-            const double send_us = static_cast<double>(m_reader->send_time_ns()) / 1e3;
+            const double send_us = from_ns(m_reader->send_time_ns());
             m_pipe_clock_us = std::max(
                 m_pipe_clock_us, m_pipe.push({send_us, cost.bytes, cost.bus_us, cost.exec_us}));
             if (std::holds_alternative<protocol::FrameEnd>(c)) {  // the host's end may be later
-                const auto end_ns = m_reader->host_end_ns().value_or(m_reader->send_time_ns());
-                m_finished = m_pipe.finish(static_cast<double>(end_ns) / 1e3);
+                m_finished = m_pipe.finish(from_ns(m_reader->frame_host_end_ns()));
                 m_pipe_clock_us = m_finished->frame_us;
             }
         }

@@ -106,13 +106,13 @@ void write_commands(protocol::StreamWriter& writer, const MethodRun& run) {
         return;
     }
     // whole nanoseconds, as the pipeline takes them; FRAME_BEGIN is sent at 0 by definition
-    const auto ns = [](double us) { return static_cast<int64_t>(std::llround(us * 1e3)); };
+    using controller::to_ns;
     int64_t last = 0;
     for (std::size_t i = 0; i < all.size(); ++i) {
         const bool begin = std::holds_alternative<protocol::FrameBegin>(all[i]);
-        if (!begin) writer.send_time(last = std::max(last, ns(run.send_us[i])));
+        if (!begin) writer.send_time(last = std::max(last, to_ns(run.send_us[i])));
         if (std::holds_alternative<protocol::FrameEnd>(all[i]))
-            writer.host_end(std::max(last, ns(run.host_frame_ms * 1e3)));
+            writer.host_end(std::max(last, to_ns(run.host_frame_ms * 1e3)));
         writer.submit(all[i]);
         if (begin) last = 0;
     }

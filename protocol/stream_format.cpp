@@ -59,6 +59,15 @@ const char* time_record_name(uint8_t opcode) {
     return opcode == kSendTimeOpcode ? "SEND_TIME" : "HOST_END";
 }
 
+std::optional<std::string> FrameTimes::check(int64_t ns) const {
+    if (!in_frame) return "outside a frame";
+    if (ns < 0) return fmt::format("{} ns is before the frame's set-up", ns);
+    if (ns < send_ns)
+        return fmt::format("{} ns goes back from the frame's send time {} ns", ns, send_ns);
+    if (host_end_ns) return fmt::format("after the frame's HOST_END ({} ns)", *host_end_ns);
+    return std::nullopt;
+}
+
 // --- encoders ------------------------------------------------------------------------
 
 namespace {

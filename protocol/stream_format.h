@@ -65,6 +65,31 @@ inline bool is_time_opcode(uint8_t opcode) {
 }
 const char* time_record_name(uint8_t opcode);  // "SEND_TIME" or "HOST_END"
 
+// The time records of the frame being read or written, and the rules they keep (the writer
+// refuses, and the reader rejects, the same records with the same reasons).
+struct FrameTimes {
+    bool in_frame = false;
+    int64_t send_ns = 0;  // the commands' since the frame's last SEND_TIME (0 before one)
+    std::optional<int64_t> host_end_ns;
+
+    void begin_frame() {
+        in_frame = true;
+        send_ns = 0;
+        host_end_ns.reset();
+    }
+    void end_frame() { in_frame = false; }
+    // Why a SEND_TIME or HOST_END of `ns` cannot come now: outside a frame, negative, going
+    // back, or after the frame's HOST_END; nullopt when it can.
+    std::optional<std::string> check(int64_t ns) const;
+    // Takes a record check() allowed.
+    void take(uint8_t opcode, int64_t ns) {
+        if (opcode == kSendTimeOpcode)
+            send_ns = ns;
+        else
+            host_end_ns = ns;
+    }
+};
+
 // --- trailing index ------------------------------------------------------------------
 struct FrameIndexEntry {
     uint32_t frame = 0;    // frame number of the FRAME_BEGIN

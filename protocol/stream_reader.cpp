@@ -250,11 +250,9 @@ bool StreamReader::next(Command& out) {
         if (auto problem = check_command(c)) fail_command(to_string(opcode_of(c)), at, *problem);
         if (const auto* begin = std::get_if<FrameBegin>(&c)) {
             if (m_seen_all) m_seen.push_back(FrameIndexEntry{begin->frame, m_next_command, at});
-            m_in_frame = true;
-            m_send_ns = 0;
-            m_host_end_ns.reset();
+            m_times.begin_frame();
         } else if (std::holds_alternative<FrameEnd>(c)) {
-            m_in_frame = false;
+            m_times.end_frame();
         }
         out = std::move(c);
         m_last_offset = at;
@@ -272,20 +270,8 @@ void StreamReader::read_time(uint8_t opcode, uint64_t at) {
                      fmt::format("the stream ends at byte {}", stream_end()));
     }
     const int64_t ns = get_i64(&m_buf[m_pos + 1]);
-    if (!m_in_frame) fail_command(name, at, "outside a frame");
-    if (ns < 0) fail_command(name, at, fmt::format("{} ns is before the frame's set-up", ns));
-    if (ns < m_send_ns) {
-        fail_command(
-            name, at,
-            fmt::format("{} ns goes back from the frame's send time {} ns", ns, m_send_ns));
-    }
-    if (m_host_end_ns) {
-        fail_command(name, at, fmt::format("after the frame's HOST_END ({} ns)", *m_host_end_ns));
-    }
-    if (opcode == kSendTimeOpcode)
-        m_send_ns = ns;
-    else
-        m_host_end_ns = ns;
+    if (auto problem = m_times.check(ns)) fail_command(name, at, *problem);
+    m_times.take(opcode, ns);
     m_pos += kTimeRecordSize;
 }
 
@@ -307,7 +293,7 @@ std::size_t StreamReader::decode_buffered(std::span<Command> out) {
         pos += size;
         ++n;
         if (size == 1) {  // FRAME_END
-            m_in_frame = false;
+            m_times.end_frame();
             break;
         }
     }
@@ -327,11 +313,11 @@ std::size_t StreamReader::read_batch(std::span<Command> out, std::span<int64_t> 
     try {
         while (n < out.size()) {
             const std::size_t fast = decode_buffered(out.subspan(n));
-            if (!send_ns.empty()) std::fill_n(send_ns.begin() + n, fast, m_send_ns);
+            if (!send_ns.empty()) std::fill_n(send_ns.begin() + n, fast, m_times.send_ns);
             n += fast;
             if (fast > 0 && std::holds_alternative<FrameEnd>(out[n - 1])) break;
             if (n == out.size() || !next(out[n])) break;
-            if (!send_ns.empty()) send_ns[n] = m_send_ns;
+            if (!send_ns.empty()) send_ns[n] = m_times.send_ns;
             if (std::holds_alternative<FrameEnd>(out[n++])) break;
         }
     } catch (const StreamError&) {
@@ -486,7 +472,7 @@ void StreamReader::seek(const FrameIndexEntry& entry) {
     m_seen.clear();
     m_seen_all = false;
     m_done = false;
-    m_in_frame = false;
+    m_times.end_frame();
 }
 
 }  // namespace fb89::protocol

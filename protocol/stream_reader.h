@@ -62,8 +62,11 @@ class StreamReader {
     // set-up (0 before a frame's first SEND_TIME, and always in a version-1 stream), and the
     // HOST_END of the last command's frame once read (nullopt before it, or without one).
     bool timed() const { return m_version >= kTimedVersion; }
-    int64_t send_time_ns() const { return m_send_ns; }
-    std::optional<int64_t> host_end_ns() const { return m_host_end_ns; }
+    int64_t send_time_ns() const { return m_times.send_ns; }
+    std::optional<int64_t> host_end_ns() const { return m_times.host_end_ns; }
+    // When the host's work on the last command's frame ended, as the pipeline takes it: its
+    // HOST_END, or without one its last send time so far.
+    int64_t frame_host_end_ns() const { return m_times.host_end_ns.value_or(m_times.send_ns); }
 
     uint64_t command_number() const { return m_last_number; }  // of the last command read
     uint64_t command_offset() const { return m_last_offset; }  // byte offset of its record
@@ -128,10 +131,7 @@ class StreamReader {
     bool m_done = false;
     std::optional<StreamError> m_error;
     std::optional<FrameIndex> m_index;
-    // the time records of the frame being read (version 2)
-    bool m_in_frame = false;
-    int64_t m_send_ns = 0;
-    std::optional<int64_t> m_host_end_ns;
+    FrameTimes m_times;  // the time records of the frame being read (version 2)
 };
 
 }  // namespace fb89::protocol

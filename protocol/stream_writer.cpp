@@ -1,7 +1,8 @@
 // StreamWriter: encodes commands as an fb89 stream, version 1 or (with send times) 2, into
 // a file, stdout or memory, and closes it with the trailing frame index and footer
-// (docs/PROTOCOL.md). Files are written with POSIX write() from our own buffer, so every error (bad
-// path, disk full, closed pipe) surfaces here with the path and the system's reason.
+// (docs/PROTOCOL.md). Files are written with POSIX write() from our own buffer, so every
+// error (bad path, disk full, closed pipe) surfaces here with the path and the system's
+// reason.
 #include "protocol/stream_writer.h"
 
 #include <fcntl.h>
@@ -26,7 +27,7 @@ constexpr const char* kMemoryName = "<memory>";
 StreamWriter::StreamWriter(const std::string& path, const Properties& properties, Timing timing)
     : m_path(path), m_timed(timing == Timing::Timed) {
     // encode the header first: bad properties must not leave an empty file behind
-    encode_header(m_buffer, properties, m_timed ? kTimedVersion : kUntimedVersion);
+    encode_header(m_buffer, properties, version());
     m_byte_count = m_buffer.size();
     OutputKind kind;
     try {
@@ -65,7 +66,7 @@ StreamWriter::StreamWriter(const std::string& path, const Properties& properties
 
 StreamWriter::StreamWriter(int fd, std::string name, const Properties& properties, Timing timing)
     : m_path(std::move(name)), m_fd(fd), m_timed(timing == Timing::Timed) {
-    encode_header(m_buffer, properties, m_timed ? kTimedVersion : kUntimedVersion);
+    encode_header(m_buffer, properties, version());
     m_byte_count = m_buffer.size();
     struct stat st {};
     m_is_socket = ::fstat(fd, &st) == 0 && S_ISSOCK(st.st_mode);
@@ -73,7 +74,7 @@ StreamWriter::StreamWriter(int fd, std::string name, const Properties& propertie
 
 StreamWriter::StreamWriter(const Properties& properties, Timing timing)
     : m_path(kMemoryName), m_timed(timing == Timing::Timed) {
-    encode_header(m_buffer, properties, m_timed ? kTimedVersion : kUntimedVersion);
+    encode_header(m_buffer, properties, version());
     m_byte_count = m_buffer.size();
 }
 
@@ -126,11 +127,9 @@ void StreamWriter::write_command(const Command& c) {
     }
     if (const auto* begin = std::get_if<FrameBegin>(&c)) {
         m_index.push_back(FrameIndexEntry{begin->frame, m_command_count, m_byte_count});
-        m_in_frame = true;
-        m_host_ended = false;
-        m_send_ns = 0;
+        m_times.begin_frame();
     } else if (std::holds_alternative<FrameEnd>(c)) {
-        m_in_frame = false;
+        m_times.end_frame();
     }
     const std::size_t before = m_buffer.size();
     encode_command(m_buffer, c);
@@ -156,21 +155,12 @@ void StreamWriter::write_time(uint8_t opcode, int64_t ns) {
             fmt::format("stream {}: {} in a stream without send times "
                         "(format version 1)",
                         m_path, name));
-    const auto refuse = [&](const std::string& why) {
+    if (auto problem = m_times.check(ns))
         throw std::invalid_argument(
-            fmt::format("stream {}: refusing to write {} {} ns after "
-                        "command {}: {}",
-                        m_path, name, ns, m_command_count, why));
-    };
-    if (!m_in_frame) refuse("outside a frame");
-    if (ns < 0) refuse("a time before the frame's set-up");
-    if (ns < m_send_ns) refuse(fmt::format("the frame's send times reached {} ns", m_send_ns));
-    if (m_host_ended) refuse("after the frame's HOST_END");
-    if (opcode == kSendTimeOpcode && ns == m_send_ns) return;  // no change
-    if (opcode == kHostEndOpcode)
-        m_host_ended = true;
-    else
-        m_send_ns = ns;
+            fmt::format("stream {}: refusing to write {} after command {}: {}", m_path, name,
+                        m_command_count, *problem));
+    if (opcode == kSendTimeOpcode && ns == m_times.send_ns) return;  // no change
+    m_times.take(opcode, ns);
     const std::size_t before = m_buffer.size();
     encode_time(m_buffer, opcode, ns);
     m_byte_count += m_buffer.size() - before;

@@ -65,6 +65,7 @@ class StreamWriter final : public CommandSink {
     void send_time(int64_t ns);
     void host_end(int64_t ns);
     bool timed() const { return m_timed; }
+    uint16_t version() const { return m_timed ? kTimedVersion : kUntimedVersion; }
 
     // Writes the frame index and footer, flushes and closes the file. Does nothing if
     // already closed. Throws std::runtime_error naming the path on a write error.
@@ -106,11 +107,8 @@ class StreamWriter final : public CommandSink {
     uint64_t m_command_count = 0;
     uint64_t m_commands_flushed = 0;
     FrameIndex m_index;
-    // the time records' state, in the frame being written
     bool m_timed = false;
-    bool m_in_frame = false;
-    bool m_host_ended = false;
-    int64_t m_send_ns = 0;
+    FrameTimes m_times;  // the time records of the frame being written
 };
 
 // Encodes a whole (version 1) stream in memory: header, commands, and (if with_index) the
