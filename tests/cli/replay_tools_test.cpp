@@ -285,7 +285,7 @@ TEST(StreamTools, ATimeThatGoesBackIsRefusedNamingItsByteAndCommand) {
     std::ofstream(path, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));
-    for (const std::string& tool : {"replay", "dump", "info"}) {
+    for (const std::string tool : {"replay", "dump", "info"}) {
         CliRun r = fb89(tool + " " + path + (tool == "replay" ? " --buffer unbounded" : ""));
         EXPECT_EQ(r.exit_code, 2) << tool;
         EXPECT_NE(r.err.find("back.fb89: SEND_TIME at byte 57 (command 2): 1000 ns goes back "

@@ -68,7 +68,9 @@ TEST(RenderJobPipeline, TheFramesStreamReplaysThroughThePipelineAsItWasRendered)
     // monotone within the frame, FRAME_BEGIN at 0, each within half a nanosecond of the render's
     EXPECT_EQ(send_us.front(), 0);
     for (std::size_t i = 0; i < send_us.size(); ++i) {
-        if (i > 0) EXPECT_GE(send_us[i], send_us[i - 1]);
+        if (i > 0) {
+            EXPECT_GE(send_us[i], send_us[i - 1]);
+        }
         EXPECT_NEAR(send_us[i], run.send_us[i], 0.5e-3) << i;
     }
     const controller::PipelineFigures p =

@@ -61,8 +61,12 @@ TEST(SendTimes, ATimedStreamIsVersionTwoWithTheSameCommandsAndNumbers) {
         EXPECT_EQ(c, testing::two_frames()[i]);
         EXPECT_EQ(reader.command_number(), i);
         EXPECT_EQ(reader.send_time_ns(), kSendNs[i]) << i;
-        if (i == 4) EXPECT_EQ(reader.host_end_ns(), 3000);
-        if (i == 5) EXPECT_FALSE(reader.host_end_ns());  // a new frame
+        if (i == 4) {
+            EXPECT_EQ(reader.host_end_ns(), 3000);
+        }
+        if (i == 5) {
+            EXPECT_FALSE(reader.host_end_ns());  // a new frame
+        }
     }
     EXPECT_FALSE(reader.host_end_ns());  // frame 1 has none
     EXPECT_FALSE(reader.next(c));
@@ -83,7 +87,9 @@ TEST(SendTimes, ReadInBatchesEachCommandGetsItsTime) {
     std::vector<int64_t> got;
     while (const std::size_t n = reader.read_batch(batch, ns)) {
         got.insert(got.end(), ns.begin(), ns.begin() + static_cast<std::ptrdiff_t>(n));
-        if (got.size() == 5) EXPECT_EQ(reader.host_end_ns(), 3000);  // batches end at FRAME_END
+        if (got.size() == 5) {  // batches end at FRAME_END
+            EXPECT_EQ(reader.host_end_ns(), 3000);
+        }
     }
     EXPECT_EQ(got, kSendNs);
 }
