@@ -12,7 +12,7 @@ namespace {
 
 TEST(RenderJobPipeline, NativelyTheFrameLiesBetweenTheLargerSideAndTheirSum) {
     RenderJob job;
-    job.scene = std::string(FB89_SCENES_DIR) + "/A.json";
+    job.scene = FB89_SCENES_DIR "/A.json";
     job.size = {256, 195};
     job.repeat = 1;
     for (const host::Method m : {host::Method::ZBuffer, host::Method::Warnock})
@@ -43,7 +43,7 @@ TEST(RenderJobPipeline, NativelyTheFrameLiesBetweenTheLargerSideAndTheirSum) {
 // exactly -- the replay `fb89 replay --buffer` does.
 TEST(RenderJobPipeline, TheFramesStreamReplaysThroughThePipelineAsItWasRendered) {
     RenderJob job;
-    job.scene = std::string(FB89_SCENES_DIR) + "/A.json";
+    job.scene = FB89_SCENES_DIR "/A.json";
     job.size = {256, 195};
     job.repeat = 1;
     job.buffer_bytes = 2048;  // small enough to stall the host

@@ -109,7 +109,9 @@ TEST(ZBuffer, EveryKernelMatchesTheReferenceOnAwkwardFaces) {
     for (bool avx2 : {true, false}) {
         for (const auto& [w, h] : {std::pair{100, 80}, std::pair{97, 53}, std::pair{7, 5}}) {
             ScreenScene s = screen_scene(awkward_faces(w, h));
-            if (w == 100) ASSERT_EQ(s.faces.size(), 9u);  // none lost in set-up
+            if (w == 100) {
+                ASSERT_EQ(s.faces.size(), 9u);  // none lost in set-up
+            }
             ZBuffer zbuffer;
             zbuffer.allow_avx2(avx2);
             zbuffer.keep_face_buffer(true);
