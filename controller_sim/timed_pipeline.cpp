@@ -31,15 +31,9 @@ double TimedPipeline::push(const TimedCommand& c, CommandTiming* timing) {
 
     const double ready = c.send_us + m_shift_us;
     double start = std::max(ready, m_bus_free_us);
-    const auto free_until = [&](double t) {  // what the controller has executed by t leaves
-        while (!m_held.empty() && m_held.front().done_us <= t) {
-            m_occupied -= m_held.front().bytes;
-            m_held.pop_front();
-        }
-    };
     free_until(start);
     while (m_occupied + c.bytes > m_capacity) {  // wait for the oldest to be executed
-        start = std::max(start, m_held.front().done_us);
+        start = std::max(start, m_held[m_head].done_us);
         free_until(start);
     }
     if (start > ready) {
@@ -61,6 +55,18 @@ double TimedPipeline::push(const TimedCommand& c, CommandTiming* timing) {
     return done;
 }
 
+void TimedPipeline::free_until(double t) {
+    while (m_head < m_held.size() && m_held[m_head].done_us <= t)
+        m_occupied -= m_held[m_head++].bytes;
+    if (m_head == m_held.size()) {
+        m_held.clear();
+        m_head = 0;
+    } else if (m_head >= 4096 && m_head * 2 >= m_held.size()) {
+        m_held.erase(m_held.begin(), m_held.begin() + static_cast<std::ptrdiff_t>(m_head));
+        m_head = 0;
+    }
+}
+
 PipelineFigures TimedPipeline::finish(double host_end_us) {
     PipelineFigures f = m_figures;
     f.buffer_bytes = m_capacity;
@@ -68,7 +74,12 @@ PipelineFigures TimedPipeline::finish(double host_end_us) {
     f.frame_us = std::max(host_end, m_controller_free_us);
     f.host_us = host_end - f.host_stalled_us;
     f.controller_idle_us = f.frame_us - f.controller_busy_us;
-    *this = TimedPipeline(m_capacity);
+    // ready for the next frame, from 0, keeping the queue's room
+    m_held.clear();
+    m_head = 0;
+    m_occupied = 0;
+    m_last_send_us = m_shift_us = m_bus_free_us = m_controller_free_us = 0;
+    m_figures = PipelineFigures{};
     return f;
 }
 

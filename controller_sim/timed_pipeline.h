@@ -15,7 +15,7 @@
 
 #include <cmath>
 #include <cstdint>
-#include <deque>
+#include <vector>
 
 #include "controller_sim/profile.h"
 
@@ -90,8 +90,15 @@ class TimedPipeline {
         double done_us;
         uint64_t bytes;
     };
+    // What the controller has executed by t leaves the buffer.
+    void free_until(double t);
+
     uint64_t m_capacity;
-    std::deque<Held> m_held;  // in the buffer, oldest first
+    // In the buffer, oldest first: m_held from m_head on (a queue kept in one vector, its
+    // front moved up and the spent part dropped now and then; replay runs every command
+    // through here).
+    std::vector<Held> m_held;
+    std::size_t m_head = 0;
     uint64_t m_occupied = 0;
     double m_last_send_us = 0;
     double m_shift_us = 0;  // the stalls so far: every later send moves by them
