@@ -8,6 +8,7 @@
 // and the host's ratio to the controller lie in when the controller's estimated figures
 // range over their bands (the profile's "bands": docs/COST_MODEL.md).
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
@@ -104,8 +105,13 @@ Table experiment_split(const ExperimentSettings& s) {
             row.insert(row.end(), {fixed(low.frame_ms, 3), fixed(high.frame_ms, 3)});
             for (const auto* end : {&pipe_low, &pipe_high})
                 row.push_back(*end ? fixed((*end)->frame_us / 1e3, 3) : "");
-            row.insert(row.end(), {high.frame_ms > 0 ? fixed(host_ms / high.frame_ms, 2) : "",
-                                   low.frame_ms > 0 ? fixed(host_ms / low.frame_ms, 2) : ""});
+            // (to three significant figures at least: this machine's are thousandths)
+            const auto ratio_text = [](double v) {
+                const int digits = v > 0 ? 2 - static_cast<int>(std::floor(std::log10(v))) : 2;
+                return fixed(v, std::max(2, digits));
+            };
+            row.insert(row.end(), {high.frame_ms > 0 ? ratio_text(host_ms / high.frame_ms) : "",
+                                   low.frame_ms > 0 ? ratio_text(host_ms / low.frame_ms) : ""});
             table.add(std::move(row));
         }
     }

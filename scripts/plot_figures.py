@@ -4,6 +4,7 @@ Usage: /usr/bin/python3 scripts/plot_figures.py FOLDER
 Reads FOLDER/fig2_1.csv and FOLDER/fig2_4.csv, writes FOLDER/fig2_1.png and fig2_4.png.
 """
 import csv
+import math
 import os
 import sys
 
@@ -278,9 +279,12 @@ HOST_LABELS = {"sun3-60": "Sun-3/60\n1987", "sun4-260": "Sun-4/260\n1987",
 
 def split_hosts(root):
     """The split across hosts: the Sun-3/60, the Sun-4/260, the SPARCstations 1 and 2 and this
-    machine (experiment split on each), host time against controller time; per method the host
-    speed, in multiples of the Sun-3/60, at which the frame stops being host-bound, beside each
-    host's own speed-up. Writes ROOT/split_hosts.csv and ROOT/split_hosts.png."""
+    machine (experiment split on each), host time against controller time and the pipeline
+    in time; per method the host speed, in multiples of the Sun-3/60, at which the frame
+    stops being host-bound -- at the controller's estimates and over their band -- beside
+    each host's own speed-up, how many scenes it bounds, how far the pipeline's frame lies
+    over max(host, controller) and the controller's utilization. Writes ROOT/split_hosts.csv
+    and ROOT/split_hosts.png."""
     sources = [(host, os.path.join(root, host, "split.csv")) for host in HOSTS_1989] + \
         [("native", os.path.join(root, "split_native.csv"))]
     tables = {host: read(path) for host, path in sources if os.path.exists(path)}
@@ -290,51 +294,94 @@ def split_hosts(root):
     base = {key(r): r for r in tables["sun3-60"]}
     methods = list(dict.fromkeys(r["method"] for r in tables["sun3-60"]))
     median = lambda v: sorted(v)[len(v) // 2] if v else float("nan")  # noqa: E731
+    # host over controller: at the controller's estimates, and at the ends of its band (the
+    # controller at its dear end gives the low ratio); the band's columns come with the
+    # pipeline (experiment split on a 1989 host)
+    ratio = lambda r: float(r["host_frame_ms"]) / float(r["controller_ms"])  # noqa: E731
+    banded = all("ratio_low" in r for r in tables["sun3-60"])
+    # the pipeline's frame over max(host, controller), at the estimates and at the band's dear
+    # end, in percent
+    over = lambda r, col: 100 * (float(r[col]) / float(r["frame_ms"]) - 1)  # noqa: E731
     rows = []
     for method in methods:
         cells = [k for k in base if k[1] == method]
         # the multiple of the Sun-3/60's host speed at which host time = controller time
-        cross = [float(base[k]["host_frame_ms"]) / float(base[k]["controller_ms"]) for k in cells]
+        cross = [ratio(base[k]) for k in cells]
         row = {"method": method, "scenes": len(cells),
                "crossover_median": f"{median(cross):.3g}", "crossover_min": f"{min(cross):.3g}",
                "crossover_max": f"{max(cross):.3g}"}
-        for host in HOSTS_1989[1:] + ("native",):
+        if banded:
+            low = [float(base[k]["ratio_low"]) for k in cells]
+            high = [float(base[k]["ratio_high"]) for k in cells]
+            row.update({"crossover_median_low": f"{median(low):.3g}",
+                        "crossover_median_high": f"{median(high):.3g}",
+                        "crossover_min_low": f"{min(low):.3g}",
+                        "crossover_max_high": f"{max(high):.3g}"})
+        for host in HOSTS_1989 + ("native",):
             if host not in tables:
                 continue
             other = {key(r): r for r in tables[host]}
-            speed = [float(base[k]["host_frame_ms"]) / float(other[k]["host_frame_ms"])
-                     for k in cells if k in other and float(other[k]["host_frame_ms"]) > 0]
-            bound = sum(other[k]["bound_by"] == "host" for k in cells if k in other)
-            row[f"{host}_speed_median"] = f"{median(speed):.3g}"
-            row[f"{host}_host_bound"] = f"{bound}/{len(cells)}"
+            mine = [other[k] for k in cells if k in other]
+            if host != "sun3-60":
+                speed = [float(base[k]["host_frame_ms"]) / float(other[k]["host_frame_ms"])
+                         for k in cells if k in other and float(other[k]["host_frame_ms"]) > 0]
+                row[f"{host}_speed_median"] = f"{median(speed):.3g}"
+            row[f"{host}_host_bound"] = f"{sum(r['bound_by'] == 'host' for r in mine)}/{len(cells)}"
+            if "pipeline_ms" in (mine[0] if mine else {}):
+                near = min(mine, key=lambda r: abs(math.log(ratio(r))))
+                row[f"{host}_ratio_median"] = f"{median([ratio(r) for r in mine]):.3g}"
+                row[f"{host}_nearest_scene"] = scene_label(near["scene"])
+                row[f"{host}_nearest_ratio"] = f"{ratio(near):.3g}"
+                if "ratio_low" in near:
+                    row[f"{host}_nearest_ratio_low"] = near["ratio_low"]
+                    row[f"{host}_nearest_ratio_high"] = near["ratio_high"]
+                    row[f"{host}_host_bound_band"] = \
+                        f"{sum(float(r['ratio_low']) > 1 for r in mine)}-" \
+                        f"{sum(float(r['ratio_high']) > 1 for r in mine)}/{len(cells)}"
+                row[f"{host}_over_max_median_pct"] = \
+                    f"{median([over(r, 'pipeline_ms') for r in mine]):.2f}"
+                row[f"{host}_over_max_max_pct"] = f"{max(over(r, 'pipeline_ms') for r in mine):.2f}"
+                if "pipeline_ms_high" in near:
+                    row[f"{host}_over_max_dear_pct"] = \
+                        f"{max(over(r, 'pipeline_ms_high') for r in mine):.2f}"
+                utils = [100 * float(r["controller_util"]) for r in mine]
+                row[f"{host}_controller_util_median_pct"] = f"{median(utils):.3g}"
+                row[f"{host}_controller_util_range_pct"] = f"{min(utils):.3g}-{max(utils):.3g}"
         rows.append(row)
     fields = list(dict.fromkeys(f for r in rows for f in r))
     text = ",".join(fields) + "\n" + "".join(
         ",".join(str(r.get(f, "")) for f in fields) + "\n" for r in rows)
     write_text(os.path.join(root, "split_hosts.csv"), text)
 
-    # per method, each host's host/controller ratio over the scenes (median, and the range as
-    # a bar), the hosts in the order of their year: where a method's line crosses 1 lies its
-    # crossover
+    # per method, each host's host/controller ratio over the scenes (median, the scenes' range
+    # as a bar and, thinner, that range widened by the controller's band), the hosts in the
+    # order of their year: where a method's line crosses 1 lies its crossover
     hosts = [h for h in HOSTS_1989 + ("native",) if h in tables]
     fig, ax = plt.subplots(figsize=(8.5, 6))
     for i, method in enumerate(methods):
-        med, lo, hi = [], [], []
+        med, lo, hi, band_lo, band_hi = [], [], [], [], []
         for host in hosts:
-            ratios = sorted(float(r["host_frame_ms"]) / float(r["controller_ms"])
-                            for r in tables[host] if r["method"] == method)
+            mine = [r for r in tables[host] if r["method"] == method]
+            ratios = sorted(ratio(r) for r in mine)
             med.append(median(ratios))
             lo.append(med[-1] - ratios[0])
             hi.append(ratios[-1] - med[-1])
+            banded_host = all("ratio_low" in r for r in mine)
+            band_lo.append(med[-1] - (min(float(r["ratio_low"]) for r in mine)
+                                      if banded_host else ratios[0]))
+            band_hi.append((max(float(r["ratio_high"]) for r in mine)
+                            if banded_host else ratios[-1]) - med[-1])
         x = [k + (i - (len(methods) - 1) / 2) * 0.08 for k in range(len(hosts))]
+        ax.errorbar(x, med, yerr=[band_lo, band_hi], fmt="none", capsize=0, lw=0.6,
+                    color=f"C{i}")
         ax.errorbar(x, med, yerr=[lo, hi], marker="o", ms=4, capsize=2, lw=1.2,
                     color=f"C{i}", label=method)
     ax.axhline(1.0, color="gray", linestyle="--", label="host = controller")
     ax.set_yscale("log")
     ax.set_xticks(range(len(hosts)))
     ax.set_xticklabels([HOST_LABELS.get(h, h) for h in hosts])
-    ax.set_ylabel("host time / controller time (tms34010-50mhz)\nmedian over the scenes, "
-                  "bars: the range")
+    ax.set_ylabel("host time / controller time (tms34010-50mhz)\nmedian over the scenes; "
+                  "bars: the range, thin: widened by the controller's band")
     ax.set_title("The split across hosts: above 1 the host bounds the frame, below it the "
                  "controller\nevery method on every bundled scene at 1024x780 (1989 hosts "
                  "modelled, today's measured)", fontsize=10)

@@ -1,0 +1,62 @@
+// Tests of experiment split's table (experiments/split_experiment.cpp): the pipeline in time
+// and the band beside the two totals, each figure where the model puts it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <string>
+
+#include "experiments/experiments.h"
+
+namespace fb89::experiments {
+namespace {
+
+TEST(SplitExperiment, ThePipelineAndTheBandLieWhereTheModelPutsThem) {
+    ExperimentSettings s;
+    s.scenes = {FB89_SCENES_DIR "/A.json"};
+    s.size = {256, 195};
+    s.repeat = 1;
+    const Table table = experiment_split(s);
+    ASSERT_EQ(table.rows().size(), 6u);  // one row a method
+    for (const auto& row : table.rows()) {
+        ASSERT_EQ(row.size(), table.columns().size());
+        std::map<std::string, double> v;
+        for (size_t i = 0; i < row.size(); ++i)
+            if (table.columns()[i] != "scene" && table.columns()[i] != "method" &&
+                table.columns()[i] != "host" && table.columns()[i] != "bound_by") {
+                ASSERT_FALSE(row[i].empty()) << table.columns()[i] << " of " << row[1];
+                v[table.columns()[i]] = std::stod(row[i]);
+            }
+        SCOPED_TRACE(row[1]);
+        const double host = v["host_frame_ms"], ctl = v["controller_ms"];
+        EXPECT_NEAR(v["frame_ms"], std::max(host, ctl), 1e-3);
+        EXPECT_NEAR(v["sum_ms"], host + ctl, 2e-3);
+        // the pipeline: at least the larger side, at most the two in a row with the host's
+        // stalls (each figure is printed to a thousandth)
+        EXPECT_GE(v["pipeline_ms"], v["frame_ms"] - 1e-3);
+        EXPECT_LE(v["pipeline_ms"], v["sum_ms"] + v["host_stalled_ms"] + 2e-3);
+        EXPECT_GT(v["controller_util"], 0);
+        EXPECT_LE(v["controller_util"], 1);
+        EXPECT_LE(v["host_util"], 1);
+        // this machine is controller-bound: the controller never waits
+        EXPECT_EQ(row[8], "controller");
+        EXPECT_NEAR(v["controller_util"], 1, 1e-4);
+        // the band holds the estimate, the pipeline's band the controller's
+        EXPECT_LE(v["controller_ms_low"], ctl);
+        EXPECT_GE(v["controller_ms_high"], ctl);
+        EXPECT_LT(v["controller_ms_low"], v["controller_ms_high"]);
+        EXPECT_LE(v["pipeline_ms_low"], v["pipeline_ms"] + 1e-3);
+        EXPECT_GE(v["pipeline_ms_high"], v["pipeline_ms"] - 1e-3);
+        EXPECT_GE(v["pipeline_ms_low"], v["controller_ms_low"] - 1e-3);
+        // host over controller at the band's ends, to three figures even when far below 1
+        const double ratio = host / ctl;
+        EXPECT_GT(v["ratio_low"], 0);
+        EXPECT_NEAR(v["ratio_low"], host / v["controller_ms_high"], ratio * 0.01);
+        EXPECT_NEAR(v["ratio_high"], host / v["controller_ms_low"], ratio * 0.01);
+        EXPECT_LE(v["ratio_low"], ratio * 1.01);
+        EXPECT_GE(v["ratio_high"], ratio * 0.99);
+    }
+}
+
+}  // namespace
+}  // namespace fb89::experiments
