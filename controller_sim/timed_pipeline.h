@@ -13,8 +13,10 @@
 // room, only on the bus.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "controller_sim/profile.h"
@@ -78,7 +80,41 @@ class TimedPipeline {
     // The next command of the frame. Throws std::invalid_argument when its send time goes
     // back or is not finite, or when it cannot fit the buffer at all. Returns when it is done;
     // where it went, in `timing` when given.
-    double push(const TimedCommand& c, CommandTiming* timing = nullptr);
+    // (Inline: replay runs every command of a stream through here.)
+    double push(const TimedCommand& c, CommandTiming* timing = nullptr) {
+        // (the same as "finite and not before the last", NaN and infinities refused)
+        if (!(c.send_us >= m_last_send_us && c.send_us <= kLatest) || c.bytes > m_capacity)
+            reject(c);
+        m_last_send_us = c.send_us;
+        const double ready = c.send_us + m_shift_us;
+        if (c.bytes == 0) {  // not sent
+            if (timing) *timing = {ready, ready, ready, ready, ready, 0};
+            return m_controller_free_us;
+        }
+        double start = std::max(ready, m_bus_free_us);
+        free_until(start);
+        while (m_occupied + c.bytes > m_capacity) {  // wait for the oldest to be executed
+            start = std::max(start, m_held[m_head].done_us);
+            free_until(start);
+        }
+        if (start > ready) {
+            m_shift_us += start - ready;
+            m_figures.host_stalled_us += start - ready;
+            ++m_figures.stalls;
+        }
+        const double arrive = start + c.bus_us;
+        m_bus_free_us = arrive;
+        const double exec_start = std::max(arrive, m_controller_free_us);
+        const double done = exec_start + c.exec_us;
+        if (timing) *timing = {ready, start, arrive, exec_start, done, c.bytes};
+        m_controller_free_us = done;
+        m_held.push_back({done, c.bytes});
+        m_occupied += c.bytes;
+        m_figures.high_water_bytes = std::max(m_figures.high_water_bytes, m_occupied);
+        m_figures.bus_busy_us += c.bus_us;
+        m_figures.controller_busy_us += c.exec_us;
+        return done;
+    }
     // The frame's figures, the host's own work ending at `host_end_us` (not before the last
     // send). The pipeline is then ready for the next frame, from 0.
     PipelineFigures finish(double host_end_us);
@@ -86,12 +122,26 @@ class TimedPipeline {
     const PipelineFigures& so_far() const { return m_figures; }
 
   private:
+    static constexpr double kLatest = std::numeric_limits<double>::max();
     struct Held {
         double done_us;
         uint64_t bytes;
     };
     // What the controller has executed by t leaves the buffer.
-    void free_until(double t);
+    void free_until(double t) {
+        while (m_head < m_held.size() && m_held[m_head].done_us <= t)
+            m_occupied -= m_held[m_head++].bytes;
+        if (m_head == m_held.size()) {
+            m_held.clear();
+            m_head = 0;
+        } else if (m_head >= 4096) {
+            compact();
+        }
+    }
+    // The queue's spent front, grown large: dropped once it is half the queue.
+    void compact();
+    // Why push() refuses c (std::invalid_argument).
+    [[noreturn]] void reject(const TimedCommand& c) const;
 
     uint64_t m_capacity;
     // In the buffer, oldest first: m_held from m_head on (a queue kept in one vector, its
