@@ -98,7 +98,7 @@ class StreamReader {
     void reposition(uint64_t at);
     void read_header();
     void read_property(uint32_t i);
-    std::size_t decode_buffered(std::span<Command> out);
+    std::size_t decode_buffered(std::span<Command> out, int64_t* send_ns = nullptr);
     Command read_record(uint8_t opcode, uint64_t at);
     void read_time(uint8_t opcode, uint64_t at);
     void read_index(uint64_t at);
