@@ -38,9 +38,7 @@ TEST(SplitExperiment, ThePipelineAndTheBandLieWhereTheModelPutsThem) {
         EXPECT_GT(v["controller_util"], 0);
         EXPECT_LE(v["controller_util"], 1);
         EXPECT_LE(v["host_util"], 1);
-        // this machine is controller-bound: the controller never waits
-        EXPECT_EQ(row[8], "controller");
-        EXPECT_NEAR(v["controller_util"], 1, 1e-4);
+        EXPECT_EQ(row[8], host > ctl ? "host" : "controller");
         // the band holds the estimate, the pipeline's band the controller's
         EXPECT_LE(v["controller_ms_low"], ctl);
         EXPECT_GE(v["controller_ms_high"], ctl);
