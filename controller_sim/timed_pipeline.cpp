@@ -22,10 +22,8 @@ void TimedPipeline::reject(const TimedCommand& c) const {
 }
 
 void TimedPipeline::compact() {
-    if (m_head * 2 >= m_held.size()) {
-        m_held.erase(m_held.begin(), m_held.begin() + static_cast<std::ptrdiff_t>(m_head));
-        m_head = 0;
-    }
+    m_held.erase(m_held.begin(), m_held.begin() + static_cast<std::ptrdiff_t>(m_head));
+    m_head = 0;
 }
 
 PipelineFigures TimedPipeline::finish(double host_end_us) {
@@ -36,11 +34,10 @@ PipelineFigures TimedPipeline::finish(double host_end_us) {
     f.host_us = host_end - f.host_stalled_us;
     f.controller_idle_us = f.frame_us - f.controller_busy_us;
     // ready for the next frame, from 0, keeping the queue's room
-    m_held.clear();
-    m_head = 0;
-    m_occupied = 0;
-    m_last_send_us = m_shift_us = m_bus_free_us = m_controller_free_us = 0;
-    m_figures = PipelineFigures{};
+    std::vector<Held> held = std::move(m_held);
+    held.clear();
+    *this = TimedPipeline(m_capacity);
+    m_held = std::move(held);
     return f;
 }
 

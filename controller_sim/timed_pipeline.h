@@ -134,11 +134,11 @@ class TimedPipeline {
         if (m_head == m_held.size()) {
             m_held.clear();
             m_head = 0;
-        } else if (m_head >= 4096) {
+        } else if (m_head >= 4096 && m_head * 2 >= m_held.size()) {
             compact();
         }
     }
-    // The queue's spent front, grown large: dropped once it is half the queue.
+    // Drops the queue's spent front (grown large, and half the queue).
     void compact();
     // Why push() refuses c (std::invalid_argument).
     [[noreturn]] void reject(const TimedCommand& c) const;

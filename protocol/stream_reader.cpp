@@ -261,6 +261,17 @@ bool StreamReader::next(Command& out) {
     }
 }
 
+// Takes the time record at `record` (its opcode byte) into the frame's times, or says why
+// the frame cannot take it (and takes nothing): the general path and the fast one alike.
+namespace {
+std::optional<std::string> take_time(FrameTimes& times, const uint8_t* record) {
+    const int64_t ns = get_i64(record + 1);
+    auto problem = times.check(ns);
+    if (!problem) times.take(record[0], ns);
+    return problem;
+}
+}  // namespace
+
 // A SEND_TIME or HOST_END record at m_pos (version 2): checked against the frame's times so
 // far and kept for the commands after it.
 void StreamReader::read_time(uint8_t opcode, uint64_t at) {
@@ -269,9 +280,7 @@ void StreamReader::read_time(uint8_t opcode, uint64_t at) {
         fail_command(fmt::format("truncated {}", name), at,
                      fmt::format("the stream ends at byte {}", stream_end()));
     }
-    const int64_t ns = get_i64(&m_buf[m_pos + 1]);
-    if (auto problem = m_times.check(ns)) fail_command(name, at, *problem);
-    m_times.take(opcode, ns);
+    if (auto problem = take_time(m_times, &m_buf[m_pos])) fail_command(name, at, *problem);
     m_pos += kTimeRecordSize;
 }
 
@@ -280,8 +289,10 @@ void StreamReader::read_time(uint8_t opcode, uint64_t at) {
 // into out[0], out[1], ..., with the read position and command numbers kept in locals.
 // Stops at out's end, after a FRAME_END, where fewer than kFillRectRecordSize bytes are
 // buffered, and before any other record -- FRAME_BEGIN, MARKER, the index, an unknown
-// opcode, a span with x1 < x0 -- which the general path then reads or reports, so both
-// accept and refuse exactly the same records. Returns how many it decoded.
+// opcode, a span with x1 < x0, a time record the frame refuses -- which the general path
+// then reads or reports, so both accept and refuse exactly the same records. A version-2
+// time record the frame allows is taken on the way; with `send_ns`, send_ns[i] is out[i]'s
+// send time. Returns how many commands it decoded.
 std::size_t StreamReader::decode_buffered(std::span<Command> out, int64_t* send_ns) {
     if (m_done) return 0;
     const uint8_t* const buf = m_buf.data();
@@ -293,10 +304,7 @@ std::size_t StreamReader::decode_buffered(std::span<Command> out, int64_t* send_
             // of commands: leaving each to the general path cost a fifth of the replay);
             // anything else, or a time the frame refuses, is the general path's to read and
             // report
-            if (!timed() || !is_time_opcode(buf[pos])) break;
-            const int64_t ns = get_i64(buf + pos + 1);
-            if (m_times.check(ns)) break;
-            m_times.take(buf[pos], ns);
+            if (!timed() || !is_time_opcode(buf[pos]) || take_time(m_times, buf + pos)) break;
             pos += kTimeRecordSize;
             continue;
         }
