@@ -125,13 +125,21 @@ class TimedPipeline {
     static constexpr double kLatest = std::numeric_limits<double>::max();
     struct Held {
         double done_us;
-        uint64_t bytes;
+        uint32_t bytes;
     };
     // What the controller has executed by t leaves the buffer.
+    // (Head and occupancy in locals while popping: stored through each step, the loop runs at
+    // the speed of a store and its reload.)
     void free_until(double t) {
-        while (m_head < m_held.size() && m_held[m_head].done_us <= t)
-            m_occupied -= m_held[m_head++].bytes;
-        if (m_head == m_held.size()) {
+        std::size_t head = m_head;
+        uint64_t occupied = m_occupied;
+        const Held* held = m_held.data();
+        const std::size_t size = m_held.size();
+        while (head < size && held[head].done_us <= t)
+            occupied -= held[head++].bytes;
+        m_head = head;
+        m_occupied = occupied;
+        if (m_head == size) {
             m_held.clear();
             m_head = 0;
         } else if (m_head >= 4096 && m_head * 2 >= m_held.size()) {
