@@ -1,6 +1,6 @@
 # The guest build: fb89's host library and protocol encoding, and the small guest program
 # of period/guest, cross-compiled for one period host's instruction set
-# (period/<isa>/toolchain.cmake: the MC68020 + MC68881, SPARC V7).
+# (period/<isa>/toolchain.cmake, FB89_GUEST_ISA naming the folder).
 # Nothing of SDL, libpng or the controller. The header-only libraries come from the same
 # Debian packages as the native build's (glm, nlohmann-json, fmt in header-only mode, CLI11,
 # tinyobjloader's single header), staged in a folder of their own so that the cross
@@ -26,18 +26,13 @@ fb89_guest_header_library(CLI11::CLI11)
 # as the native package builds it (its CMake config exports the definition)
 fb89_guest_header_library(tinyobjloader::tinyobjloader TINYOBJLOADER_USE_DOUBLE)
 
-# SPARC: 64-bit integer helpers in V7 code in place of Debian's V8plus libgcc ones
-# (period/sparc/v7_runtime.c), linked into every program of the guest build.
-if(CMAKE_SYSTEM_PROCESSOR STREQUAL "sparc")
-  add_library(fb89_v7_runtime OBJECT ${PROJECT_SOURCE_DIR}/period/sparc/v7_runtime.c)
-  set_target_properties(fb89_v7_runtime PROPERTIES C_STANDARD 11)
-  link_libraries(fb89_v7_runtime)
-  # the V7 purity check: no C library, for a CPU with nothing newer than V7 (v7_check.c)
-  add_executable(fb89_v7_check ${PROJECT_SOURCE_DIR}/period/sparc/v7_check.c)
-  target_compile_options(fb89_v7_check PRIVATE -ffreestanding)
-  target_link_options(fb89_v7_check PRIVATE -nostdlib)
-  target_link_libraries(fb89_v7_check PRIVATE gcc)
+# The instruction set's own part of the build: its folder's headers (send_mark.h,
+# register_add.h) on every program's include path, and its guest.cmake if it has one.
+if(NOT FB89_GUEST_ISA OR NOT EXISTS ${PROJECT_SOURCE_DIR}/period/${FB89_GUEST_ISA}/isa.json)
+  message(FATAL_ERROR "guest build: FB89_GUEST_ISA names no folder period/<isa>/ with an isa.json")
 endif()
+include_directories(${PROJECT_SOURCE_DIR}/period/${FB89_GUEST_ISA})
+include(${PROJECT_SOURCE_DIR}/period/${FB89_GUEST_ISA}/guest.cmake OPTIONAL)
 
 add_subdirectory(protocol)
 add_subdirectory(host)

@@ -2,39 +2,40 @@
 
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 namespace fb89::period {
 
 namespace {
 
+InstructionSet parse(const InstructionSetSource& source) {
+    const std::string origin(source.origin);
+    InstructionSet s;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(source.json);
+        s.name = j.at("name").get<std::string>();
+        s.description = j.at("description").get<std::string>();
+        s.qemu = j.at("qemu").get<std::string>();
+        s.qemu_options = j.at("qemu_options").get<std::vector<std::string>>();
+        s.plugin_options = j.at("plugin_options").get<std::vector<std::string>>();
+        s.env = j.at("env").get<std::string>();
+        for (const auto& p : j.at("packages"))
+            s.packages += (s.packages.empty() ? "" : ", ") + p.get<std::string>();
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(origin + ": " + e.what());
+    }
+    s.guest_path = source.guest_path;
+    s.kernels_dir = source.kernels_dir;
+    return s;
+}
+
 const std::vector<InstructionSet>& all() {
-    static const std::vector<InstructionSet> sets = {
-        {"m68k",
-         "Motorola MC68020 + MC68881 (qemu-m68k -cpu m68020)",
-         "qemu-m68k",
-         {"-cpu", "m68020"},
-         // the Sun-3/260's data cache (the Sun-3/60 has none)
-         {"cache=65536:16:wb"},
-         "M68K",
-         "g++-m68k-linux-gnu, qemu-user",
-         FB89_M68K_GUEST_PATH,
-         FB89_M68K_KERNELS_DIR},
-        {"sparc",
-         "SPARC V7, 32-bit (qemu-sparc32plus with the MB86900's 7 register windows)",
-         "qemu-sparc32plus",
-         // QEMU's window count set to the MB86900's, so that its own window traps fall
-         // where the chip's do (period/sparc/classify.c)
-         {"-cpu", "TI UltraSparc II,nwindows=7"},
-         // the MB86900's and L64801's 7 windows (and the CY7C601's 8 beside them); the
-         // SPARCstation 1's (write-through), the Sun-4/260's (write-back) and the
-         // SPARCstation 2's (write-through, 32-byte lines) caches
-         {"windows=7", "also_windows=8", "cache=65536:16:wt", "cache=131072:16:wb",
-          "cache=65536:32:wt"},
-         "SPARC",
-         "g++-12-sparc64-linux-gnu, g++-12-multilib-sparc64-linux-gnu, "
-         "libc6-dev-sparc-sparc64-cross, qemu-user",
-         FB89_SPARC_GUEST_PATH,
-         FB89_SPARC_KERNELS_DIR},
-    };
+    static const std::vector<InstructionSet> sets = [] {
+        std::vector<InstructionSet> v;
+        for (const InstructionSetSource& source : instruction_set_sources())
+            v.push_back(parse(source));
+        return v;
+    }();
     return sets;
 }
 
@@ -48,7 +49,7 @@ const InstructionSet& instruction_set(std::string_view name) {
     std::string known;
     for (const InstructionSet& s : all()) {
         if (s.name == name) return s;
-        known += (known.empty() ? "" : ", ") + std::string(s.name);
+        known += (known.empty() ? "" : ", ") + s.name;
     }
     throw std::runtime_error("unknown instruction set '" + std::string(name) +
                              "' (known: " + known + ")");

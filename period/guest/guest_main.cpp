@@ -1,8 +1,8 @@
-// fb89_guest: fb89's own host code as one program for the emulated MC68020 + MC68881. It
+// fb89_guest: fb89's own host code as one program for an emulated period host. It
 // loads a scene, sets it up, runs one hidden-surface method into the in-memory buffer and
 // writes the command stream, marking each phase for the counting plugin (phase_marker.h).
-// `fb89 render --host sun3-60` runs it under qemu-m68k; the options are render's, with
-// thresholds already resolved to numbers.
+// `fb89 render --host sun3-60` runs it under qemu-m68k (period/isa.h); the options are render's,
+// with thresholds already resolved to numbers.
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -28,38 +28,9 @@
 // its own, which the phase markers name to the plugin: its instructions are not counted.
 // What is counted is what a real host's driver would do as well: count the commands into
 // packets and call out when one is full.
-#if defined(__sparc__) && !defined(__arch64__)
-// A leaf written out (GCC gives the C++ version a register window of its own), so that the
-// plugin's window model, which does not see this code, stays in step. The count's low word
-// comes in %o1 (a 64-bit argument takes %o0 and %o1).
-extern "C" void fb89_send_mark(uint64_t commands);
-__asm__(
-    ".section fb89_marks,\"ax\",@progbits\n"
-    ".global fb89_send_mark\n"
-    ".type fb89_send_mark, #function\n"
-    ".align 4\n"
-    "fb89_send_mark:\n"
-    "\tmov %o1, %o0\n"
-    "\tsethi %hi(0xfb8a), %g1\n"
-    "\tor %g1, %lo(0xfb8a), %g1\n"
-    "\tta 0x10\n"
-    "\tretl\n"
-    "\tnop\n"
-    ".size fb89_send_mark, .-fb89_send_mark\n"
-    ".previous\n");
-static_assert(fb89::period::kSendSyscall == 0xfb8a);
-#else
-extern "C" __attribute__((noinline, section("fb89_marks"))) void fb89_send_mark(uint64_t commands) {
-#if defined(__m68k__)
-    __asm__ volatile("move.l %0, %%d1\n\tmove.l %1, %%d0\n\ttrap #0"
-                     :
-                     : "g"(static_cast<long>(commands)), "i"(fb89::period::kSendSyscall)
-                     : "d0", "d1", "memory", "cc");
-#else
-    ::syscall(fb89::period::kSendSyscall, static_cast<long>(commands));
-#endif
-}
-#endif
+// Each instruction set's own, in its folder (period/<isa>/send_mark.h, on the guest build's
+// include path: cmake/guest.cmake).
+#include "send_mark.h"
 
 namespace {
 

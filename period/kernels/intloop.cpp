@@ -16,13 +16,7 @@
 #include <cstdio>
 
 #include "period/guest/phase_marker.h"
-#if defined(__m68k__)
-#include "period/m68k/register_add.h"
-#elif defined(__sparc__)
-#include "period/sparc/register_add.h"
-#else
-#error "no register add for this instruction set: add period/<isa>/register_add.h"
-#endif
+#include "register_add.h"  // period/<isa>/register_add.h, on the guest build's include path
 
 namespace {
 

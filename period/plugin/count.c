@@ -888,22 +888,23 @@ static void plugin_exit(qemu_plugin_id_t id, void* userdata) {
 QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t* info, int argc,
                                            char** argv) {
     const char* dump_path = NULL;
-    static const struct fb89_isa* const known[] = {&fb89_isa_m68k, &fb89_isa_sparc};
 
     isa = NULL;
-    for (size_t k = 0; k < sizeof(known) / sizeof(known[0]) && !isa; k++) {
-        for (const char* const* t = known[k]->qemu_targets; *t; t++) {
+    char known[256] = "";
+    for (const struct fb89_isa* const* k = fb89_isas; *k && !isa; k++) {
+        for (const char* const* t = (*k)->qemu_targets; *t; t++) {
             if (info && info->target_name && strcmp(info->target_name, *t) == 0) {
-                isa = known[k];
+                isa = *k;
             }
+            snprintf(known + strlen(known), sizeof(known) - strlen(known), "%s%s",
+                     known[0] ? ", " : "", *t);
         }
     }
     if (!isa) {
-        char msg[256];
+        char msg[512];
         snprintf(msg, sizeof(msg),
-                 "fb89_count: no instruction set of ours for QEMU target '%s'"
-                 " (known: m68k, sparc32plus)\n",
-                 info && info->target_name ? info->target_name : "?");
+                 "fb89_count: no instruction set of ours for QEMU target '%s' (known: %s)\n",
+                 info && info->target_name ? info->target_name : "?", known);
         report(msg);
         return 1;
     }

@@ -1,9 +1,10 @@
 /*
  * isa.h - what the counting plugin (count.c) asks of an instruction set. Each
  * instruction set's part lives in its own folder beside the common core, as gem5 keeps
- * src/arch/sparc beside src/arch/x86: period/m68k/classify.c, period/sparc/classify.c.
- * count.c picks one by the name QEMU gives its target ("m68k", "sparc32plus") and links
- * every one into the same plugin.
+ * src/arch/sparc beside src/arch/x86: period/<isa>/classify.c, defining
+ * `const struct fb89_isa fb89_isa_<isa>`. The build links every folder's into the same
+ * plugin and lists them in fb89_isas (a file it writes: period/plugin/CMakeLists.txt);
+ * count.c picks one by the name QEMU gives its target ("m68k", "sparc32plus", "i386").
  */
 #ifndef FB89_PLUGIN_ISA_H
 #define FB89_PLUGIN_ISA_H
@@ -62,7 +63,7 @@ struct fb89_isa {
     const char *options_help; /* e.g. " [windows=N]" */
 };
 
-extern const struct fb89_isa fb89_isa_m68k;
-extern const struct fb89_isa fb89_isa_sparc;
+/* Every instruction set built in, NULL-terminated (written by the build). */
+extern const struct fb89_isa *const fb89_isas[];
 
 #endif

@@ -1,8 +1,8 @@
 // The cross builds against the native one: fb89's host code on every period host's
-// instruction set (the MC68020 + MC68881, SPARC V7) sends exactly the native commands, for
-// every raster method and both ray methods, and counts the native rays and queries of the
-// radiosity table; its counts are the same run after run; a missing emulator or a failing
-// guest is a clear error. (ctest label `period`: these run the emulator.)
+// instruction set (the MC68020 + MC68881, SPARC V7, the 386 + 387) sends exactly the native
+// commands, for every raster method and both ray methods, and counts the native rays and queries of
+// the radiosity table; its counts are the same run after run; a missing emulator or a failing guest
+// is a clear error. (ctest label `period`: these run the emulator.)
 #include "period/emulator.h"
 
 #include <gtest/gtest.h>
@@ -156,7 +156,15 @@ TEST_P(PeriodGuest, AGuestThatFailsIsAClearErrorNotACrash) {
 }
 
 // "PeriodIsa/": the names start with Period, the ctest label `period` (tests/CMakeLists.txt)
-INSTANTIATE_TEST_SUITE_P(PeriodIsa, PeriodGuest, ::testing::Values("m68k", "sparc"),
+// Every instruction set built in (period/isa.h): a new one is tested here as it is added.
+std::vector<std::string> isa_names() {
+    std::vector<std::string> names;
+    for (const InstructionSet& s : instruction_sets())
+        names.push_back(s.name);
+    return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(PeriodIsa, PeriodGuest, ::testing::ValuesIn(isa_names()),
                          [](const auto& param_info) { return param_info.param; });
 
 }  // namespace

@@ -84,9 +84,10 @@ TEST(PeriodValidation, IntloopRunsVmpupsAdds) {
 }
 
 TEST(PeriodValidation, KernelCountsAreTheSameRunAfterRun) {
-    for (const char* isa : {"m68k", "sparc"})
+    for (const InstructionSet& s : instruction_sets())
         for (const char* name : {"linpack", "intloop"}) {
-            SCOPED_TRACE(std::string(isa) + " " + name);
+            const std::string& isa = s.name;
+            SCOPED_TRACE(isa + " " + name);
             const KernelRun& first = kernel_run(name, isa);
             const KernelRun again = run_validation_kernel(find_emulator_parts(instruction_set(isa)),
                                                           data().kernel(name));
@@ -97,7 +98,8 @@ TEST(PeriodValidation, KernelCountsAreTheSameRunAfterRun) {
 }
 
 TEST(PeriodValidation, FbenchTracesTheObjectiveToItsReferenceResults) {
-    for (const char* isa : {"m68k", "sparc"}) {
+    for (const InstructionSet& s : instruction_sets()) {
+        const std::string& isa = s.name;
         SCOPED_TRACE(isa);
         const KernelRun& run = kernel_run("fbench", isa);
         // the kernel exits 1 unless every aberration matches FBENCH's reference to 11 decimals
