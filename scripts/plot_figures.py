@@ -271,9 +271,10 @@ def split_both_sides(folder):
 
 # The 1989 hosts of the split across hosts, oldest first: the first is the one speeds and
 # crossovers are counted in multiples of.
-HOSTS_1989 = ("sun3-60", "sun4-260", "sparcstation-1", "sparcstation-2")
+HOSTS_1989 = ("sun3-60", "sun4-260", "sparcstation-1", "sparcstation-2", "pc-386-25")
 HOST_LABELS = {"sun3-60": "Sun-3/60\n1987", "sun4-260": "Sun-4/260\n1987",
                "sparcstation-1": "SPARCstation 1\n1989", "sparcstation-2": "SPARCstation 2\n1990",
+               "pc-386-25": "386/25 PC\n1988",
                "native": "this machine\n(measured)"}
 
 
