@@ -67,9 +67,9 @@ TEST(Profile, Tms34020HasHundredNanosecondCycleAnd20MBPerSecondPort) {
     EXPECT_EQ(p.b_bus_bytes_per_s, 20e6);
 }
 
-TEST(Profile, ListsTheThreeBuiltInProfiles) {
-    EXPECT_EQ(list_profiles(),
-              (std::vector<std::string>{"ideal", "tms34010-50mhz", "tms34020-40mhz"}));
+TEST(Profile, ListsTheFourBuiltInProfiles) {
+    EXPECT_EQ(list_profiles(), (std::vector<std::string>{"ideal", "tms34010-50mhz", "tms34010-isa",
+                                                         "tms34020-40mhz"}));
 }
 
 TEST(Profile, EveryBuiltInFigureCitesEmuOrEstSource) {
@@ -110,7 +110,7 @@ TEST(Profile, TheCommandBufferIsUnboundedOrHoldsTheLargestCommand) {
 // ends bound the controller's time on a frame; a band without its reason, outside its
 // figure or on a figure that cannot have one is refused, naming it.
 TEST(Profile, BandsHoldTheirFiguresAndSayWhy) {
-    for (const char* name : {"tms34010-50mhz", "tms34020-40mhz"}) {
+    for (const char* name : {"tms34010-50mhz", "tms34010-isa", "tms34020-40mhz"}) {
         const CostProfile p = load_profile(name);
         for (const char* field : {"C_cmd", "C_line_setup", "B_bus_bytes_per_s", "t_handshake_s",
                                   "command_buffer_bytes"})
