@@ -27,11 +27,6 @@ void split_key(std::string_view key, std::string_view& mnemonic,
     }
 }
 
-bool is_memory(std::string_view c) {
-    return c == "ind" || c == "postinc" || c == "predec" || c == "disp" || c == "index" ||
-           c == "abs" || c == "pcrel";
-}
-
 bool matches(const CostRule& rule, std::string_view mnemonic,
              const std::vector<std::string_view>& operands) {
     if (!std::regex_match(mnemonic.begin(), mnemonic.end(), rule.mnemonic)) return false;
@@ -65,7 +60,11 @@ double rule_cpu(const HostProfile& p, const CostRule& rule, std::string_view mne
             cycles += ea_cycles(p.ea_calc, operands[static_cast<size_t>(i)], mnemonic);
     int accesses = rule.accesses;
     if (accesses < 0)
-        accesses = static_cast<int>(std::count_if(operands.begin(), operands.end(), is_memory));
+        accesses = static_cast<int>(
+            std::count_if(operands.begin(), operands.end(), [&](std::string_view c) {
+                return std::find(p.memory_classes.begin(), p.memory_classes.end(), c) !=
+                       p.memory_classes.end();
+            }));
     return cycles + p.memory_wait_states * accesses;
 }
 

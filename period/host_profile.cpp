@@ -40,8 +40,10 @@ std::vector<int> indices(const json& rule, const char* key, const std::string& o
     return out;
 }
 
-// "mem,reg" -> {{ind, postinc, ...}, {dreg, areg}}
-std::vector<std::vector<std::string>> operand_pattern(const std::string& text) {
+// "mem,reg" -> {{ind, postinc, ...}, {dreg, areg}}: each class or group of the profile's
+// (HostProfile::operand_groups) among a pattern's '|' alternatives.
+std::vector<std::vector<std::string>> operand_pattern(const std::string& text,
+                                                      const OperandGroups& groups) {
     std::vector<std::vector<std::string>> out;
     if (text.empty()) return out;
     std::stringstream items(text);
@@ -51,21 +53,19 @@ std::vector<std::vector<std::string>> operand_pattern(const std::string& text) {
         std::stringstream alternatives(item);
         std::string c;
         while (std::getline(alternatives, c, '|')) {
-            if (c == "reg") {
-                classes.insert(classes.end(), {"dreg", "areg"});
-            } else if (c == "mem") {
-                classes.insert(classes.end(),
-                               {"ind", "postinc", "predec", "disp", "index", "abs", "pcrel"});
-            } else {
+            const auto group = groups.find(c);
+            if (group != groups.end())
+                classes.insert(classes.end(), group->second.begin(), group->second.end());
+            else
                 classes.push_back(c);
-            }
         }
         out.push_back(std::move(classes));
     }
     return out;
 }
 
-CostRule rule_of(const json& r, const std::string& origin, const std::string& at) {
+CostRule rule_of(const json& r, const OperandGroups& groups, const std::string& origin,
+                 const std::string& at) {
     CostRule rule;
     if (r.contains("mnemonic")) {
         if (!r["mnemonic"].is_string()) fail(origin, at + "\"mnemonic\" must be a regex string");
@@ -82,7 +82,7 @@ CostRule rule_of(const json& r, const std::string& origin, const std::string& at
     if (r.contains("operands")) {
         if (!r["operands"].is_string()) fail(origin, at + "\"operands\" must be a string");
         rule.any_operands = false;
-        rule.operands = operand_pattern(r["operands"].get<std::string>());
+        rule.operands = operand_pattern(r["operands"].get<std::string>(), groups);
     }
     rule.cpu = number(r, "cpu", origin, at);
     if (r.contains("fpu")) rule.fpu = number(r, "fpu", origin, at);
@@ -147,6 +147,31 @@ HostProfile parse_host_profile(std::string_view text, const std::string& origin)
     p.fpu_clock_mhz = number(j, "fpu_clock_mhz", origin, "");
     if (p.cpu_clock_mhz <= 0 || p.fpu_clock_mhz <= 0) fail(origin, "clocks must be > 0 MHz");
     p.memory_wait_states = number(j, "memory_wait_states", origin, "");
+    // the instruction set's operand classes: which are memory (one data access each), and the
+    // names a rule's pattern may use for several (without these fields, the MC68020's)
+    for (auto [key, list] : {std::pair{"memory_classes", &p.memory_classes}}) {
+        if (!j.contains(key)) continue;
+        if (!j[key].is_array()) fail(origin, fmt::format("\"{}\" must be a list of strings", key));
+        list->clear();
+        for (const json& c : j[key]) {
+            if (!c.is_string()) fail(origin, fmt::format("\"{}\" must be a list of strings", key));
+            list->push_back(c.get<std::string>());
+        }
+    }
+    if (j.contains("operand_groups")) {
+        const json& g = j["operand_groups"];
+        if (!g.is_object()) fail(origin, "\"operand_groups\" must be an object of lists");
+        p.operand_groups.clear();
+        for (const auto& [name, classes] : g.items()) {
+            if (!classes.is_array())
+                fail(origin, fmt::format("\"operand_groups\": \"{}\" must be a list", name));
+            for (const json& c : classes) {
+                if (!c.is_string())
+                    fail(origin, fmt::format("\"operand_groups\": \"{}\" must list strings", name));
+                p.operand_groups[name].push_back(c.get<std::string>());
+            }
+        }
+    }
     if (!j.contains("ea") || !j["ea"].is_object()) fail(origin, "\"ea\" must be an object");
     p.ea_fetch = table(j["ea"], "fetch", origin);
     p.ea_calc = table(j["ea"], "calc", origin);
@@ -154,11 +179,12 @@ HostProfile parse_host_profile(std::string_view text, const std::string& origin)
         fail(origin, "\"rules\" must be a non-empty list");
     for (size_t i = 0; i < j["rules"].size(); ++i) {
         if (!j["rules"][i].is_object()) fail(origin, fmt::format("rule {} must be an object", i));
-        p.rules.push_back(rule_of(j["rules"][i], origin, fmt::format("rule {}: ", i)));
+        p.rules.push_back(
+            rule_of(j["rules"][i], p.operand_groups, origin, fmt::format("rule {}: ", i)));
     }
     if (!j.contains("default") || !j["default"].is_object())
         fail(origin, "\"default\" must be an object with \"cpu\"");
-    p.fallback = rule_of(j["default"], origin, "default: ");
+    p.fallback = rule_of(j["default"], p.operand_groups, origin, "default: ");
     return p;
 }
 

@@ -31,6 +31,9 @@ struct CostRule {
     std::string source;
 };
 
+// Names a rule's operand pattern may use for several classes ("reg": "dreg", "areg").
+using OperandGroups = std::map<std::string, std::vector<std::string>>;
+
 struct HostProfile {
     std::string name, description;
     std::string isa = "m68k";  // the instruction set whose guest it prices (period/isa.h)
@@ -38,6 +41,14 @@ struct HostProfile {
     double cpu_clock_mhz = 0, fpu_clock_mhz = 0;
     double memory_wait_states = 0;
     std::map<std::string, double> ea_fetch, ea_calc;
+    // The instruction set's operand classes, as its classifier names them: those that are a
+    // data access in memory, and the groups a rule may name. A profile without them has the
+    // MC68020's (period/m68k/classify.c).
+    std::vector<std::string> memory_classes = {"ind",   "postinc", "predec", "disp",
+                                               "index", "abs",     "pcrel"};
+    OperandGroups operand_groups = {
+        {"reg", {"dreg", "areg"}},
+        {"mem", {"ind", "postinc", "predec", "disp", "index", "abs", "pcrel"}}};
     std::vector<CostRule> rules;
     CostRule fallback;  // "default": what no rule matches
 };
