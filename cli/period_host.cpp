@@ -67,7 +67,8 @@ std::string period_summary(const experiments::PeriodFrame& run) {
     if (stand_in_ms > 0)
         out += fmt::format(
             "  stand-ins        {:.2f}% of the modelled time: instructions the machine does "
-            "not have (V8/V9 forms in the libraries), priced as the V7 code standing in\n",
+            "not have (newer forms in the C libraries: SPARC V8/V9, i686), priced as the code of "
+            "its own that would stand in\n",
             ms > 0 ? 100 * stand_in_ms / ms : 0.0);
     if (run.checked)
         out += fmt::format(

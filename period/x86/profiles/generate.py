@@ -121,9 +121,9 @@ rule("bsfl|bsrl", None, 9 + 3 * 16, "I386 BSR_BASE 9 + 3 a bit: EST sixteen bits
 rule("btl|btw", "reg|imm,reg", 3, "I386 BT_REG_REG / BT_IMM_REG 3")
 rule("btl|btw", None, 12, "I386 BT_REG_MEM 12")
 # ---- control ---------------------------------------------------------------------------------
+rule("jmp", "target", 7 + M, "I386 JMP 7 + m (m = 2, EST)")
 rule("j[a-z]+", "target", 3 + (7 + M - 3) / 2,
      "I386 JCC taken 7 + m, not taken 3 (JCC_DISP8, _NOBRANCH): EST half taken, m = 2: 6")
-rule("jmp", "target", 7 + M, "I386 JMP 7 + m (m = 2, EST)")
 rule("jmpl|jmp", "reg", 7 + M, "I386 JMP_REG 7 + m")
 rule("jmpl|jmp", None, 10 + M, "I386 JMP_MEM 10 + m")
 rule("calll|call", "target|reg", 7 + M, "I386 CALL / CALL_REG 7 + m", accesses=1)
