@@ -173,7 +173,7 @@ def fp(mnemonic, operands, clocks, src, stand_in=False, cpu=0):
         elif re.search(r"s$", mnemonic.split("|")[0]):
             words = 1
     rule(mnemonic, operands, cpu + ESC + WORD * words,
-         src + (f"; the 386: ESC {ESC} + {words} doubleword(s) x {WORD} (EST)" if True else ""),
+         src + f"; the 386: ESC {ESC} + {words} doubleword(s) x {WORD} (EST)",
          fpu=clocks, stand_in=stand_in)
 
 
@@ -192,22 +192,21 @@ fp("fldcw", None, 19, "I387 fldcw 19")
 fp("fldenv", None, 71, "I387 fldenv 71")
 fp("fnstenv|fstenv", None, 103, "I387 fstenv 103")
 fp("fxch", None, 18, "I387 fxch 18")
-fp("fadd|faddp|fsub|fsubp|fsubr|fsubrp", None if False else "st0|sti,st0|sti", 28,
-   "I387 fadd st(i) 23-34")
-fp("fadd|faddp|fsub|fsubp|fsubr|fsubrp", "st0|sti", 28, "I387 fadd st(i) 23-34")
+STACK = ("st0|sti,st0|sti", "st0|sti")  # the register forms, with two operands or one
+for ops in STACK:
+    fp("fadd|faddp|fsub|fsubp|fsubr|fsubrp", ops, 28, "I387 fadd st(i) 23-34")
 fp("fadds|fsubs|fsubrs", None, 28, "I387 fadd m32 24-32")
 fp("faddl|fsubl|fsubrl", None, 33, "I387 fadd m64 29-37")
 FMUL = "; EST: the top of the range, the 387 multiplying at the extended precision Linux (and DOS) leave it in"
-fp("fmul|fmulp", "st0|sti,st0|sti", 57, "I387 fmul st(i) 29-57" + FMUL)
-fp("fmul|fmulp", "st0|sti", 57, "I387 fmul st(i) 29-57" + FMUL)
+for ops in STACK:
+    fp("fmul|fmulp", ops, 57, "I387 fmul st(i) 29-57" + FMUL)
 fp("fmuls", None, 35, "I387 fmul m32 27-35" + FMUL)
 fp("fmull", None, 57, "I387 fmul m64 32-57" + FMUL)
-fp("fdiv|fdivp|fdivr|fdivrp", None if False else "st0|sti,st0|sti", 89, "I387 fdiv st(i) 88-91")
-fp("fdiv|fdivp|fdivr|fdivrp", "st0|sti", 89, "I387 fdiv st(i) 88-91")
+for ops in STACK:
+    fp("fdiv|fdivp|fdivr|fdivrp", ops, 89, "I387 fdiv st(i) 88-91")
 fp("fdivs|fdivrs", None, 89, "I387 fdiv m32 89")
 fp("fdivl|fdivrl", None, 94, "I387 fdiv m64 94")
-fp("fcom|fcomp|fcompp|fucom|fucomp|fucompp", None if False else "st0|sti", 24,
-   "I387 fcom st(i) 24, fucom 24")
+fp("fcom|fcomp|fcompp|fucom|fucomp|fucompp", "st0|sti", 24, "I387 fcom st(i) 24, fucom 24")
 fp("fcom|fcomp|fcompp|fucom|fucomp|fucompp", None, 24, "I387 fcom st(i) 24, fucom 24")
 fp("fcoms|fcomps", None, 26, "I387 fcom m32 26")
 fp("fcoml|fcompl", None, 31, "I387 fcom m64 31")
