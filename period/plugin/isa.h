@@ -17,41 +17,41 @@
 
 /* One instruction of a block being translated. */
 struct fb89_insn {
-    const uint8_t *bytes; /* its encoding, as the guest stores it (qemu_plugin_insn_data) */
+    const uint8_t* bytes; /* its encoding, as the guest stores it (qemu_plugin_insn_data) */
     size_t size;
     uint64_t vaddr;
-    const char *disas; /* QEMU's disassembly, or NULL */
+    const char* disas; /* QEMU's disassembly, or NULL */
 };
 
 /* Adds `n` executions of the pseudo-class `key` (a key starting with '@': an event that
    costs time but is no instruction of the guest's, such as a trap). */
-typedef void (*fb89_add_fn)(const char *key, uint64_t n);
+typedef void (*fb89_add_fn)(const char* key, uint64_t n);
 
 struct fb89_isa {
-    const char *name;                /* "m68k", "sparc": as fb89's host profiles say */
-    const char *const *qemu_targets; /* the target names QEMU reports, NULL-terminated */
+    const char* name;                /* "m68k", "sparc": as fb89's host profiles say */
+    const char* const* qemu_targets; /* the target names QEMU reports, NULL-terminated */
 
     /* Writes the class key of one instruction into key[FB89_KEY_MAX]. */
-    void (*make_key)(const struct fb89_insn *insn, char *key);
+    void (*make_key)(const struct fb89_insn* insn, char* key);
 
     /* Optional: pseudo-classes of a block, seen at translation and counted each time the
        block runs (e.g. "@load_use": the instruction at `at` waits for the load before it).
        Calls add(key, at) once for each. */
-    void (*block_extras)(const struct fb89_insn *insns, size_t n,
-                         void (*add)(const char *key, size_t at));
+    void (*block_extras)(const struct fb89_insn* insns, size_t n,
+                         void (*add)(const char* key, size_t at));
 
     /* Optional: the address of the annulling conditional branch that ends a block (its
        delay slot runs only when it is taken), else 0. The core counts the slots annulled
        as "@annulled_slot": the branch's executions less those of the blocks that start at
        its delay slot. */
-    uint64_t (*annulling_branch)(const struct fb89_insn *last);
+    uint64_t (*annulling_branch)(const struct fb89_insn* last);
 
     /* Optional: a non-zero event when `insn` must be watched each time it runs (a callback
        per execution: keep it for rare instructions), and what to do when it runs. on_event
        returns how many times QEMU itself will run the instruction again before it
        completes (QEMU's own window traps restart it): the core then takes back what those
        restarts count twice, and does not hand the restarts to on_event. */
-    int (*exec_event)(const struct fb89_insn *insn);
+    int (*exec_event)(const struct fb89_insn* insn);
     unsigned (*on_event)(int event);
     /* Optional: hands the counts of pseudo-classes kept by on_event to the current phase
        and zeroes them; called at every phase change and at exit. */
@@ -59,11 +59,11 @@ struct fb89_isa {
 
     /* Optional: takes a plugin argument of the instruction set's own ("windows=7");
        returns false if it does not know it. */
-    bool (*option)(const char *arg);
-    const char *options_help; /* e.g. " [windows=N]" */
+    bool (*option)(const char* arg);
+    const char* options_help; /* e.g. " [windows=N]" */
 };
 
 /* Every instruction set built in, NULL-terminated (written by the build). */
-extern const struct fb89_isa *const fb89_isas[];
+extern const struct fb89_isa* const fb89_isas[];
 
 #endif
