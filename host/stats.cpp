@@ -10,10 +10,21 @@
 namespace fb89::host {
 
 namespace {
-double process_cpu_seconds() {
+timespec now(clockid_t clock) {
     timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+    clock_gettime(clock, &ts);
+    return ts;
+}
+
+// The milliseconds from `from` to `to`, converted to double from two 32-bit differences (whole
+// seconds, under 68 years; nanoseconds). On the 32-bit period hosts a 64-bit integer's
+// conversion is a library routine whose path depends on the value -- on the MC68020 one more
+// `fadd` when bit 31 of the low word is set -- which made a counted run's instructions depend
+// on how long the emulation took (by one, now and then).
+double ms_between(const timespec& from, const timespec& to) {
+    const auto seconds = static_cast<int32_t>(to.tv_sec - from.tv_sec);
+    const auto nanoseconds = static_cast<int32_t>(to.tv_nsec - from.tv_nsec);
+    return static_cast<double>(seconds) * 1e3 + static_cast<double>(nanoseconds) * 1e-6;
 }
 
 nlohmann::json timing_json(const Timing& t) {
@@ -22,13 +33,13 @@ nlohmann::json timing_json(const Timing& t) {
 }  // namespace
 
 void Stopwatch::restart() {
-    m_wall = std::chrono::steady_clock::now();
-    m_cpu_s = process_cpu_seconds();
+    m_wall = now(CLOCK_MONOTONIC);
+    m_cpu = now(CLOCK_PROCESS_CPUTIME_ID);
 }
 
 Timing Stopwatch::elapsed() const {
-    std::chrono::duration<double, std::milli> wall = std::chrono::steady_clock::now() - m_wall;
-    return {wall.count(), (process_cpu_seconds() - m_cpu_s) * 1e3};
+    const timespec wall = now(CLOCK_MONOTONIC), cpu = now(CLOCK_PROCESS_CPUTIME_ID);
+    return {ms_between(m_wall, wall), ms_between(m_cpu, cpu)};
 }
 
 void Counters::add(std::string_view name, uint64_t value) {

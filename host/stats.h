@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <ctime>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -26,7 +27,9 @@ struct Timing {
     }
 };
 
-// Measures one interval of wall-clock and process CPU time.
+// Measures one interval of wall-clock and process CPU time. Its instructions do not depend on
+// the times it reads, so that a counted run on a period host (period/) executes the same
+// instructions however long it took (stats.cpp).
 class Stopwatch {
   public:
     Stopwatch() { restart(); }
@@ -34,8 +37,7 @@ class Stopwatch {
     Timing elapsed() const;
 
   private:
-    std::chrono::steady_clock::time_point m_wall;
-    double m_cpu_s = 0;
+    timespec m_wall{}, m_cpu{};  // CLOCK_MONOTONIC, CLOCK_PROCESS_CPUTIME_ID
 };
 
 // Named counters in first-use order.
