@@ -99,6 +99,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "or grid (the paper's uniform grid)")
         ->check(CLI::IsMember({"bvh", "grid"}))
         ->capture_default_str();
+    sub->add_option("--methods", args->request.methods,
+                    "split: only these methods (default every one; fb89 list methods)");
     add_isa_option(sub);
     sub->callback([args, &exit_code] {
         for (std::string& scene : args->request.scenes)

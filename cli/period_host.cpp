@@ -195,7 +195,9 @@ void add_host_options(CLI::App* sub, HostArgs& a) {
                     "run again (the merge step for --emit-jobs)");
     sub->add_option("--emit-jobs", a.emit_jobs,
                     "1989 host: write one command per run missing from --results to this file "
-                    "(for GNU parallel or a Slurm job array) instead of running them");
+                    "instead of running them: run it with GNU parallel (parallel < FILE) or as "
+                    "a Slurm job array (scripts/slurm-sweep FILE -- this command without "
+                    "--emit-jobs), then this command again joins them");
 }
 
 std::shared_ptr<experiments::PeriodRuns> make_period_runs(const HostArgs& a) {
@@ -240,9 +242,12 @@ bool report_emitted(const experiments::ExperimentSettings& s, const HostArgs& a)
             names);
     }
     fmt::print(stderr,
-               "fb89: {} emulated runs written to {}{}{}. Run them, e.g. `parallel < {}`, then "
-               "this command again with --results {} to join them into its table\n",
-               s.period->emitted(), a.emit_jobs, known, unknown, a.emit_jobs, a.results);
+               "fb89: {} emulated runs written to {}{}{}. Run them, e.g. `parallel < {}` or as "
+               "a Slurm job array (scripts/slurm-sweep {} -- this command without "
+               "--emit-jobs), then this command again with --results {} to join them into "
+               "its table\n",
+               s.period->emitted(), a.emit_jobs, known, unknown, a.emit_jobs, a.emit_jobs,
+               a.results);
     return true;
 }
 

@@ -82,6 +82,15 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
     ExperimentSettings& s = out.settings;
     s = settings_of(r, experiment_scenes(r.name));
     s.accel = host::parse_accel(r.accel);
+    if (!r.methods.empty() && r.name != "split")
+        throw UsageError("--methods: only with the split experiment");
+    for (const std::string& m : r.methods) {
+        try {
+            s.methods.push_back(host::method_named(m));
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(std::string("--methods: ") + e.what());
+        }
+    }
     if (s.period) s.repeat = 1;  // a 1989 host's counts are exact: one run each
     const std::string& host = r.host.host;
     const auto threshold = [&] { return resolve_threshold(r.threshold, nullptr, host); };

@@ -43,6 +43,7 @@ struct ExperimentRequest : RunRequest {
     std::vector<std::string> sizes;             // fig4.8, fig4.11, fig4.12 ("WxH" each)
     std::string out_dir = "out/masks";          // fig4.7
     std::string accel = "bvh";                  // fig4.*, beam-threshold, split
+    std::vector<std::string> methods;           // split (empty: every method)
     int patches = 0;                            // radiosity, ff-error, radiosity-error
     int reference_rays = 4;                     // ff-error, radiosity-error
 };

@@ -309,13 +309,17 @@ std::vector<GuestOutcome> PeriodRuns::run_outcomes(const std::vector<GuestJob>& 
     return out;
 }
 
-void run_one_job(const GuestJob& job, const std::string& isa, const std::string& results_dir) {
+OneJob run_one_job(const GuestJob& job, const std::string& isa, const std::string& results_dir) {
     const period::EmulatorParts parts = period::find_emulator_parts(period::instruction_set(isa));
-    const std::string key = job_key(fingerprint(parts), job);
+    const fs::path counts = fs::path(results_dir) / (job_key(fingerprint(parts), job) + ".json");
+    // only ever put in place whole (write_whole), so a file there is a finished run
+    std::error_code ec;
+    if (fs::is_regular_file(counts, ec)) return {counts.string(), false};
     const period::GuestRun run = period::run_guest(parts, job.scene, job.options);
     fs::create_directories(results_dir);
-    write_whole(fs::path(results_dir) / (key + ".json"), run.counts_json, protocol::Publish::Now);
+    write_whole(counts, run.counts_json, protocol::Publish::Now);
     write_work(results_dir, isa, job, run);
+    return {counts.string(), true};
 }
 
 }  // namespace fb89::experiments

@@ -96,7 +96,13 @@ class PeriodRuns {
 std::string job_key(const std::string& guest_fingerprint, const GuestJob& job);
 
 // `fb89 host-run`: one job on the guest of instruction set `isa` (period/isa.h), its counts
-// written (whole or not at all) into `results_dir`.
-void run_one_job(const GuestJob& job, const std::string& isa, const std::string& results_dir);
+// written (whole or not at all) into `results_dir`. A job whose counts the folder already
+// holds is not run again (a job array submitted again recomputes only what is missing): the
+// counts file's path is returned, with `ran` saying whether this call made it.
+struct OneJob {
+    std::string counts;
+    bool ran = false;
+};
+OneJob run_one_job(const GuestJob& job, const std::string& isa, const std::string& results_dir);
 
 }  // namespace fb89::experiments

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "host/methods.h"
 #include "host/trace/ray_tracer.h"
 
 namespace fb89::experiments {
@@ -24,6 +25,8 @@ struct ExperimentSettings {
     bool progress = false;
     // what the ray tracer and the beam-ray hybrid's rays walk (ray_tracer.h)
     host::Accel accel = host::Accel::Bvh;
+    // split: these methods only, in the paper's order (empty: every one)
+    std::vector<host::Method> methods;
     // A 1989 host (period_runs.h): host times are modelled from emulated runs, once each,
     // instead of timed here in repeated rounds. Null: this machine.
     std::shared_ptr<PeriodRuns> period;

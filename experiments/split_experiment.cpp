@@ -50,6 +50,10 @@ Table experiment_split(const ExperimentSettings& s) {
     const controller::CostProfile dear = controller::band_end(profile, true);
     const std::string host = s.period ? s.period->profile().name : "native";
     std::vector<host::MethodOptions> settings = every_method();
+    if (!s.methods.empty())
+        std::erase_if(settings, [&](const host::MethodOptions& o) {
+            return std::find(s.methods.begin(), s.methods.end(), o.method) == s.methods.end();
+        });
     for (host::MethodOptions& o : settings)
         o.trace.accel = s.accel;
     for (const auto& file : s.scenes) {

@@ -56,26 +56,27 @@ auto run_request(const py::object& progress, Request& request, Run run) {
 }  // namespace
 
 void register_runs(py::module_& m) {
-    m.def("_experiment",
-          [](const std::string& name, const std::vector<std::string>& scenes,
-             const std::string& size, int repeat, const std::string& controller,
-             const std::string& threshold, const std::string& beam_threshold,
-             const std::vector<std::string>& sizes, const std::string& out_dir,
-             const std::string& accel, int patches, int reference_rays, const std::string& host,
-             int jobs, const std::string& results, const py::object& progress) {
-              cli::ExperimentRequest r;
-              fill(r, scenes, size, repeat, controller, host, jobs, results);
-              r.name = name;
-              r.threshold = threshold;
-              r.beam_threshold = beam_threshold;
-              r.sizes = sizes;
-              r.out_dir = out_dir;
-              r.accel = accel;
-              r.patches = patches;
-              r.reference_rays = reference_rays;
-              const auto out = run_request(progress, r, cli::run_experiment);
-              return table_parts(out.table);
-          });
+    m.def("_experiment", [](const std::string& name, const std::vector<std::string>& scenes,
+                            const std::string& size, int repeat, const std::string& controller,
+                            const std::string& threshold, const std::string& beam_threshold,
+                            const std::vector<std::string>& sizes, const std::string& out_dir,
+                            const std::string& accel, int patches, int reference_rays,
+                            const std::vector<std::string>& methods, const std::string& host,
+                            int jobs, const std::string& results, const py::object& progress) {
+        cli::ExperimentRequest r;
+        fill(r, scenes, size, repeat, controller, host, jobs, results);
+        r.name = name;
+        r.threshold = threshold;
+        r.beam_threshold = beam_threshold;
+        r.sizes = sizes;
+        r.out_dir = out_dir;
+        r.accel = accel;
+        r.patches = patches;
+        r.reference_rays = reference_rays;
+        r.methods = methods;
+        const auto out = run_request(progress, r, cli::run_experiment);
+        return table_parts(out.table);
+    });
     m.def("_sweep", [](const std::vector<std::string>& scenes, double start, double stop, int steps,
                        const std::string& window_test, const std::string& depth_estimate,
                        const std::string& size, int repeat, const std::string& controller,

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -110,6 +111,9 @@ std::string skip_reason(const std::string& command) {
         return "ListCommand.AnInstalledPrefixRunsOnItsOwn installs and runs a prefix";
     if (command.rfind("parallel", 0) == 0 && !fb89::testing::on_path("parallel"))
         return "GNU parallel is not installed (scripts/bootstrap installs it)";
+    if (command.rfind("scripts/slurm-sweep", 0) == 0 &&
+        (!fb89::testing::on_path("sbatch") || !fs::exists("/usr/sbin/slurmctld")))
+        return "Slurm is not installed (scripts/bootstrap installs slurm-wlm and munge)";
     if (command.rfind("fb89 view", 0) == 0)
         return "needs a display (ViewCommand.* run it under xvfb)";
     // a command on a 1989 host needs that host's guest; host-validate needs every one
@@ -136,14 +140,56 @@ struct Outcome {
     std::string output;  // stdout and stderr, as a terminal shows them
 };
 
-Outcome run(const std::string& command, const fs::path& dir, const fs::path& home) {
+// The single-node Slurm the README's cluster section runs on (scripts/slurm-local), started
+// by the first `scripts/slurm-sweep` and stopped, by the process ids it recorded, when the
+// tour ends however it ends. Its folder is a short one of its own (munged's socket lives in
+// it), removed with it.
+class LocalSlurm {
+  public:
+    explicit LocalSlurm(fs::path checkout) : m_checkout(std::move(checkout)) {}
+    LocalSlurm(const LocalSlurm&) = delete;
+    LocalSlurm& operator=(const LocalSlurm&) = delete;
+    ~LocalSlurm() {
+        if (m_dir.empty()) return;
+        const std::string stop =
+            "'" + (m_checkout / "scripts/slurm-local").string() + "' stop '" + m_dir.string() + "'";
+        if (std::system(stop.c_str()) != 0) ADD_FAILURE() << stop;
+        std::error_code ec;
+        fs::remove_all(m_dir, ec);
+    }
+    // "" when it runs (SLURM_CONF is conf()), else what went wrong
+    std::string start() {
+        if (!m_dir.empty()) return "";
+        const char* tmp = std::getenv("TMPDIR");
+        std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/fb89-tour-slurm.XXXXXX";
+        if (!::mkdtemp(pattern.data())) return "mkdtemp failed";
+        m_dir = pattern;
+        fs::permissions(m_dir, fs::perms::owner_all | fs::perms::group_read |
+                                   fs::perms::group_exec | fs::perms::others_read |
+                                   fs::perms::others_exec);
+        const std::string start = "'" + (m_checkout / "scripts/slurm-local").string() +
+                                  "' start '" + m_dir.string() + "' > '" +
+                                  (m_dir / "start.out").string() + "' 2>&1";
+        if (std::system(start.c_str()) != 0) return read(m_dir / "start.out");
+        return "";
+    }
+    fs::path conf() const { return m_dir.empty() ? fs::path() : m_dir / "slurm.conf"; }
+
+  private:
+    fs::path m_checkout, m_dir;
+};
+
+Outcome run(const std::string& command, const fs::path& dir, const fs::path& home,
+            const fs::path& slurm_conf = {}) {
     const fs::path log = home / "log";
-    const std::string shell =
-        "cd '" + dir.string() + "' && PATH='" + (fs::path(FB89_BUILD_DIR) / "cli").string() +
-        "':\"$PATH\" HOME='" + home.string() + "' XDG_CONFIG_HOME='" + (home / "config").string() +
-        "' FB89_CALIBRATION='" + (home / "calibration.json").string() + "' timeout 600 bash -c '" +
-        std::regex_replace(command, std::regex("'"), "'\\''") + "' >'" + log.string() +
-        "' 2>&1 </dev/null";
+    const std::string slurm = slurm_conf.empty() ? "" : " SLURM_CONF='" + slurm_conf.string() + "'";
+    const std::string shell = "cd '" + dir.string() + "' &&" + slurm + " PATH='" +
+                              (fs::path(FB89_BUILD_DIR) / "cli").string() + "':\"$PATH\" HOME='" +
+                              home.string() + "' XDG_CONFIG_HOME='" + (home / "config").string() +
+                              "' FB89_CALIBRATION='" + (home / "calibration.json").string() +
+                              "' timeout 600 bash -c '" +
+                              std::regex_replace(command, std::regex("'"), "'\\''") + "' >'" +
+                              log.string() + "' 2>&1 </dev/null";
     Outcome r;
     const int status = std::system(shell.c_str());
     r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -212,6 +258,7 @@ TEST(ReadmeTourLong, TheCommandsRunInACopyLeaveItCleanAndPrintWhatTheSamplesShow
         "' && git init -q && git add -A && git -c user.name=t -c user.email=t@t commit -qm copy";
     ASSERT_EQ(std::system(make_copy.c_str()), 0) << make_copy;
 
+    LocalSlurm slurm(copy);
     for (const Step& step : steps) {
         const std::string why = skip_reason(step.command);
         if (!why.empty()) {
@@ -219,7 +266,12 @@ TEST(ReadmeTourLong, TheCommandsRunInACopyLeaveItCleanAndPrintWhatTheSamplesShow
                         step.command.c_str());
             continue;
         }
-        const Outcome r = run(step.command, copy, home);
+        if (step.command.rfind("scripts/slurm-sweep", 0) == 0) {
+            const std::string failed = slurm.start();
+            ASSERT_EQ(failed, "") << "README.md:" << step.line
+                                  << ": the single-node Slurm did not start";
+        }
+        const Outcome r = run(step.command, copy, home, slurm.conf());
         EXPECT_EQ(r.status, 0) << "README.md:" << step.line << ": " << step.command << "\n"
                                << r.output;
         if (step.session) {

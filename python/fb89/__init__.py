@@ -186,8 +186,8 @@ def render(scene, *, method="zbuffer", size=None, host="native", controller=DEFA
 
 def experiment(name, scenes=None, *, size=None, repeat=7, controller=DEFAULT_CONTROLLER,
                threshold="calibrated", beam_threshold="calibrated", sizes=None,
-               out_dir="out/masks", accel="bvh", patches=0, reference_rays=4, host="native",
-               jobs=1, results=None, progress=None):
+               out_dir="out/masks", accel="bvh", patches=0, reference_rays=4, methods=None,
+               host="native", jobs=1, results=None, progress=None):
     """Re-runs one of the paper's experiments (fb89.experiments()), as `fb89 experiment NAME`
     does, and returns its fb89.Table (the CSV's columns and rows).
 
@@ -196,6 +196,7 @@ def experiment(name, scenes=None, *, size=None, repeat=7, controller=DEFAULT_CON
     repeat: interleaved timing rounds (medians); one run each on a 1989 host.
     threshold, beam_threshold: as render() takes them; out_dir: where fig4.7's masks go;
     accel: "bvh" or "grid" for the rays; patches, reference_rays: the radiosity experiments'.
+    methods: split's methods by name (None: every one).
     host, jobs, results: a 1989 host, emulated runs at once, and a folder keeping each run.
     progress: None (a line on stderr when it is a terminal), True, False, or a callable
         progress(what, done, total, unit). Ctrl-C, or a callable that raises, stops the
@@ -204,7 +205,8 @@ def experiment(name, scenes=None, *, size=None, repeat=7, controller=DEFAULT_CON
     parts = _fb89._experiment(
         name, paths, _size(size), repeat, controller, _threshold(threshold),
         _threshold(beam_threshold), [_size(s) for s in (sizes or [])], _os.fspath(out_dir),
-        accel, patches, reference_rays, host, jobs, _os.fspath(results or ""), progress)
+        accel, patches, reference_rays, list(methods or []), host, jobs,
+        _os.fspath(results or ""), progress)
     return Table(**parts)
 
 

@@ -236,6 +236,17 @@ def test_an_experiment_is_the_command_lines_table(tmp_path):
         table["no_such_column"]
 
 
+def test_the_split_on_the_methods_asked_for():
+    table = fb89.experiment("split", ["A"], size="64x49", repeat=1, methods=["warnock", "zbuffer"],
+                            progress=False)
+    # in the paper's order, whatever order they were asked in
+    assert list(table["method"]) == ["zbuffer", "warnock"]
+    with pytest.raises(fb89.OptionError, match="--methods: unknown method 'wz'"):
+        fb89.experiment("split", ["A"], methods=["wz"], progress=False)
+    with pytest.raises(fb89.OptionError, match="--methods: only with the split experiment"):
+        fb89.experiment("fig2.1", ["A"], methods=["zbuffer"], progress=False)
+
+
 def test_a_sweep_and_its_numpy_columns():
     table = fb89.sweep("threshold", "A", start=0.01, stop=0.1, steps=3, size="96x73", repeat=1,
                        progress=False)
