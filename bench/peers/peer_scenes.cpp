@@ -93,7 +93,7 @@ PeerScene random_onscreen_triangles(int width, int height, int count, double are
 }
 
 PeerScene file_scene(const std::filesystem::path& file) {
-    return peer_scene(file.filename().string(), host::load_scene(file));
+    return peer_scene(file.stem().string(), host::load_scene(file));  // "A", as fb89 names it
 }
 
 RayScene ray_file_scene(const std::filesystem::path& file, int width, int height) {

@@ -32,7 +32,7 @@ PeerScene ideal_scene(int width, int height, int layers, int f_v);
 // so all three vertices stay on screen.
 PeerScene random_onscreen_triangles(int width, int height, int count, double area, uint64_t seed);
 
-// A scene file (.json or .tri), loaded and projected.
+// A scene file (.json or .tri), loaded and projected; named by its stem ("A", "random_large_flat").
 PeerScene file_scene(const std::filesystem::path& file);
 
 // A world scene and its face-id projection (background black, so a miss reads as id + 1 =

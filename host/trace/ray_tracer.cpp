@@ -33,6 +33,37 @@ void TraceCounts::publish(Counters& counters) const {
 
 namespace {
 
+// The nearest-hit rule both walks share (the BVH's and the grid's): a piece hit at tmin < t <=
+// tmax becomes the best when nearer than it, or as near and a lower piece -- a tie, counted --
+// so the answer does not depend on the order a walk meets the pieces. Tests and ties counted
+// in locals, added to TraceCounts once a ray.
+struct Nearest {
+    const TraceScene& scene;
+    const Ray& ray;
+    const RaySpace& space;
+    double tmin, tmax;
+    Hit best{INFINITY, kNoFace};
+    uint64_t tests = 0, ties = 0;
+
+    void test(uint32_t piece) {
+        ++tests;
+        double t;
+        if (!scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) || t > best.t ||
+            t > tmax)
+            return;
+        if (t == best.t) {
+            ++ties;
+            if (piece > best.piece) return;
+        }
+        best = {t, piece};
+    }
+    Hit counted(TraceCounts& counts) const {
+        counts.face_tests += tests;
+        counts.ties += ties;
+        return best;
+    }
+};
+
 // The nearest piece with tmin < t <= tmax, never `skip`: the BVH walk and the watertight test.
 // Inlined whole into each level's entry point below (flatten), so that each is compiled for
 // its instruction set; the floating-point operations are the same at every level.
@@ -40,28 +71,14 @@ template <int Lanes>
 inline Hit closest_hit_body(const RayBvh& bvh, const TraceScene& scene, const Ray& ray, double tmin,
                             uint32_t skip, TraceCounts& counts, double tmax) {
     const RaySpace space(ray);
-    Hit best{INFINITY, kNoFace};
-    uint64_t tests = 0, ties = 0;
-    const uint64_t nodes = bvh.walk<Lanes>(
+    Nearest nearest{scene, ray, space, tmin, tmax};
+    counts.nodes += bvh.walk<Lanes>(
         ray, tmin, tmax,
         [&](uint32_t piece) {
-            if (piece == skip) return;
-            ++tests;
-            double t;
-            if (!scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) ||
-                t > best.t || t > tmax)
-                return;
-            if (t == best.t) {
-                ++ties;
-                if (piece > best.piece) return;
-            }
-            best = {t, piece};
+            if (piece != skip) nearest.test(piece);
         },
-        [&] { return best.t; });
-    counts.nodes += nodes;
-    counts.face_tests += tests;
-    counts.ties += ties;
-    return best;
+        [&] { return nearest.best.t; });
+    return nearest.counted(counts);
 }
 
 using ClosestHit = Hit (*)(const RayBvh&, const TraceScene&, const Ray&, double, uint32_t,
@@ -115,30 +132,16 @@ Hit RayTracer::closest_hit_grid(const Ray& ray, double tmin, uint32_t skip, Trac
                                 double tmax) const {
     const Mailbox::Round mailbox = m_mailbox.begin();
     const RaySpace space(ray);
-    Hit best{INFINITY, kNoFace};
-    uint64_t tests = 0, ties = 0;
+    Nearest nearest{m_scene, ray, space, tmin, tmax};
     auto test_list = [&, mailbox](std::span<const uint32_t> pieces) {
-        for (uint32_t piece : pieces) {
-            if (!mailbox.first_visit(piece) || piece == skip) continue;
-            ++tests;
-            double t;
-            if (!m_scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) ||
-                t > best.t || t > tmax)
-                continue;
-            if (t == best.t) {
-                ++ties;
-                if (piece > best.piece) continue;
-            }
-            best = {t, piece};
-        }
+        for (uint32_t piece : pieces)
+            if (mailbox.first_visit(piece) && piece != skip) nearest.test(piece);
     };
     // a hit beyond a cell may yet be beaten by a piece in a later cell: stop only past it
-    const auto walked = m_grid->walk_levels(ray, tmin, tmax, test_list,
-                                            [&](double t_exit) { return best.t <= t_exit; });
+    const auto walked = m_grid->walk_levels(
+        ray, tmin, tmax, test_list, [&](double t_exit) { return nearest.best.t <= t_exit; });
     counts.cells += walked.cells + walked.sub_cells;
-    counts.face_tests += tests;
-    counts.ties += ties;
-    return best;
+    return nearest.counted(counts);
 }
 
 Hit RayTracer::primary_hit(const Ray& primary, TraceCounts& counts) const {
