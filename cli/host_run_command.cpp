@@ -28,12 +28,6 @@ extern "C" void ask_stop(int signal) {
     period::request_stop();  // a lock-free atomic store: safe in a handler
 }
 
-void stopped(const HostRunArgs& a, int& exit_code) {
-    fmt::print(stderr, "fb89 host-run: stopped by {} before the run ended; nothing written to {}\n",
-               g_signal == SIGINT ? "SIGINT" : "SIGTERM", a.results);
-    exit_code = 128 + (g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM);
-}
-
 }  // namespace
 
 void register_host_run(CLI::App& app, int& exit_code) {
@@ -65,12 +59,10 @@ void register_host_run(CLI::App& app, int& exit_code) {
                            done.counts);
             exit_code = kSuccess;
         } catch (const period::Stopped&) {
-            stopped(*a, exit_code);
-        } catch (const period::EmulatorError&) {
-            // the same signal reached the emulator (Slurm signals every process of a task),
-            // which ended before this process looked: stopped, not crashed
-            if (g_signal == 0) throw;
-            stopped(*a, exit_code);
+            fmt::print(stderr,
+                       "fb89 host-run: stopped by {} before the run ended; nothing written to {}\n",
+                       g_signal == SIGINT ? "SIGINT" : "SIGTERM", a->results);
+            exit_code = 128 + (g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM);
         }
     });
 }

@@ -250,7 +250,10 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     run.counts_json = text.str();
     std::filesystem::remove(counts_path);
     const std::string where = last_phase(phase_path);
-    if (drained == Drained::Stopped) throw Stopped{};
+    // a stop asked for (period/stop.h) ends the run however the emulator ended: by our kill, or
+    // by the same signal reaching it first (Ctrl-C reaches the whole process group; Slurm's
+    // scancel every process of a task)
+    if (drained == Drained::Stopped || (WIFSIGNALED(status) && stop_requested())) throw Stopped{};
 
     const std::string said = guest_err.empty() ? "" : ": " + guest_err.substr(0, 2000);
     if (drained == Drained::OutOfTime)
