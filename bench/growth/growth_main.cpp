@@ -78,7 +78,11 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_flag(
         "--quiet", [&](int64_t) { options.progress = false; }, "no line per run");
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;  // --help: 0; a usage error: 2, as fb89's own
+    }
     try {
         options.methods.clear();
         for (const std::string& name : methods)

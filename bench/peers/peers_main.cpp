@@ -2,6 +2,7 @@
 // on ideal scenes, seeded random triangles and scenes A-F; with --rays, our ray tracer and
 // beam-ray hybrid side by side with Embree 3 on scenes G, H, I and the Cornell boxes
 // (docs/BENCHMARKS.md).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -23,9 +24,11 @@ using namespace fb89::peers;
 struct Args {
     int repeat = 21, warmup = 2;
     double warmup_seconds = 1.0;
-    std::vector<std::string> isa;  // --rays: our kernel levels; empty: every one supported
+    double canary_tolerance = 0.20;
+    std::vector<std::string> isa;   // --rays: our kernel levels; empty: every one supported
+    std::vector<std::string> only;  // --rays: these scenes; empty: all
     bool repeat_given = false;
-    std::string scenes_dir = FB89_SCENES_DIR, csv, size = "1024x780", quality = "high";
+    std::string scenes_dir = FB89_SCENES_DIR, csv, rounds_csv, size = "1024x780", quality = "high";
     bool quick = false;
     double beam_threshold = fb89::host::kDefaultBeamThreshold;  // what calibrate chose (RESULTS.md)
 };
@@ -49,10 +52,18 @@ int run_rays(const Args& args) {
                   << fb89::host::kernel_level_description(level) << ")";
     std::cerr << "\n";
     options.quality = parse_embree_quality(args.quality);
+    options.canary_tolerance = args.canary_tolerance;
+    CanaryGauge canary;
+    options.canary = &canary;
     int w = 0, h = 0;
     if (std::sscanf(args.size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1)
         throw std::invalid_argument("--size must be WxH, not '" + args.size + "'");
     if (args.quick) w = 256, h = 195;
+
+    auto wanted = [&](const std::string& name) {
+        return args.only.empty() ||
+               std::find(args.only.begin(), args.only.end(), name) != args.only.end();
+    };
 
     std::vector<RayRow> rows;
     auto run = [&](const RayScene& scene) {
@@ -62,6 +73,7 @@ int run_rays(const Args& args) {
         if (rows.size() == 1) std::cerr << "peer: " << rows.front().embree << "\n";
     };
     for (const char* name : {"G", "H", "I", "cornell_box", "cornell_mirror"}) {
+        if (!wanted(name)) continue;
         const std::filesystem::path file = args.scenes_dir + "/" + name + ".json";
         if (!std::filesystem::exists(file)) {
             std::cerr << "  " << file.string() << " does not exist: skipped\n";
@@ -70,7 +82,7 @@ int run_rays(const Args& args) {
         run(ray_file_scene(file, w, h));
         if (name[0] == 'G' && !args.quick) run(ray_file_scene(file, 2 * w, 2 * h));
     }
-    if (!args.quick) run(random_world_triangles(w, h, 1000, 1989));
+    if (!args.quick && wanted("random")) run(random_world_triangles(w, h, 1000, 1989));
 
     std::cout << ray_human_table(rows);
     if (!args.csv.empty()) {
@@ -79,6 +91,8 @@ int run_rays(const Args& args) {
             text += ray_csv_row(r) + "\n";
         fb89::protocol::write_output(args.csv, text);
     }
+    if (!args.rounds_csv.empty())
+        fb89::protocol::write_output(args.rounds_csv, ray_rounds_csv(rows));
     // exit 1 when our ray tracer and Embree's robust mode disagree inside a face, or when
     // the beam hybrid's ids differ from the ray tracer's
     int status = 0;
@@ -178,15 +192,28 @@ int main(int argc, char** argv) {
     app.add_option("--isa", args.isa,
                    "--rays: our kernels' instruction sets, each its own row: baseline, v3, v4 "
                    "(default: every one this machine runs)");
+    app.add_option("--canary-tolerance", args.canary_tolerance,
+                   "--rays: do a round again when the canary ran this fraction slower than its "
+                   "best (0: never)")
+        ->check(CLI::Range(0.0, 10.0));
+    app.add_option("--only", args.only,
+                   "--rays: only these scenes (G also at twice the size; random: the random world)")
+        ->check(CLI::IsMember({"G", "H", "I", "cornell_box", "cornell_mirror", "random"}));
     app.add_option("--scenes-dir", args.scenes_dir, "where the scene files are");
     app.add_option("--csv", args.csv, "write the rows as CSV to this file");
+    app.add_option("--rounds-csv", args.rounds_csv,
+                   "--rays: write every timed round's times as CSV to this file");
     app.add_flag("--quick", args.quick, "a few small scenes, for tests");
     app.add_option("--size", args.size, "--rays: image size WxH (G also at twice it)");
     app.add_option("--beam-threshold", args.beam_threshold,
                    "--rays: the beam method's Expr. 2.7 threshold");
     app.add_option("--embree-quality", args.quality, "--rays: Embree build quality")
         ->check(CLI::IsMember({"low", "medium", "high"}));
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;  // --help: 0; a usage error: 2, as fb89's own
+    }
     args.repeat_given = app.count("--repeat") > 0;
 
     try {

@@ -47,8 +47,16 @@ double mrays(double pixels, double ms) {
     return ms > 0 ? pixels / ms / 1000.0 : 0;
 }
 
-std::string ratio(double num, double den) {
-    return den > 0 ? fmt::format("{:.2f}", num / den) : "";
+// a paired ratio's median, as the tables print it
+std::string paired(const RayRow& r, double RayRow::Round::*num, double RayRow::Round::*den) {
+    const RayRow::Spread q = r.ratio(num, den);
+    return q.median > 0 ? fmt::format("{:.2f}", q.median) : "";
+}
+
+// half the interquartile range of a paired ratio, in % of its median
+std::string spread_cell(const RayRow& r, double RayRow::Round::*num, double RayRow::Round::*den) {
+    const RayRow::Spread q = r.ratio(num, den);
+    return q.median > 0 ? fmt::format("{:.1f}", 50.0 * (q.high - q.low) / q.median) : "";
 }
 
 std::string agreement_cell(const IdAgreement& a) {
@@ -57,6 +65,39 @@ std::string agreement_cell(const IdAgreement& a) {
 }
 
 }  // namespace
+
+// A fixed load of scalar integer work, eight independent chains (many instructions a cycle, as
+// our ray tracer's scalar code).
+double CanaryGauge::time() {
+    const auto start = std::chrono::steady_clock::now();
+    uint64_t v[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    for (int i = 0; i < 800000; ++i)
+        for (uint64_t& x : v) {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            asm volatile("" : "+r"(x));  // kept scalar: no vector form of the chains
+        }
+    uint64_t all = 0;
+    for (uint64_t x : v)
+        all += x;
+    asm volatile("" : : "r"(all));
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    best = std::min(best, ms);
+    return ms;
+}
+
+RayRow::Spread RayRow::ratio(double Round::*num, double Round::*den) const {
+    std::vector<double> v;
+    for (const Round& r : rounds)
+        if (r.*den > 0) v.push_back(r.*num / r.*den);
+    if (v.empty()) return {};
+    std::sort(v.begin(), v.end());
+    // quartiles by nearest rank; with 9 rounds the 3rd and 7th ratios
+    const size_t n = v.size();
+    return {median_of(v), v[(n - 1) / 4], v[(3 * (n - 1) + 3) / 4]};
+}
 
 std::vector<uint32_t> our_ray_face_ids(const RayScene& scene, const std::string& method,
                                        double beam_threshold) {
@@ -90,7 +131,10 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
     // warm-up (at least `warmup` rounds and `warmup_seconds`: the first scene of a run meets
     // cold pages and clocks), then interleaved rounds
     std::vector<uint32_t> single_ids, packet_ids, robust_ids;
-    std::vector<double> single_t, packet_t, robust_t;
+    std::vector<double> single_t, packet_t, robust_t, canary_t;
+    CanaryGauge own;
+    CanaryGauge& canary = options.canary ? *options.canary : own;
+    int discarded = 0;
     const auto start = std::chrono::steady_clock::now();
     auto warm = [&](int round) {
         const double seconds =
@@ -100,6 +144,7 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
     int timed_rounds = 0;
     for (int round = 0; timed_rounds < options.repeat; ++round) {
         const bool timed = !warm(round);
+        const double calm_before = canary.time();
         const double t1 = time_embree([&] { embree.trace_single(single_ids); });
         std::vector<double> t_ray, t_beam;
         for (auto& r : raytrace)
@@ -108,7 +153,16 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         for (auto& b : beam)
             t_beam.push_back(b->render(s));
         const double t_robust = time_embree([&] { robust.trace_single(robust_ids); });
+        const double t_canary = canary.time();
         if (!timed) continue;
+        // a round the core ran it slower, before or after, is done again (up to a limit)
+        const double limit = canary.best * (1 + options.canary_tolerance);
+        if (options.canary_tolerance > 0 && (calm_before > limit || t_canary > limit) &&
+            discarded < options.max_discarded) {
+            ++discarded;
+            continue;
+        }
+        canary_t.push_back(t_canary);
         ++timed_rounds;
         single_t.push_back(t1);
         packet_t.push_back(t16);
@@ -134,6 +188,11 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         row.embree_robust_ms = median_of(robust_t);
         row.raytrace_ms = median_of(raytrace[l]->samples);
         row.beam_ms = median_of(beam[l]->samples);
+        row.discarded = discarded;
+        row.canary_ms = median_of(canary_t);
+        for (size_t i = 0; i < single_t.size(); ++i)
+            row.rounds.push_back({single_t[i], raytrace[l]->samples[i], packet_t[i],
+                                  beam[l]->samples[i], robust_t[i], canary_t[i]});
 
         // agreement, off the clock, from the last frames
         const std::vector<uint32_t> ours = controller_face_ids(raytrace[l]->frame);
@@ -170,45 +229,89 @@ std::string ray_csv_header() {
            "vs_robust_interior,vs_default_differ,vs_default_coverage,vs_default_boundary,"
            "vs_default_diagonal,vs_default_interior,"
            "packets_vs_single,beam_vs_raytrace,raytrace_rays,nodes_per_ray,face_tests_per_ray,"
-           "beam_rays,pixels_by_beams";
+           "beam_rays,pixels_by_beams,rounds,raytrace_over_embree_single_q1,"
+           "raytrace_over_embree_single_q3,beam_over_embree_packets_q1,"
+           "beam_over_embree_packets_q3,embree_single_min_ms,raytrace_min_ms,beam_min_ms,canary_ms,"
+           "discarded_rounds";
 }
 
 std::string ray_csv_row(const RayRow& r) {
+    using R = RayRow::Round;
     const double px = r.pixels();
     const IdAgreement &a = r.vs_robust, &b = r.vs_default;
     const double rays = r.rays ? double(r.rays) : 1.0;
+    const RayRow::Spread rt = r.ratio(&R::embree_single, &R::raytrace),
+                         bm = r.ratio(&R::embree_packets, &R::beam);
+    auto least = [&](double R::*field) {
+        double m = 0;
+        for (const R& round : r.rounds)
+            m = m > 0 ? std::min(m, round.*field) : round.*field;
+        return m;
+    };
     return fmt::format(
         "\"{}\",{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.2f},{:.2f},{:."
         "2f},"
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.2f},{},{}",
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.2f},{},{},"
+        "{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{}",
         r.scene, r.isa, r.width, r.height, r.faces, r.triangles, r.embree_single_ms,
         r.embree_packets_ms, r.embree_robust_ms, r.raytrace_ms, r.beam_ms,
         mrays(px, r.embree_single_ms), mrays(px, r.embree_packets_ms),
         mrays(px, r.embree_robust_ms), mrays(px, r.raytrace_ms), mrays(px, r.beam_ms),
-        ratio(r.embree_single_ms, r.raytrace_ms), ratio(r.embree_robust_ms, r.raytrace_ms),
-        ratio(r.embree_single_ms, r.beam_ms), ratio(r.embree_packets_ms, r.beam_ms), a.differ,
+        paired(r, &R::embree_single, &R::raytrace), paired(r, &R::embree_robust, &R::raytrace),
+        paired(r, &R::embree_single, &R::beam), paired(r, &R::embree_packets, &R::beam), a.differ,
         a.coverage, a.on_boundary, a.diagonal, a.interior, b.differ, b.coverage, b.on_boundary,
         b.diagonal, b.interior, r.packets_vs_single, r.beam_vs_raytrace, r.rays,
-        double(r.nodes) / rays, double(r.face_tests) / rays, r.beam_rays, r.pixels_by_beams);
+        double(r.nodes) / rays, double(r.face_tests) / rays, r.beam_rays, r.pixels_by_beams,
+        r.rounds.size(), rt.low, rt.high, bm.low, bm.high, least(&R::embree_single),
+        least(&R::raytrace), least(&R::beam), r.canary_ms, r.discarded);
+}
+
+std::string ray_rounds_csv(const std::vector<RayRow>& rows) {
+    std::string out =
+        "scene,isa,round,embree_single_ms,raytrace_ms,embree_packets_ms,beam_ms,"
+        "embree_robust_ms,canary_ms\n";
+    for (const RayRow& r : rows)
+        for (size_t i = 0; i < r.rounds.size(); ++i) {
+            const RayRow::Round& t = r.rounds[i];
+            out += fmt::format("\"{}\",{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n", r.scene,
+                               r.isa, i + 1, t.embree_single, t.raytrace, t.embree_packets, t.beam,
+                               t.embree_robust, t.canary);
+        }
+    return out;
 }
 
 std::string ray_human_table(const std::vector<RayRow>& rows) {
+    using R = RayRow::Round;
     std::string out = fmt::format(
-        "{:<32} {:<8} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6} {:>6} "
+        "{:<32} {:<8} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>5} {:>6} {:>6} {:>6} {:>5} "
         "{:>6}\n",
         "scene", "isa", "faces", "embree1", "embree16", "robust1", "raytrace", "beam", "rt/e1",
-        "rt/rb", "bm/e1", "bm/e16", "bm/rt");
+        "±%", "rt/rb", "bm/e1", "bm/e16", "±%", "bm/rt");
     for (const RayRow& r : rows)
         out += fmt::format(
-            "{:<32} {:<8} {:>6} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>6} {:>6} {:>6} "
-            "{:>6} {:>6}\n",
+            "{:<32} {:<8} {:>6} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>8.2f} {:>6} {:>5} {:>6} "
+            "{:>6} {:>6} {:>5} {:>6}\n",
             r.scene, r.isa, r.faces, r.embree_single_ms, r.embree_packets_ms, r.embree_robust_ms,
-            r.raytrace_ms, r.beam_ms, ratio(r.embree_single_ms, r.raytrace_ms),
-            ratio(r.embree_robust_ms, r.raytrace_ms), ratio(r.embree_single_ms, r.beam_ms),
-            ratio(r.embree_packets_ms, r.beam_ms), ratio(r.beam_ms, r.raytrace_ms));
+            r.raytrace_ms, r.beam_ms, paired(r, &R::embree_single, &R::raytrace),
+            spread_cell(r, &R::embree_single, &R::raytrace),
+            paired(r, &R::embree_robust, &R::raytrace), paired(r, &R::embree_single, &R::beam),
+            paired(r, &R::embree_packets, &R::beam), spread_cell(r, &R::embree_packets, &R::beam),
+            paired(r, &R::beam, &R::raytrace));
     out +=
-        "ms: median wall-clock per frame; ratios: Embree time / ours (> 1: ours is faster);\n"
-        "bm/rt: our beam hybrid's time over our ray tracer's (< 1: the beams pay)\n\n";
+        "ms: median wall-clock per frame; ratios: Embree time / ours (> 1: ours is faster), the\n"
+        "median of each round's ratio; ±%: half their interquartile range, in % of the median;\n"
+        "bm/rt: our beam hybrid's time over our ray tracer's (< 1: the beams pay)\n";
+    // the canary per scene (its rounds are shared by the scene's rows)
+    std::string last;
+    for (const RayRow& r : rows) {
+        if (r.scene == last) continue;
+        last = r.scene;
+        out += fmt::format("canary {:<32} {:.3f} ms, {} round{} done again\n", r.scene, r.canary_ms,
+                           r.discarded, r.discarded == 1 ? "" : "s");
+    }
+    out +=
+        "canary: a fixed scalar load timed before and after each round; a round either ran\n"
+        "over --canary-tolerance slower than its best is done again (BENCHMARKS.md, round 3)\n\n";
 
     out += fmt::format("{:<32} {:<8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "Mrays/s",
                        "isa", "embree1", "embree16", "robust1", "raytrace", "beam*", "nodes/r",

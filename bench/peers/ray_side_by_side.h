@@ -9,6 +9,7 @@
 // FILL_RECTs). Both generate their rays inside the timed loop.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,6 +26,16 @@ namespace fb89::peers {
 std::vector<uint32_t> our_ray_face_ids(const RayScene& scene, const std::string& method,
                                        double beam_threshold = 0.5);
 
+// What slows the core for a while from outside the process (another virtual machine on its
+// hardware) slows scalar code far more than Embree's vector code: our ray tracer by up to
+// 1.8x where Embree's single rays lose under 10% (docs/BENCHMARKS.md, round 3). The canary,
+// a fixed load of scalar work timed before and after every round, shows such spells; the
+// fastest it ran in this process is the calm reference.
+struct CanaryGauge {
+    double best = INFINITY;  // ms
+    double time();           // runs it once: ms
+};
+
 struct RaySideBySideOptions {
     int repeat = 9;  // timed rounds; each round runs Embree's three and ours at every level
     int warmup = 2;  // untimed rounds first, at least
@@ -33,6 +44,11 @@ struct RaySideBySideOptions {
     std::vector<host::KernelLevel> levels;
     double beam_threshold = 0.5;
     EmbreeQuality quality = EmbreeQuality::High;
+    // a round whose canary, before or after it, ran more than this fraction slower than its
+    // best is done again, up to max_discarded times a scene (0: every round counts)
+    double canary_tolerance = 0.20;
+    int max_discarded = 40;
+    CanaryGauge* canary = nullptr;  // shared across scenes; null: one of the scene's own
 };
 
 struct RayRow {
@@ -43,6 +59,23 @@ struct RayRow {
     // medians of wall-clock ms per frame
     double embree_single_ms = 0, embree_packets_ms = 0, embree_robust_ms = 0;
     double raytrace_ms = 0, beam_ms = 0;
+    // every timed round's wall-clock ms, in order: a round runs each of them once, within a
+    // fraction of a second, so what slows the machine for a while slows a round's five alike
+    struct Round {
+        double embree_single = 0, raytrace = 0, embree_packets = 0, beam = 0, embree_robust = 0;
+        double canary = 0;  // a fixed scalar load timed after them (ray_side_by_side.cpp)
+    };
+    std::vector<Round> rounds;
+    int discarded = 0;     // rounds done again, the canary slow
+    double canary_ms = 0;  // the canary's median over the rounds kept
+    // A ratio of two of a round's times (e.g. &Round::embree_single, &Round::raytrace) over
+    // the rounds: the median, and the lower and upper quartiles. The ratios the tables give:
+    // taken round by round, they are not moved by a slow spell that a median of each side's
+    // times alone would catch on one side and not the other.
+    struct Spread {
+        double median = 0, low = 0, high = 0;
+    };
+    Spread ratio(double Round::*num, double Round::*den) const;
     IdAgreement vs_robust, vs_default;  // our raytrace against Embree's single rays
     uint64_t packets_vs_single = 0;     // pixels where the packets' ids differ from rtcIntersect1's
     uint64_t beam_vs_raytrace = 0;      // pixels where our two methods' ids differ
@@ -64,5 +97,7 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
 std::string ray_csv_header();
 std::string ray_csv_row(const RayRow& row);
 std::string ray_human_table(const std::vector<RayRow>& rows);
+// Every timed round of every row, one line each: scene, isa, round, and its five times.
+std::string ray_rounds_csv(const std::vector<RayRow>& rows);
 
 }  // namespace fb89::peers

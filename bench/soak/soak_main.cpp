@@ -73,7 +73,11 @@ int main(int argc, char** argv) {
     app.add_option("--json", json_file, "also write the summary as JSON");
     app.add_flag(
         "--quiet,-q", [&](int64_t) { options.progress = false; }, "no progress lines");
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;  // --help: 0; a usage error: 2, as fb89's own
+    }
     try {
         for (const std::string& m : options.methods)
             host::method_named(m);  // throws for an unknown name

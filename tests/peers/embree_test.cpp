@@ -5,6 +5,7 @@
 // 4x4 coherent packets give exactly the ids of its single rays.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -94,6 +95,36 @@ TEST(EmbreePeer, SeesTheFacesOfEveryPieceUnderTheirIds) {
         hits += id != 0;
     }
     EXPECT_GT(hits, 0u);
+}
+
+TEST(EmbreePeerHarness, TakesItsRatiosRoundByRound) {
+    // Nine rounds; from the middle of the fifth, between Embree's frame and ours, the machine
+    // runs at half speed. Round by round Embree takes 1.25x our time but in that one round;
+    // the medians of each side's own times (10 and 16 ms) would give 0.625.
+    RayRow row;
+    const double embree[] = {10, 10, 10, 10, 10, 20, 20, 20, 20};
+    const double ours[] = {8, 8, 8, 8, 16, 16, 16, 16, 16};
+    for (int i = 0; i < 9; ++i)
+        row.rounds.push_back({embree[i], ours[i], 1.0, 0.5 * (i + 1), 0.0});
+    using R = RayRow::Round;
+    const RayRow::Spread rt = row.ratio(&R::embree_single, &R::raytrace);
+    EXPECT_DOUBLE_EQ(rt.median, 1.25);
+    EXPECT_DOUBLE_EQ(rt.low, 1.25);
+    EXPECT_DOUBLE_EQ(rt.high, 1.25);
+    // the packets over the beams: 1/0.5, 1/1, ..., 1/4.5; median the 5th, quartiles the 3rd
+    // and 7th by nearest rank
+    const RayRow::Spread bm = row.ratio(&R::embree_packets, &R::beam);
+    EXPECT_DOUBLE_EQ(bm.median, 1 / 2.5);
+    EXPECT_DOUBLE_EQ(bm.low, 1 / 3.5);
+    EXPECT_DOUBLE_EQ(bm.high, 1 / 1.5);
+    // a side that took no time has no ratio
+    EXPECT_DOUBLE_EQ(row.ratio(&R::embree_single, &R::embree_robust).median, 0.0);
+    // one line a round, and the header
+    row.scene = "s";
+    row.isa = "v3";
+    const std::string csv = ray_rounds_csv({row});
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10);
+    EXPECT_NE(csv.find("\n\"s\",v3,9,20.000,16.000,1.000,4.500,0.000,0.000\n"), std::string::npos) << csv;
 }
 
 }  // namespace
