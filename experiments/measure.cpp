@@ -25,6 +25,7 @@ std::vector<Measured> time_renderers(const host::ScreenScene& screen,
         out[m].commands.time_packets(protocol::kSendPacketCommands);  // send times, by packet
         host::HostStats stats;
         host::Timing t = host::render_frame(*renderers[m], screen, out[m].commands, stats);
+        out[m].last = t;
         if (timed) {
             times[m].push_back(t);
             out[m].samples.push_back(t);
@@ -34,6 +35,16 @@ std::vector<Measured> time_renderers(const host::ScreenScene& screen,
     for (size_t m = 0; m < renderers.size(); ++m)
         out[m].median = host::median(times[m]);
     return out;
+}
+
+std::vector<double> Measured::host_send_times_us() {
+    std::vector<double> us = commands.send_times_us();
+    const double hs_us = median.cpu_ms * 1e3;
+    if (hs_us <= 0 || last.wall_ms <= 0) return us;
+    const double scale = hs_us / (last.wall_ms * 1e3);
+    for (double& t : us)
+        t = std::min(t * scale, hs_us);
+    return us;
 }
 
 std::vector<Measured> measure_interleaved(const host::ScreenScene& screen,
@@ -97,8 +108,8 @@ std::vector<Measured> measure_settings(const std::string& file, const host::Scre
                 m.setup += projection;
         }
         for (Measured& m : out)
-            m.send_us = frame_send_times(m.commands.send_times_us(), m.setup.cpu_ms * 1e3,
-                                         m.commands.size());
+            m.send_us =
+                frame_send_times(m.host_send_times_us(), m.setup.cpu_ms * 1e3, m.commands.size());
         return out;
     }
     // commands and counts from one frame here, untimed

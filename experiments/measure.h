@@ -49,6 +49,12 @@ struct Measured {
     host::Timing setup;  // the whole set-up stage, once: projection and the method's own
     host::Counters counters;
     protocol::MemoryBuffer commands;
+    host::Timing last;  // the frame whose commands these are: its time
+    // That frame's send times in microseconds from its start, on the clock of the reported
+    // hidden-surface time (median.cpu_ms): read on the wall clock, then scaled by median.cpu_ms
+    // over the frame's wall time, so that on a loaded machine, where wall time runs ahead of
+    // CPU time, no send falls after the host's end. As read when either time is zero.
+    std::vector<double> host_send_times_us();
     // measure_settings(): each command's send time in microseconds from the set-up's start
     // (FRAME_BEGIN's 0): measured natively, counted on a 1989 host; empty when there are none
     std::vector<double> send_us;

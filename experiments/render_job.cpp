@@ -179,7 +179,7 @@ RenderResult run_render_job(const RenderJob& job) {
     std::vector<std::vector<double>> send_us(result.runs.size());
     for (size_t m = 0; m < result.runs.size(); ++m) {
         MethodRun& run = result.runs[m];
-        send_us[m] = measured[m].commands.send_times_us();
+        send_us[m] = measured[m].host_send_times_us();
         run.commands = std::move(measured[m].commands);
         run.stats.hidden_surface = measured[m].median;
         run.stats.hidden_surface_samples = std::move(measured[m].samples);
