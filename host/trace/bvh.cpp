@@ -164,6 +164,7 @@ uint32_t RayBvh::collapse(uint32_t node) {
         }
         w.child[k] = UINT32_MAX;
     }
+    w.used = static_cast<uint32_t>(slots.size());
     for (size_t k = 0; k < slots.size(); ++k) {
         const Node& n = m_nodes[slots[k]];
         for (int a = 0; a < 3; ++a) {

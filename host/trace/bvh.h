@@ -58,7 +58,9 @@ class RayBvh {
         float lo[3][kWidth], hi[3][kWidth];
         uint32_t child[kWidth];
         uint16_t count[kWidth];  // pieces in a leaf slot; 0 for an inner or empty slot
+        uint32_t used;           // slots in use: the first `used`, the rest empty
     };
+    static_assert(sizeof(WideNode) == 256);
     static constexpr bool kWide =
 #if defined(__x86_64__) && !defined(FB89_PORTABLE_KERNELS)
         true;
@@ -275,8 +277,8 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
         auto t_of = [&](int k) { return tn[k / Lanes][k % Lanes]; };
         // the boxes entered, the nearest pushed last (of equal entries, the lower slot)
         int order[kWidth], hits = 0;
+        visited += n.used;
         for (int k = 0; k < kWidth; ++k) {
-            visited += n.child[k] != UINT32_MAX;
             if (!hit[k / Lanes][k % Lanes]) continue;
             int i = hits++;
             const float t = t_of(k);
