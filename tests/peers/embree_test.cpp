@@ -124,7 +124,8 @@ TEST(EmbreePeerHarness, TakesItsRatiosRoundByRound) {
     row.isa = "v3";
     const std::string csv = ray_rounds_csv({row});
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10);
-    EXPECT_NE(csv.find("\n\"s\",v3,9,20.000,16.000,1.000,4.500,0.000,0.000\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\n\"s\",v3,9,20.000,16.000,1.000,4.500,0.000,0.000\n"), std::string::npos)
+        << csv;
 }
 
 }  // namespace
