@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 
@@ -142,9 +143,11 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         return round < options.warmup || seconds < options.warmup_seconds;
     };
     int timed_rounds = 0;
+    // the canary before a round is the one after the round before it (run once at the start)
+    double t_canary = canary.time();
     for (int round = 0; timed_rounds < options.repeat; ++round) {
         const bool timed = !warm(round);
-        const double calm_before = canary.time();
+        const double calm_before = t_canary;
         const double t1 = time_embree([&] { embree.trace_single(single_ids); });
         std::vector<double> t_ray, t_beam;
         for (auto& r : raytrace)
@@ -153,7 +156,7 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         for (auto& b : beam)
             t_beam.push_back(b->render(s));
         const double t_robust = time_embree([&] { robust.trace_single(robust_ids); });
-        const double t_canary = canary.time();
+        t_canary = canary.time();
         if (!timed) continue;
         // a round the core ran it slower, before or after, is done again (up to a limit)
         const double limit = canary.best * (1 + options.canary_tolerance);
@@ -243,10 +246,10 @@ std::string ray_csv_row(const RayRow& r) {
     const RayRow::Spread rt = r.ratio(&R::embree_single, &R::raytrace),
                          bm = r.ratio(&R::embree_packets, &R::beam);
     auto least = [&](double R::*field) {
-        double m = 0;
+        double m = INFINITY;
         for (const R& round : r.rounds)
-            m = m > 0 ? std::min(m, round.*field) : round.*field;
-        return m;
+            m = std::min(m, round.*field);
+        return r.rounds.empty() ? 0.0 : m;
     };
     return fmt::format(
         "\"{}\",{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.2f},{:.2f},{:."
