@@ -50,8 +50,15 @@ void expect_exact(int e_s, int layers) {
     }
 }
 
-TEST(WarnockIdeal, AreaSamplesEqualEq24ForOneLayerOnScreensFrom16To1024) {
-    for (int e_s = 16; e_s <= 1024; e_s *= 2)
+TEST(WarnockIdeal, AreaSamplesEqualEq24ForOneLayerOnScreensFrom16To256) {
+    for (int e_s = 16; e_s <= 256; e_s *= 2)
+        expect_exact(e_s, 1);
+}
+
+// The two largest screens hold 95% of the work (6.6 s against 0.37 s in Release): a heavy
+// sweep, in the long label (Release only; under the sanitizers it repeats the code above).
+TEST(WarnockIdealLong, AreaSamplesEqualEq24ForOneLayerOnScreensOf512And1024) {
+    for (int e_s : {512, 1024})
         expect_exact(e_s, 1);
 }
 
