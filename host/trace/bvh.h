@@ -274,23 +274,30 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
             tn[c] = near_t;
             hit[c] = near_t <= far_t;
         }
-        auto t_of = [&](int k) { return tn[k / Lanes][k % Lanes]; };
+        // the entries and hits lane by lane, as plain arrays
+        float t_at[kWidth];
+        int32_t hit_at[kWidth];
+        for (int c = 0; c < kChunks; ++c) {
+            std::memcpy(&t_at[c * Lanes], &tn[c], sizeof tn[c]);
+            std::memcpy(&hit_at[c * Lanes], &hit[c], sizeof hit[c]);
+        }
         // the boxes entered, the nearest pushed last (of equal entries, the lower slot)
-        int order[kWidth], hits = 0;
+        unsigned order[kWidth];
+        int hits = 0;
         visited += n.used;
-        for (int k = 0; k < kWidth; ++k) {
-            if (!hit[k / Lanes][k % Lanes]) continue;
+        for (unsigned k = 0; k < kWidth; ++k) {
+            if (!hit_at[k]) continue;
             int i = hits++;
-            const float t = t_of(k);
-            while (i > 0 && t_of(order[i - 1]) < t) {
+            const float t = t_at[k];
+            while (i > 0 && t_at[order[i - 1]] < t) {
                 order[i] = order[i - 1];
                 --i;
             }
             order[i] = k;
         }
         for (int i = 0; i < hits; ++i) {
-            const int k = order[i];
-            stack[top++] = Pending{n.child[k], n.count[k], t_of(k)};
+            const unsigned k = order[i];
+            stack[top++] = Pending{n.child[k], n.count[k], t_at[k]};
         }
         // the next pending box not entered beyond the best hit found since it was pushed:
         // a leaf's pieces are tested, an inner node's slots next
