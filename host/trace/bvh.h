@@ -281,7 +281,7 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
             std::memcpy(&t_at[c * Lanes], &tn[c], sizeof tn[c]);
             std::memcpy(&hit_at[c * Lanes], &hit[c], sizeof hit[c]);
         }
-        // the boxes entered, the nearest pushed last (of equal entries, the lower slot)
+        // the boxes entered, the nearest pushed last (of equal entries, the higher slot)
         unsigned order[kWidth];
         int hits = 0;
         visited += n.used;
