@@ -137,21 +137,11 @@ bool make_decahedral_hull(const std::array<glm::dvec3, 4>& ra, const std::array<
     return h.plane_count >= 4;
 }
 
-HullPieces::HullPieces(const TraceScene& scene) : m_scene(scene), m_tol(scene.tolerance()) {
-    for (const TraceFace& f : scene.faces()) {
-        const glm::dvec3* v = scene.vertices_of(f);
-        glm::dvec3 lo = v[0], hi = v[0];
-        for (uint32_t i = 1; i < f.vertex_count; ++i) {
-            lo = glm::min(lo, v[i]);
-            hi = glm::max(hi, v[i]);
-        }
-        m_lo.push_back(lo);
-        m_hi.push_back(hi);
-    }
-}
+HullPieces::HullPieces(const TraceScene& scene) : m_scene(scene), m_tol(scene.tolerance()) {}
 
 bool HullPieces::box_apart(uint32_t piece, const glm::dvec3& lo, const glm::dvec3& hi) const {
-    return TouchingIsApart::boxes_apart(m_lo[piece], m_hi[piece], lo, hi, m_tol);
+    const PieceBox& box = m_scene.box(piece);
+    return TouchingIsApart::boxes_apart(box.lo, box.hi, lo, hi, m_tol);
 }
 
 bool HullPieces::occupies(DecahedralHull& h, uint32_t piece) const {

@@ -30,7 +30,7 @@ struct DecahedralHull : ConvexHull {
 bool make_decahedral_hull(const std::array<glm::dvec3, 4>& a, const std::array<glm::dvec3, 4>& b,
                           double tol, DecahedralHull& h);
 
-// The scene's pieces as the decahedra test them, each with its bounding box.
+// The scene's pieces as the decahedra test them, their bounding boxes first.
 class HullPieces {
   public:
     explicit HullPieces(const TraceScene& scene);
@@ -43,7 +43,6 @@ class HullPieces {
   private:
     const TraceScene& m_scene;
     double m_tol;
-    std::vector<glm::dvec3> m_lo, m_hi;  // per piece
 };
 
 }  // namespace fb89::host

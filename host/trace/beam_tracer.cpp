@@ -46,17 +46,8 @@ bool unit(glm::dvec3& v, double scale) {
 
 BeamTracer::BeamTracer(const TraceScene& scene, const UniformGrid& grid)
     : m_scene(scene), m_grid(grid), m_pieces(scene.faces().size()), m_ids(scene.face_count() + 1) {
-    m_boxes.reserve(scene.faces().size());
-    for (const auto& f : scene.faces()) {
+    for (const auto& f : scene.faces())
         m_ids.grow(f.id + size_t{1});
-        const glm::dvec3* v = scene.vertices_of(f);
-        PieceBox b{v[0], v[0]};
-        for (uint32_t i = 1; i < f.vertex_count; ++i) {
-            b.lo = glm::min(b.lo, v[i]);
-            b.hi = glm::max(b.hi, v[i]);
-        }
-        m_boxes.push_back(b);
-    }
 }
 
 ConvexHull BeamTracer::make_hull(const BeamSegment& s) const {
@@ -97,8 +88,8 @@ ConvexHull BeamTracer::make_hull(const BeamSegment& s) const {
 
 bool BeamTracer::touches(const ConvexHull& h, uint32_t piece) const {
     const double tol = m_scene.tolerance();
-    // bounding boxes first, kept per piece
-    const PieceBox& box = m_boxes[piece];
+    // bounding boxes first, the piece's kept by the scene
+    const PieceBox& box = m_scene.box(piece);
     if (TouchingBlocks::boxes_apart(box.lo, box.hi, h.lo, h.hi, tol)) return false;
     const TraceFace& f = m_scene.faces()[piece];
     const glm::dvec3* v = m_scene.vertices_of(f);

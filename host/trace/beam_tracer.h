@@ -85,12 +85,8 @@ class BeamTracer {
 
     const TraceScene& m_scene;
     const UniformGrid& m_grid;
-    struct PieceBox {
-        glm::dvec3 lo, hi;
-    };
-    std::vector<PieceBox> m_boxes;  // per piece: its vertices' bounding box, for touches()
-    mutable Mailbox m_pieces;       // per piece: the last query that saw it
-    mutable Mailbox m_ids;          // per face id: the last F_w query that counted it
+    mutable Mailbox m_pieces;  // per piece: the last query that saw it
+    mutable Mailbox m_ids;     // per face id: the last F_w query that counted it
 };
 
 }  // namespace fb89::host

@@ -115,11 +115,12 @@ RayBvh::RayBvh(const TraceScene& scene) {
     std::vector<Item> items(faces.size());
     double extent = 0;
     for (uint32_t p = 0; p < faces.size(); ++p) {
-        const glm::dvec3* v = scene.vertices_of(faces[p]);
-        for (uint32_t k = 0; k < faces[p].vertex_count; ++k) {
-            items[p].box.add(v[k]);
-            extent = std::max({extent, std::abs(v[k].x), std::abs(v[k].y), std::abs(v[k].z)});
-        }
+        const PieceBox& b = scene.box(p);
+        items[p].box.lo = b.lo;
+        items[p].box.hi = b.hi;
+        // the largest coordinate of any vertex: the larger magnitude of the box's two ends
+        const glm::dvec3 far = glm::max(glm::abs(b.lo), glm::abs(b.hi));
+        extent = std::max({extent, far.x, far.y, far.z});
         items[p].centre = 0.5 * (items[p].box.lo + items[p].box.hi);
         items[p].piece = p;
     }

@@ -9,17 +9,9 @@ namespace {
 
 constexpr int kMaxCellsPerAxis = 256;
 
-struct Box {
-    glm::dvec3 lo, hi;
-};
-
-Box piece_box(const TraceScene& scene, const TraceFace& f, double margin) {
-    const glm::dvec3* v = scene.vertices_of(f);
-    Box b{v[0], v[0]};
-    for (uint32_t i = 1; i < f.vertex_count; ++i) {
-        b.lo = glm::min(b.lo, v[i]);
-        b.hi = glm::max(b.hi, v[i]);
-    }
+// A piece's box grown by `margin`.
+PieceBox piece_box(const TraceScene& scene, uint32_t piece, double margin) {
+    PieceBox b = scene.box(piece);
     b.lo -= margin;
     b.hi += margin;
     return b;
@@ -40,8 +32,8 @@ UniformGrid::UniformGrid(const TraceScene& scene, double density) {
     } else {
         m_lo = glm::dvec3(INFINITY);
         m_hi = glm::dvec3(-INFINITY);
-        for (const auto& f : faces) {
-            const Box b = piece_box(scene, f, margin);
+        for (uint32_t p = 0; p < faces.size(); ++p) {
+            const PieceBox b = piece_box(scene, p, margin);
             m_lo = glm::min(m_lo, b.lo);
             m_hi = glm::max(m_hi, b.hi);
         }
@@ -114,7 +106,7 @@ void UniformGrid::build(const TraceScene& scene, const std::vector<uint32_t>& pi
     const glm::dvec3 half = m_cell * 0.5;
     for (uint32_t p : pieces) {
         const TraceFace& f = faces[p];
-        const Box b = piece_box(scene, f, margin);
+        const PieceBox b = piece_box(scene, p, margin);
         glm::ivec3 first, last;
         if (!cell_range(b.lo, b.hi, first, last)) continue;
         const double reach = glm::dot(glm::abs(f.normal), half) + margin;

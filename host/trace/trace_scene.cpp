@@ -53,12 +53,16 @@ TraceScene::TraceScene(const Scene& scene, bool id_colors, int max_reflections)
         f.id = face.id;
         f.mirror = face.material.mirror;
         f.local_color = local_colors(scene, face, f.normal);
+        PieceBox box{face.vertices[0], face.vertices[0]};
         for (const auto& v : face.vertices) {
             m_vertices.push_back(v);
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
+            box.lo = glm::min(box.lo, v);
+            box.hi = glm::max(box.hi, v);
         }
+        lo = glm::min(lo, box.lo);
+        hi = glm::max(hi, box.hi);
         m_faces.push_back(f);
+        m_boxes.push_back(box);
     }
     for (uint32_t p = 0; p < m_faces.size(); ++p)
         for (int side = 0; side < 2; ++side) {

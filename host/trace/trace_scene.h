@@ -48,6 +48,11 @@ struct TraceFace {
 
 inline constexpr uint32_t kNoFace = UINT32_MAX;
 
+// A piece's bounding box: its vertices' least and greatest coordinates.
+struct PieceBox {
+    glm::dvec3 lo, hi;
+};
+
 // The closest hit along a ray; piece == kNoFace when nothing is hit.
 struct Hit {
     double t = 0;
@@ -71,6 +76,8 @@ class TraceScene {
     const std::vector<TraceFace>& faces() const { return m_faces; }
     const std::vector<glm::dvec3>& vertices() const { return m_vertices; }
     const glm::dvec3* vertices_of(const TraceFace& f) const { return &m_vertices[f.first_vertex]; }
+    // Worked out once, for the grid, the BVH and the volume queries' first test.
+    const PieceBox& box(uint32_t piece) const { return m_boxes[piece]; }
     int width() const { return m_width; }
     int height() const { return m_height; }
     bool id_colors() const { return m_id_colors; }
@@ -98,6 +105,7 @@ class TraceScene {
   private:
     std::vector<TraceFace> m_faces;
     std::vector<glm::dvec3> m_vertices;
+    std::vector<PieceBox> m_boxes;  // per piece
     int m_width = 0, m_height = 0;
     bool m_id_colors = false;
     int m_max_reflections = 0;
