@@ -61,8 +61,10 @@ struct RenderArgs {
     bool quiet = false;
 };
 
-// An option given for a method that does not read it is refused, not ignored.
-void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& method) {
+// An option given for a method that does not read it is refused, not ignored; so is a grid
+// density without the grid.
+void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& method,
+                                       const std::string& accel) {
     struct Group {
         const char* option;
         host::OptionGroup group;
@@ -90,6 +92,10 @@ void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& m
         if (sub.get_option(g.option)->count() > 0 && !info.uses(g.group))
             throw UsageError(fmt::format("{}: the {} method does not use it (only {} do)", g.option,
                                          info.name, g.used_by));
+    if (sub.get_option("--grid-density")->count() > 0 && accel != "grid")
+        throw UsageError(
+            "--grid-density: only the uniform grid has cells (--accel grid); the "
+            "beams query the BVH otherwise");
 }
 
 host::WindowTest window_test_named(const std::string& name) {
@@ -396,8 +402,8 @@ void register_render(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option(
            "--grid-density", args->grid_density,
-           "Beam: top-level cells per face piece of the grid the beam queries scan (crowded "
-           "cells get a grid of their own; rays walk it too with --accel grid)")
+           "Beam with --accel grid: top-level cells per face piece of the uniform grid the rays "
+           "walk and the beam queries scan (crowded cells get a grid of their own)")
         ->check(CLI::Range(host::kMinGridDensity, host::kMaxGridDensity))
         ->capture_default_str();
     sub->add_option("--accel", args->accel,
@@ -457,7 +463,7 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     add_isa_option(sub);
     sub->callback([args, sub, &exit_code] {
-        refuse_options_the_method_ignores(*sub, args->method);
+        refuse_options_the_method_ignores(*sub, args->method, args->accel);
         args->scene = resolve_scene(args->scene);
         exit_code = run_render(*args);
     });

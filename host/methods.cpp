@@ -23,8 +23,8 @@ constexpr std::array<MethodInfo, 6> kMethods{{
      "[--accel grid: a uniform grid, as in 1989]",
      kTraceOptions},
     {Method::Beam, "beam",
-     "beam-ray hybrid (§4): beams query a uniform grid and fill windows, Expr. 2.7 hands to rays "
-     "(BVH) [--accel grid: the rays walk the grid too]",
+     "beam-ray hybrid (§4): beams query the rays' BVH and fill windows, Expr. 2.7 hands to rays "
+     "[--accel grid: rays and beams walk a uniform grid, as in 1989]",
      kTraceOptions | kBeamOptions},
 }};
 

@@ -36,9 +36,12 @@ void corner_pixels(const PixelRect& w, int xs[4], int ys[4]) {
 }  // namespace
 
 void BeamRayHybrid::setup(const ScreenScene& scene) {
-    m_trace.build(scene, m_trace_options.max_reflections, m_options.grid_density,
+    // the beams query what the rays walk: the BVH, or the paper's grid (no grid otherwise)
+    const bool grid = m_trace_options.accel == Accel::Grid;
+    m_trace.build(scene, m_trace_options.max_reflections, grid ? m_options.grid_density : 0,
                   m_trace_options.accel);
-    m_beams = std::make_unique<BeamTracer>(*m_trace.scene, *m_trace.grid);
+    m_beams = grid ? std::make_unique<BeamTracer>(*m_trace.scene, *m_trace.grid)
+                   : std::make_unique<BeamTracer>(*m_trace.scene, m_trace.tracer->bvh());
     m_depth = std::max(1.0, measure_scene(scene).depth_complexity);
     m_width = scene.width;
     m_height = scene.height;

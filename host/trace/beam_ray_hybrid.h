@@ -37,7 +37,7 @@ inline constexpr double kDefaultBeamThreshold = std::numeric_limits<double>::inf
 
 struct BeamOptions {
     double threshold = kDefaultBeamThreshold;   // Expr. 2.7 threshold (inf: down to pixels)
-    double grid_density = kDefaultGridDensity;  // the beam queries' grid: top-level cells per piece
+    double grid_density = kDefaultGridDensity;  // Accel::Grid: the grid's top-level cells per piece
 };
 
 class BeamRayHybrid final : public Renderer {

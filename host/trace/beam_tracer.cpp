@@ -15,7 +15,10 @@ void BeamCounts::publish(Counters& counters) const {
     counters.add("blocked_hits", blocked);
     counters.add("beam_queries", queries);
     counters.add("window_face_counts", face_counts);
-    counters.add("query_cells", query_cells);
+    if (query_cells > 0)
+        counters.add("query_cells", query_cells);
+    else
+        counters.add("query_nodes", query_nodes);
     counters.add("query_face_tests", query_face_tests);
 }
 
@@ -45,9 +48,24 @@ bool unit(glm::dvec3& v, double scale) {
 }  // namespace
 
 BeamTracer::BeamTracer(const TraceScene& scene, const UniformGrid& grid)
-    : m_scene(scene), m_grid(grid), m_pieces(scene.faces().size()), m_ids(scene.face_count() + 1) {
+    : m_scene(scene),
+      m_grid(&grid),
+      m_lo(grid.lo()),
+      m_hi(grid.hi()),
+      m_pieces(scene.faces().size()),
+      m_ids(scene.face_count() + 1) {
     for (const auto& f : scene.faces())
         m_ids.grow(f.id + size_t{1});
+}
+
+BeamTracer::BeamTracer(const TraceScene& scene, const RayBvh& bvh)
+    : m_scene(scene), m_bvh(&bvh), m_ids(scene.face_count() + 1) {
+    for (const auto& f : scene.faces())
+        m_ids.grow(f.id + size_t{1});
+    // the grid's box, though there is no grid: the same segments to the far side either way
+    const PieceBox box = box_around_pieces(scene);
+    m_lo = box.lo;
+    m_hi = box.hi;
 }
 
 ConvexHull BeamTracer::make_hull(const BeamSegment& s) const {
@@ -103,12 +121,16 @@ template <class Visit>
 void BeamTracer::for_each_touching(const ConvexHull& h, uint32_t skip_a, uint32_t skip_b,
                                    Visit&& visit, BeamCounts& counts) const {
     uint64_t tests = 0;
-    counts.query_cells += scan_hull_cells<TouchingBlocks>(
-        m_grid, h, m_scene.tolerance(), m_pieces, [&](uint32_t piece) {
-            if (piece == skip_a || piece == skip_b) return false;
-            ++tests;
-            return touches(h, piece) && visit(piece);
-        });
+    auto test = [&](uint32_t piece) {
+        if (piece == skip_a || piece == skip_b) return false;
+        ++tests;
+        return touches(h, piece) && visit(piece);
+    };
+    const double tol = m_scene.tolerance();
+    if (m_bvh)
+        counts.query_nodes += scan_hull_bvh<TouchingBlocks>(*m_bvh, h, tol, test);
+    else
+        counts.query_cells += scan_hull_cells<TouchingBlocks>(*m_grid, h, tol, m_pieces, test);
     counts.query_face_tests += tests;
 }
 
@@ -128,11 +150,10 @@ bool BeamTracer::segment_is_empty(const BeamSegment& segment, uint32_t skip_a, u
 
 BeamSegment BeamTracer::to_far_side(const Ray* rays[4]) const {
     BeamSegment s;
-    const glm::dvec3 lo = m_grid.lo(), hi = m_grid.hi();
     for (int i = 0; i < 4; ++i) {
         const Ray& r = *rays[i];
-        // beyond the farthest corner of the grid's box
-        const glm::dvec3 far = glm::max(glm::abs(lo - r.origin), glm::abs(hi - r.origin));
+        // beyond the farthest corner of the structure's box
+        const glm::dvec3 far = glm::max(glm::abs(m_lo - r.origin), glm::abs(m_hi - r.origin));
         const double t = (glm::length(far) + m_scene.tolerance()) / glm::length(r.dir) * 1.001;
         s.start[i] = r.origin;
         s.end[i] = r.origin + t * r.dir;

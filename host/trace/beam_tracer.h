@@ -15,13 +15,16 @@
 // - the lateral hits must lie inside their face by a margin (four tolerances), so that a
 //   pixel ray between them can never slip off it through rounding;
 // - the emptiness query is exact and conservative: a segment is the convex hull of its
-//   start and end quadrilaterals (the eye's point for a first segment); the grid's cells in
-//   its bounding box are culled against the hull's planes, and each piece found there is
-//   checked by the separating-axis theorem (the hull's planes, the piece's plane, and the
-//   cross products of their edges) with the scene's tolerance (convex_hull.h,
-//   TouchingBlocks): only a separation wider than the tolerance counts as empty. A false
-//   "occupied" costs a subdivision; "empty" is always true, so faces that touch the segment
-//   (sharing an edge with the hit face, coplanar overlaps, exact ties) block it.
+//   start and end quadrilaterals (the eye's point for a first segment); the pieces that may
+//   meet it are found through the ray tracer's BVH (its boxes culled against the hull's box
+//   and planes) or, when the rays walk the paper's uniform grid, through that grid (its
+//   cells in the hull's box culled against its planes); each piece found is checked by the
+//   separating-axis theorem (the hull's planes, the piece's plane, and the cross products of
+//   their edges) with the scene's tolerance (convex_hull.h, TouchingBlocks): only a
+//   separation wider than the tolerance counts as empty. A false "occupied" costs a
+//   subdivision; "empty" is always true, so faces that touch the segment (sharing an edge
+//   with the hit face, coplanar overlaps, exact ties) block it. Either structure gives the
+//   same answers: only the pieces tested on the way differ.
 #pragma once
 
 #include <cstdint>
@@ -42,7 +45,8 @@ struct BeamCounts {
     uint64_t hits = 0, partial = 0, blocked = 0;
     uint64_t queries = 0;           // segment emptiness queries
     uint64_t face_counts = 0;       // F_w queries (faces in a window's beam)
-    uint64_t query_cells = 0;       // grid cells a query looked at
+    uint64_t query_cells = 0;       // grid cells a query looked at (queries through the grid)
+    uint64_t query_nodes = 0;       // BVH boxes a query tested (queries through the BVH)
     uint64_t query_face_tests = 0;  // separating-axis tests of a piece against a segment
     void publish(Counters& counters) const;
 };
@@ -55,14 +59,16 @@ struct BeamSegment {
 
 class BeamTracer {
   public:
+    // Queries through the uniform grid (the paper's), or through the ray tracer's BVH.
     BeamTracer(const TraceScene& scene, const UniformGrid& grid);
+    BeamTracer(const TraceScene& scene, const RayBvh& bvh);
 
     // `corners`: the traces of the window's corner pixels in the order (x0, y0), (x1-1, y0),
     // (x1-1, y1-1), (x0, y1-1).
     BeamClass classify(const RayTrace* const corners[4], BeamCounts& counts) const;
 
     // F_w: how many distinct faces meet the window's first beam segment, out to the far
-    // side of the grid; counting stops once it exceeds `enough`.
+    // side of the scene; counting stops once it exceeds `enough`.
     uint32_t faces_in_beam(const RayTrace* const corners[4], BeamCounts& counts,
                            uint32_t enough = UINT32_MAX) const;
 
@@ -84,9 +90,11 @@ class BeamTracer {
     BeamSegment to_far_side(const Ray* rays[4]) const;
 
     const TraceScene& m_scene;
-    const UniformGrid& m_grid;
-    mutable Mailbox m_pieces;  // per piece: the last query that saw it
-    mutable Mailbox m_ids;     // per face id: the last F_w query that counted it
+    const UniformGrid* m_grid = nullptr;  // one of the two
+    const RayBvh* m_bvh = nullptr;
+    glm::dvec3 m_lo{0}, m_hi{0};  // the grid's box (box_around_pieces): a beam's far side beyond it
+    mutable Mailbox m_pieces;     // per piece: the last grid query that saw it
+    mutable Mailbox m_ids;        // per face id: the last F_w query that counted it
 };
 
 }  // namespace fb89::host

@@ -11,6 +11,12 @@
 // - The culled scan takes the grid cells in the hull's box, grown by the scene's tolerance,
 //   drops those that one of the hull's planes separates from it, and hands each piece
 //   listed in the cells left to the caller once (a Mailbox round).
+// - The BVH walk (the beam tracer's, unless its rays walk the grid) goes down the ray
+//   tracer's BVH (bvh.h) instead, into the boxes that neither the hull's box nor one of its
+//   planes separates from it, and hands over the pieces of the leaves it reaches. Each piece
+//   sits in one leaf, so it needs no mailbox, and the boxes hug the pieces where a grid's
+//   cells are the same size everywhere: a beam down a room's length tests the few pieces near
+//   it, not every piece of every cell its box reaches.
 //
 // The touching rule is a parameter. TouchingBlocks (the beam tracer): only a gap wider than
 // the tolerance separates, so "empty" is always true and faces that touch a segment block
@@ -21,11 +27,13 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "host/trace/bvh.h"
 #include "host/trace/grid.h"
 #include "host/trace/mailbox.h"
 
@@ -171,6 +179,80 @@ uint64_t scan_hull_cells(const UniformGrid& grid, const ConvexHull& h, double to
                     if (round.first_visit(piece) && visit(piece)) return cells;
             }
     return cells;
+}
+
+// True when the hull's box, grown by `tol`, or one of its planes separates the box [lo, hi]
+// from the hull.
+template <class Rule>
+bool box_culled(const ConvexHull& h, const glm::dvec3& lo, const glm::dvec3& hi, double tol) {
+    if (Rule::boxes_apart(lo, hi, h.lo, h.hi, tol)) return true;
+    const glm::dvec3 half = (hi - lo) * 0.5;
+    double reach[ConvexHull::kMaxPlanes];
+    for (int k = 0; k < h.plane_count; ++k)
+        reach[k] = glm::dot(glm::abs(h.planes[k]), half);
+    return culls<Rule>(h, reach, lo + half, tol);
+}
+
+// The BVH walk: calls visit(piece) for each piece of each leaf whose box box_culled keeps,
+// once each (a piece sits in one leaf); stops when visit returns true. The boxes are the
+// ray tracer's, rounded outward to float and padded (bvh.h), so a box holds its pieces with
+// room to spare for the rounding of this test. On x86-64 it walks the 8-wide tree, a box at
+// a time, elsewhere the binary one. Returns the boxes tested.
+template <class Rule, class Visit>
+uint64_t scan_hull_bvh(const RayBvh& bvh, const ConvexHull& h, double tol, Visit&& visit) {
+    const std::vector<RayBvh::Node>& nodes = bvh.nodes();
+    const std::vector<uint32_t>& pieces = bvh.pieces();
+    if (nodes.empty()) return 0;
+    auto leaf = [&](uint32_t first, uint32_t count) {
+        for (uint32_t i = first; i < first + count; ++i)
+            if (visit(pieces[i])) return true;
+        return false;
+    };
+    auto culled = [&](const RayBvh::Node& n) {
+        return box_culled<Rule>(h, {n.bounds[0], n.bounds[1], n.bounds[2]},
+                                {n.bounds[3], n.bounds[4], n.bounds[5]}, tol);
+    };
+    uint64_t tested = 1;
+    if (culled(nodes[0])) return tested;
+    if (nodes[0].count > 0) {  // the whole tree one leaf
+        leaf(nodes[0].index, nodes[0].count);
+        return tested;
+    }
+    uint32_t stack[RayBvh::kMaxDepth * (RayBvh::kWidth - 1) + RayBvh::kWidth];
+    int top = 0;
+    if constexpr (RayBvh::kWide) {
+        const std::vector<RayBvh::WideNode>& wide = bvh.wide();
+        stack[top++] = 0;
+        while (top > 0) {
+            const RayBvh::WideNode& n = wide[stack[--top]];
+            tested += n.used;
+            for (uint32_t k = 0; k < n.used; ++k) {
+                if (box_culled<Rule>(h, {n.lo[0][k], n.lo[1][k], n.lo[2][k]},
+                                     {n.hi[0][k], n.hi[1][k], n.hi[2][k]}, tol))
+                    continue;
+                if (n.count[k] == 0)
+                    stack[top++] = n.child[k];
+                else if (leaf(n.child[k], n.count[k]))
+                    return tested;
+            }
+        }
+    } else {
+        // an inner node's children: the node after it and its `index`
+        stack[top++] = 1;
+        stack[top++] = nodes[0].index;
+        while (top > 0) {
+            const RayBvh::Node& n = nodes[stack[--top]];
+            ++tested;
+            if (culled(n)) continue;
+            if (n.count > 0) {
+                if (leaf(n.index, n.count)) return tested;
+                continue;
+            }
+            stack[top++] = static_cast<uint32_t>(&n - nodes.data()) + 1;
+            stack[top++] = n.index;
+        }
+    }
+    return tested;
 }
 
 }  // namespace fb89::host

@@ -19,34 +19,36 @@ PieceBox piece_box(const TraceScene& scene, uint32_t piece, double margin) {
 
 }  // namespace
 
-UniformGrid::UniformGrid(const TraceScene& scene, double density) {
+PieceBox box_around_pieces(const TraceScene& scene) {
     const auto& faces = scene.faces();
-    const double margin = scene.tolerance();
-    std::vector<uint32_t> all(faces.size());
-    for (uint32_t p = 0; p < all.size(); ++p)
-        all[p] = p;
-    // the box around every piece, never flat
-    if (faces.empty()) {
-        m_lo = glm::dvec3(-1);
-        m_hi = glm::dvec3(1);
-    } else {
-        m_lo = glm::dvec3(INFINITY);
-        m_hi = glm::dvec3(-INFINITY);
-        for (uint32_t p = 0; p < faces.size(); ++p) {
-            const PieceBox b = piece_box(scene, p, margin);
-            m_lo = glm::min(m_lo, b.lo);
-            m_hi = glm::max(m_hi, b.hi);
-        }
+    if (faces.empty()) return {glm::dvec3(-1), glm::dvec3(1)};
+    PieceBox box{glm::dvec3(INFINITY), glm::dvec3(-INFINITY)};
+    for (uint32_t p = 0; p < faces.size(); ++p) {
+        const PieceBox b = piece_box(scene, p, scene.tolerance());
+        box.lo = glm::min(box.lo, b.lo);
+        box.hi = glm::max(box.hi, b.hi);
     }
-    glm::dvec3 extent = m_hi - m_lo;
+    // never flat
+    const glm::dvec3 extent = box.hi - box.lo;
     const double largest = std::max({extent.x, extent.y, extent.z});
     for (int a = 0; a < 3; ++a) {
         if (extent[a] < largest * 1e-3) {
             const double grow = (largest * 1e-3 - extent[a]) / 2;
-            m_lo[a] -= grow;
-            m_hi[a] += grow;
+            box.lo[a] -= grow;
+            box.hi[a] += grow;
         }
     }
+    return box;
+}
+
+UniformGrid::UniformGrid(const TraceScene& scene, double density) {
+    const double margin = scene.tolerance();
+    std::vector<uint32_t> all(scene.faces().size());
+    for (uint32_t p = 0; p < all.size(); ++p)
+        all[p] = p;
+    const PieceBox box = box_around_pieces(scene);
+    m_lo = box.lo;
+    m_hi = box.hi;
     build(scene, all, density);
 
     // crowded cells get a finer grid of their own for rays to walk

@@ -36,6 +36,10 @@ namespace fb89::host {
 // own (RESULTS.md §4).
 inline constexpr double kDefaultGridDensity = 0.5;
 
+// The box around every piece, each grown by the scene's tolerance, and never flat (an axis
+// thinner than a thousandth of the widest is widened to it): the grid's box.
+PieceBox box_around_pieces(const TraceScene& scene);
+
 class UniformGrid {
   public:
     explicit UniformGrid(const TraceScene& scene, double density = kDefaultGridDensity);

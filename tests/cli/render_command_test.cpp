@@ -301,6 +301,19 @@ TEST(RenderCommand, OptionsTheMethodDoesNotUseAreRefusedNotIgnored) {
               0);
 }
 
+// The beams query the BVH unless the rays walk the grid: a grid density alone has no grid.
+TEST(RenderCommand, AGridDensityNeedsTheGrid) {
+    CliRun r = fb89("render " + kScenes + "/G.json --size 32x24 -q -m beam --grid-density 2");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--grid-density"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--accel grid"), std::string::npos) << r.err;
+    EXPECT_EQ(fb89("render " + kScenes +
+                   "/G.json --size 32x24 -q -m beam --grid-density 2 "
+                   "--accel grid")
+                  .exit_code,
+              0);
+}
+
 }  // namespace
 
 namespace {

@@ -45,6 +45,8 @@ Scene mirror_room(int width, int height) {
     return s;
 }
 
+// ... and the same beams whether they query the BVH (the default) or the paper's grid: the
+// queries' answers are the same, only the pieces tested on the way differ.
 void expect_same_as_rays(const Scene& scene, const char* what) {
     const auto rays = render_trace(scene, trace_options("raytrace"));
     for (double threshold : {0.0, 0.5, 5.0, double{INFINITY}}) {
@@ -56,6 +58,22 @@ void expect_same_as_rays(const Scene& scene, const char* what) {
                   static_cast<uint64_t>(scene.width) * scene.height);
         EXPECT_EQ(c.get("beams"),
                   c.get("beam_hits") + c.get("partial_hits") + c.get("blocked_hits"));
+        const bool queried = c.get("beam_queries") + c.get("window_face_counts") > 0;
+        EXPECT_EQ(c.get("query_nodes") > 0, queried) << what;
+        EXPECT_EQ(c.get("query_cells"), 0u) << what;
+
+        MethodOptions on_grid = trace_options("beam", threshold);
+        on_grid.trace.accel = Accel::Grid;
+        const auto grid = render_trace(scene, on_grid);
+        EXPECT_EQ(grid.ids, rays.ids) << what << " on the grid at threshold " << threshold;
+        EXPECT_EQ(grid.pixels, rays.pixels) << what << " on the grid at threshold " << threshold;
+        const auto& g = grid.stats.counters;
+        for (const char* count : {"beams", "beam_hits", "partial_hits", "blocked_hits",
+                                  "beam_queries", "window_face_counts", "rays", "pixels_by_beams"})
+            EXPECT_EQ(g.get(count), c.get(count))
+                << what << " at threshold " << threshold << ": " << count;
+        EXPECT_EQ(g.get("query_cells") > 0, queried) << what;
+        EXPECT_EQ(g.get("query_nodes"), 0u) << what;
     }
 }
 

@@ -17,10 +17,27 @@ using testing::add_face;
 using testing::add_square;
 using testing::world_scene;
 
-// A scene, its grid and tracers, and the classification of one pixel window.
+// A scene, its grid and tracers, and the classification of one pixel window. Each question
+// is asked of both structures, the grid's beams and the BVH's, which must answer the same;
+// the grid's answer is returned.
 struct Beams {
     explicit Beams(const Scene& scene)
-        : trace(scene, true, 8), grid(trace), rays(trace), beams(trace, grid) {}
+        : trace(scene, true, 8),
+          grid(trace),
+          rays(trace),
+          beams(trace, grid),
+          bvh_beams(trace, rays.bvh()) {}
+
+    bool segment_is_empty(const BeamSegment& s, uint32_t skip_a, uint32_t skip_b) {
+        const bool empty = beams.segment_is_empty(s, skip_a, skip_b, counts);
+        EXPECT_EQ(bvh_beams.segment_is_empty(s, skip_a, skip_b, bvh_counts), empty) << "the BVH";
+        return empty;
+    }
+    uint32_t faces_in_beam(const RayTrace* const corners[4]) {
+        const uint32_t faces = beams.faces_in_beam(corners, counts);
+        EXPECT_EQ(bvh_beams.faces_in_beam(corners, bvh_counts), faces) << "the BVH";
+        return faces;
+    }
 
     BeamClass classify(const PixelRect& w) {
         const int xs[4] = {w.x0, w.x1 - 1, w.x1 - 1, w.x0};
@@ -31,15 +48,18 @@ struct Beams {
             rays.trace_pixel(xs[i], ys[i], traces[i], ray_counts);
             corners[i] = &traces[i];
         }
-        return beams.classify(corners, counts);
+        const BeamClass c = beams.classify(corners, counts);
+        EXPECT_EQ(bvh_beams.classify(corners, bvh_counts), c) << "the BVH";
+        return c;
     }
 
     TraceScene trace;
     UniformGrid grid;
     RayTracer rays;
-    BeamTracer beams;
+    BeamTracer beams;      // through the grid
+    BeamTracer bvh_beams;  // through the rays' BVH
     TraceCounts ray_counts;
-    BeamCounts counts;
+    BeamCounts counts, bvh_counts;
 };
 
 TEST(BeamTracer, AWindowInsideOneFaceIsAHit) {
@@ -128,15 +148,15 @@ TEST(BeamTracer, AFaceTouchingASegmentWithinTheToleranceCountsAsOccupied) {
     seg.end[1] = {1, -1, 0};
     seg.end[2] = {1, 1, 0};
     seg.end[3] = {-1, 1, 0};
-    EXPECT_FALSE(b.beams.segment_is_empty(seg, kNoFace, kNoFace, b.counts)) << "the end face";
-    EXPECT_TRUE(b.beams.segment_is_empty(seg, kNoFace, 0, b.counts)) << "skipped";
+    EXPECT_FALSE(b.segment_is_empty(seg, kNoFace, kNoFace)) << "the end face";
+    EXPECT_TRUE(b.segment_is_empty(seg, kNoFace, 0)) << "skipped";
     // pulled back from the face by less than the tolerance: still touching
     for (auto& e : seg.end)
         e.z = b.trace.tolerance() * 0.5;
-    EXPECT_FALSE(b.beams.segment_is_empty(seg, kNoFace, kNoFace, b.counts));
+    EXPECT_FALSE(b.segment_is_empty(seg, kNoFace, kNoFace));
     for (auto& e : seg.end)
         e.z = b.trace.tolerance() * 10;
-    EXPECT_TRUE(b.beams.segment_is_empty(seg, kNoFace, kNoFace, b.counts));
+    EXPECT_TRUE(b.segment_is_empty(seg, kNoFace, kNoFace));
 }
 
 TEST(BeamTracer, CountsTheFacesInAWindowsBeam) {
@@ -153,7 +173,7 @@ TEST(BeamTracer, CountsTheFacesInAWindowsBeam) {
         b.rays.trace_pixel(xs[i], ys[i], traces[i], b.ray_counts);
         corners[i] = &traces[i];
     }
-    EXPECT_EQ(b.beams.faces_in_beam(corners, b.counts), 3u);
+    EXPECT_EQ(b.faces_in_beam(corners), 3u);
 }
 
 // The beam-ray hybrid skips the F_w query when the distinct faces its corner rays hit first
@@ -179,12 +199,50 @@ TEST(BeamTracer, TheFacesInAWindowsBeamIncludeTheFacesItsCornerRaysHit) {
                         if (traces[i].count > 0)
                             first.insert(b.trace.faces()[traces[i].hits[0].piece].id);
                     }
-                    ASSERT_GE(b.beams.faces_in_beam(corners, b.counts), first.size())
+                    ASSERT_GE(b.faces_in_beam(corners), first.size())
                         << "window " << x << "," << y << " size " << size;
                     ++windows;
                 }
         EXPECT_GT(windows, 500);
     }
+}
+
+// The BVH's queries answer as the grid's on segments cut from random triangles' beams at
+// several depths, some empty and some not, and test fewer pieces on the way.
+TEST(BeamTracer, TheBvhAndTheGridAnswerEverySegmentAlike) {
+    const Scene s = testing::random_scene(128, 96, 300, 150, 7);
+    Beams b(s);
+    int empty = 0, occupied = 0;
+    for (int size = 2; size <= 64; size *= 2)
+        for (int y = 0; y + size <= s.height; y += 9)
+            for (int x = 0; x + size <= s.width; x += 7) {
+                const int xs[4] = {x, x + size - 1, x + size - 1, x};
+                const int ys[4] = {y, y, y + size - 1, y + size - 1};
+                RayTrace traces[4];
+                for (int i = 0; i < 4; ++i)
+                    b.rays.trace_pixel(xs[i], ys[i], traces[i], b.ray_counts);
+                for (double depth : {0.5, 0.999, 1.5}) {
+                    BeamSegment seg;
+                    for (int i = 0; i < 4; ++i) {
+                        const Ray& r = traces[i].primary;
+                        // the first hit, or past the grid's far side
+                        const double far = glm::length(b.grid.hi() - b.grid.lo()) +
+                                           glm::length(b.grid.lo() - r.origin);
+                        const glm::dvec3 end = traces[i].count > 0
+                                                   ? traces[i].points[0]
+                                                   : r.origin + far * glm::normalize(r.dir);
+                        seg.start[i] = r.origin;
+                        seg.end[i] = r.origin + depth * (end - r.origin);
+                    }
+                    (b.segment_is_empty(seg, kNoFace, kNoFace) ? empty : occupied)++;
+                }
+            }
+    EXPECT_GT(empty, 100);
+    EXPECT_GT(occupied, 100);
+    EXPECT_EQ(b.bvh_counts.queries, b.counts.queries);
+    EXPECT_LT(b.bvh_counts.query_face_tests, b.counts.query_face_tests);
+    EXPECT_GT(b.bvh_counts.query_nodes, 0u);
+    EXPECT_EQ(b.bvh_counts.query_cells, 0u);
 }
 
 }  // namespace

@@ -3,10 +3,12 @@
 #include "host/trace/convex_hull.h"
 
 #include <map>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "tests/host/raster/raster_test_util.h"
 #include "tests/host/trace/trace_test_util.h"
 
 namespace fb89::host {
@@ -162,6 +164,85 @@ TEST(ConvexHull, TheCulledScanOfAHullBesideTheGridVisitsNothing) {
                                               [&](uint32_t) { return ++visits > 0; }),
               0u);
     EXPECT_EQ(visits, 0);
+}
+
+// The BVH walk: the same floor and prism, through the ray tracer's BVH.
+TEST(ConvexHull, TheBvhWalkHandsEachPieceOverOnceAndSkipsCulledBoxes) {
+    Floor floor;
+    const RayBvh bvh(floor.trace);
+    std::map<uint32_t, int> seen;
+    const uint64_t boxes =
+        scan_hull_bvh<TouchingBlocks>(bvh, Floor::prism(), kTol, [&](uint32_t piece) {
+            ++seen[piece];
+            return false;
+        });
+    EXPECT_GT(boxes, 1u);
+    EXPECT_EQ(seen[0], 1);
+    EXPECT_EQ(seen[1], 1);
+    EXPECT_EQ(seen.count(2), 0u) << "its box lies beyond the plane x + y = 1";
+}
+
+TEST(ConvexHull, TheBvhWalkStopsWhenTheVisitorSaysSo) {
+    Floor floor;
+    const RayBvh bvh(floor.trace);
+    int visits = 0;
+    scan_hull_bvh<TouchingIsApart>(bvh, Floor::prism(), kTol, [&](uint32_t) {
+        ++visits;
+        return true;
+    });
+    EXPECT_EQ(visits, 1);
+}
+
+TEST(ConvexHull, TheBvhWalkOfAHullBesideTheSceneTestsTheRootAlone) {
+    Floor floor;
+    const RayBvh bvh(floor.trace);
+    int visits = 0;
+    EXPECT_EQ(scan_hull_bvh<TouchingBlocks>(bvh, box_hull({10, 10, 10}, {11, 11, 11}), kTol,
+                                            [&](uint32_t) { return ++visits > 0; }),
+              1u);
+    EXPECT_EQ(visits, 0);
+}
+
+// Nothing that touches is ever culled: over random triangles and random boxes, every piece
+// the separating-axis test finds touching (asked of each piece in turn) is handed over, by
+// the BVH walk and by the grid scan alike.
+TEST(ConvexHull, BothScansHandOverEveryPieceThatTouches) {
+    const Scene s = testing::random_scene(128, 96, 300, 150, 3);
+    const TraceScene trace(s, true, 0);
+    const UniformGrid grid(trace);
+    const RayBvh bvh(trace);
+    Mailbox mailbox(trace.faces().size());
+    const double tol = trace.tolerance();
+    std::mt19937_64 random(11);
+    const dvec3 lo = grid.lo(), size = grid.hi() - grid.lo();
+    std::uniform_real_distribution<double> unit(0, 1);
+    int touching = 0;
+    for (int q = 0; q < 300; ++q) {
+        const dvec3 a = lo + size * dvec3(unit(random), unit(random), unit(random));
+        const dvec3 extent = size * 0.2 * dvec3(unit(random), unit(random), unit(random));
+        const ConvexHull h = box_hull(a, a + extent);
+        std::vector<char> by_bvh(trace.faces().size()), by_grid(trace.faces().size());
+        scan_hull_bvh<TouchingBlocks>(bvh, h, tol, [&](uint32_t p) {
+            by_bvh[p] = 1;
+            return false;
+        });
+        scan_hull_cells<TouchingBlocks>(grid, h, tol, mailbox, [&](uint32_t p) {
+            by_grid[p] = 1;
+            return false;
+        });
+        for (uint32_t p = 0; p < trace.faces().size(); ++p) {
+            const TraceFace& f = trace.faces()[p];
+            const dvec3* v = trace.vertices_of(f);
+            const int n = static_cast<int>(f.vertex_count);
+            if (planes_separate<TouchingBlocks>(h, v, n, f.normal, tol) ||
+                edges_separate<TouchingBlocks>(h, v, n, tol))
+                continue;
+            ++touching;
+            EXPECT_TRUE(by_bvh[p]) << "query " << q << ", piece " << p;
+            EXPECT_TRUE(by_grid[p]) << "query " << q << ", piece " << p;
+        }
+    }
+    EXPECT_GT(touching, 300);
 }
 
 }  // namespace
