@@ -95,8 +95,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
     add_host_options(sub, args->request.host);
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->add_option("--accel", args->request.accel,
-                    "fig4.*, beam-threshold, split: what the rays of raytrace and beam walk: bvh, "
-                    "or grid (the paper's uniform grid)")
+                    "fig4.*, beam-threshold, split: what the rays of raytrace and beam walk and "
+                    "the beams query: bvh, or grid (the paper's uniform grid)")
         ->check(CLI::IsMember({"bvh", "grid"}))
         ->capture_default_str();
     sub->add_option("--methods", args->request.methods,

@@ -407,9 +407,9 @@ void register_render(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(host::kMinGridDensity, host::kMaxGridDensity))
         ->capture_default_str();
     sub->add_option("--accel", args->accel,
-                    "Raytrace and beam: what rays find their nearest face through: bvh, or grid "
-                    "(the paper's: a uniform grid walked by 3DDDA, Fujimoto et al.); the same "
-                    "frame either way")
+                    "Raytrace and beam: what rays find their nearest face through, and beams "
+                    "the faces in their way: bvh, or grid (the paper's: a uniform grid walked "
+                    "by 3DDDA, Fujimoto et al.); the same frame either way")
         ->check(CLI::IsMember({"bvh", "grid"}))
         ->capture_default_str();
     sub->add_option("--mask", args->mask,

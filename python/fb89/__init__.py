@@ -195,7 +195,7 @@ def experiment(name, scenes=None, *, size=None, repeat=7, controller=DEFAULT_CON
     size: "WxH" or (W, H) for every scene; sizes: the fig4.* experiments' sizes.
     repeat: interleaved timing rounds (medians); one run each on a 1989 host.
     threshold, beam_threshold: as render() takes them; out_dir: where fig4.7's masks go;
-    accel: "bvh" or "grid" for the rays; patches, reference_rays: the radiosity experiments'.
+    accel: "bvh" or "grid" for the rays and the beams' queries; patches, reference_rays: the radiosity experiments'.
     methods: split's methods by name (None: every one).
     host, jobs, results: a 1989 host, emulated runs at once, and a folder keeping each run.
     progress: None (a line on stderr when it is a terminal), True, False, or a callable
