@@ -152,7 +152,7 @@ BeamSegment BeamTracer::to_far_side(const Ray* rays[4]) const {
     BeamSegment s;
     for (int i = 0; i < 4; ++i) {
         const Ray& r = *rays[i];
-        // beyond the farthest corner of the structure's box
+        // beyond the farthest corner of the grid's box (box_around_pieces, either structure)
         const glm::dvec3 far = glm::max(glm::abs(m_lo - r.origin), glm::abs(m_hi - r.origin));
         const double t = (glm::length(far) + m_scene.tolerance()) / glm::length(r.dir) * 1.001;
         s.start[i] = r.origin;
