@@ -45,6 +45,14 @@ bool unit(glm::dvec3& v, double scale) {
     return true;
 }
 
+// A mailbox with a slot for every face id of the scene.
+Mailbox id_mailbox(const TraceScene& scene) {
+    Mailbox ids(scene.face_count() + 1);
+    for (const auto& f : scene.faces())
+        ids.grow(f.id + size_t{1});
+    return ids;
+}
+
 }  // namespace
 
 BeamTracer::BeamTracer(const TraceScene& scene, const UniformGrid& grid)
@@ -53,15 +61,10 @@ BeamTracer::BeamTracer(const TraceScene& scene, const UniformGrid& grid)
       m_lo(grid.lo()),
       m_hi(grid.hi()),
       m_pieces(scene.faces().size()),
-      m_ids(scene.face_count() + 1) {
-    for (const auto& f : scene.faces())
-        m_ids.grow(f.id + size_t{1});
-}
+      m_ids(id_mailbox(scene)) {}
 
 BeamTracer::BeamTracer(const TraceScene& scene, const RayBvh& bvh)
-    : m_scene(scene), m_bvh(&bvh), m_ids(scene.face_count() + 1) {
-    for (const auto& f : scene.faces())
-        m_ids.grow(f.id + size_t{1});
+    : m_scene(scene), m_bvh(&bvh), m_ids(id_mailbox(scene)) {
     // the grid's box, though there is no grid: the same segments to the far side either way
     const PieceBox box = box_around_pieces(scene);
     m_lo = box.lo;
@@ -152,7 +155,7 @@ BeamSegment BeamTracer::to_far_side(const Ray* rays[4]) const {
     BeamSegment s;
     for (int i = 0; i < 4; ++i) {
         const Ray& r = *rays[i];
-        // beyond the farthest corner of the grid's box (box_around_pieces, either structure)
+        // beyond the farthest corner of the grid's box, whichever structure the queries use
         const glm::dvec3 far = glm::max(glm::abs(m_lo - r.origin), glm::abs(m_hi - r.origin));
         const double t = (glm::length(far) + m_scene.tolerance()) / glm::length(r.dir) * 1.001;
         s.start[i] = r.origin;

@@ -39,15 +39,19 @@ struct Beams {
         return faces;
     }
 
-    BeamClass classify(const PixelRect& w) {
+    // The traces of the window's corner pixels, in the order classify takes them.
+    void trace_corners(const PixelRect& w, RayTrace traces[4]) {
         const int xs[4] = {w.x0, w.x1 - 1, w.x1 - 1, w.x0};
         const int ys[4] = {w.y0, w.y0, w.y1 - 1, w.y1 - 1};
-        RayTrace traces[4];
-        const RayTrace* corners[4];
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < 4; ++i)
             rays.trace_pixel(xs[i], ys[i], traces[i], ray_counts);
+    }
+    BeamClass classify(const PixelRect& w) {
+        RayTrace traces[4];
+        trace_corners(w, traces);
+        const RayTrace* corners[4];
+        for (int i = 0; i < 4; ++i)
             corners[i] = &traces[i];
-        }
         const BeamClass c = beams.classify(corners, counts);
         EXPECT_EQ(bvh_beams.classify(corners, bvh_counts), c) << "the BVH";
         return c;
@@ -188,13 +192,11 @@ TEST(BeamTracer, TheFacesInAWindowsBeamIncludeTheFacesItsCornerRaysHit) {
         for (int size = 2; size <= 32; size *= 2)
             for (int y = 0; y + size <= s.height; y += 7)
                 for (int x = 0; x + size <= s.width; x += 5) {
-                    const int xs[4] = {x, x + size - 1, x + size - 1, x};
-                    const int ys[4] = {y, y, y + size - 1, y + size - 1};
                     RayTrace traces[4];
+                    b.trace_corners({x, y, x + size, y + size}, traces);
                     const RayTrace* corners[4];
                     std::set<uint32_t> first;
                     for (int i = 0; i < 4; ++i) {
-                        b.rays.trace_pixel(xs[i], ys[i], traces[i], b.ray_counts);
                         corners[i] = &traces[i];
                         if (traces[i].count > 0)
                             first.insert(b.trace.faces()[traces[i].hits[0].piece].id);
@@ -216,11 +218,8 @@ TEST(BeamTracer, TheBvhAndTheGridAnswerEverySegmentAlike) {
     for (int size = 2; size <= 64; size *= 2)
         for (int y = 0; y + size <= s.height; y += 9)
             for (int x = 0; x + size <= s.width; x += 7) {
-                const int xs[4] = {x, x + size - 1, x + size - 1, x};
-                const int ys[4] = {y, y, y + size - 1, y + size - 1};
                 RayTrace traces[4];
-                for (int i = 0; i < 4; ++i)
-                    b.rays.trace_pixel(xs[i], ys[i], traces[i], b.ray_counts);
+                b.trace_corners({x, y, x + size, y + size}, traces);
                 for (double depth : {0.5, 0.999, 1.5}) {
                     BeamSegment seg;
                     for (int i = 0; i < 4; ++i) {
