@@ -6,9 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <vector>
 
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
 #include "bench/peers/ray_side_by_side.h"
@@ -65,12 +67,16 @@ int run_rays(const Args& args) {
                std::find(args.only.begin(), args.only.end(), name) != args.only.end();
     };
 
-    std::vector<RayRow> rows;
-    auto run = [&](const RayScene& scene) {
+    // each scene's rows, and how to make the scene again
+    struct Measured {
+        std::function<RayScene()> make;
+        std::vector<RayRow> rows;
+    };
+    std::vector<Measured> measured;
+    auto measure = [&](const Measured& m) {
+        const RayScene scene = m.make();
         std::cerr << "  " << scene.name << "...\n";
-        for (RayRow& row : measure_ray_side_by_side(scene, options))
-            rows.push_back(std::move(row));
-        if (rows.size() == 1) std::cerr << "peer: " << rows.front().embree << "\n";
+        return measure_ray_side_by_side(scene, options);
     };
     for (const char* name : {"G", "H", "I", "cornell_box", "cornell_mirror"}) {
         if (!wanted(name)) continue;
@@ -79,10 +85,38 @@ int run_rays(const Args& args) {
             std::cerr << "  " << file.string() << " does not exist: skipped\n";
             continue;
         }
-        run(ray_file_scene(file, w, h));
-        if (name[0] == 'G' && !args.quick) run(ray_file_scene(file, 2 * w, 2 * h));
+        measured.push_back({[file, w, h] { return ray_file_scene(file, w, h); }, {}});
+        if (name[0] == 'G' && !args.quick)
+            measured.push_back({[file, w, h] { return ray_file_scene(file, 2 * w, 2 * h); }, {}});
     }
-    if (!args.quick && wanted("random")) run(random_world_triangles(w, h, 1000, 1989));
+    if (!args.quick && wanted("random"))
+        measured.push_back({[w, h] { return random_world_triangles(w, h, 1000, 1989); }, {}});
+    for (Measured& m : measured) {
+        m.rows = measure(m);
+        if (&m == &measured.front() && !m.rows.empty())
+            std::cerr << "peer: " << m.rows.front().embree << "\n";
+    }
+    // a scene measured in a spell throughout is measured again, twice at most, and the calmer
+    // of its measurements kept
+    for (int pass = 0; pass < 2; ++pass)
+        for (Measured& m : measured) {
+            if (m.rows.empty() ||
+                !measured_in_a_spell(m.rows.front(), canary.best, options.canary_tolerance))
+                continue;
+            std::cerr << fmt::format(
+                "  {} again: its canary ran {:.3f} ms, the run's best {:.3f}\n",
+                m.rows.front().scene, m.rows.front().canary_ms, canary.best);
+            std::vector<RayRow> again = measure(m);
+            const int times = m.rows.front().measured_again + 1;
+            if (!again.empty() && again.front().canary_ms < m.rows.front().canary_ms)
+                m.rows = std::move(again);
+            for (RayRow& r : m.rows)
+                r.measured_again = times;
+        }
+    std::vector<RayRow> rows;
+    for (Measured& m : measured)
+        for (RayRow& r : m.rows)
+            rows.push_back(std::move(r));
 
     std::cout << ray_human_table(rows);
     if (!args.csv.empty()) {

@@ -66,8 +66,9 @@ struct RayRow {
         double canary = 0;  // a fixed scalar load timed after them (ray_side_by_side.cpp)
     };
     std::vector<Round> rounds;
-    int discarded = 0;     // rounds done again, the canary slow
-    double canary_ms = 0;  // the canary's median over the rounds kept
+    int discarded = 0;       // rounds done again, the canary slow
+    double canary_ms = 0;    // the canary's median over the rounds kept
+    int measured_again = 0;  // times the scene was measured again, its canary slow throughout
     // A ratio of two of a round's times (e.g. &Round::embree_single, &Round::raytrace) over
     // the rounds: the median, and the lower and upper quartiles. The ratios the tables give:
     // taken round by round, they are not moved by a slow spell that a median of each side's
@@ -87,6 +88,13 @@ struct RayRow {
 
     double pixels() const { return double(width) * height; }
 };
+
+// True when a scene's rows were measured in a spell: their canary's median ran more than
+// `tolerance` above `best`, the fastest canary of the whole run. A spell can last a whole
+// scene, or be on when the run starts; then every round of the scene was slow alike, the
+// canary's best at the time with them, and no round was done again, so only the run's best
+// tells (the harness measures such a scene again).
+bool measured_in_a_spell(const RayRow& row, double best, double tolerance);
 
 // One row per level in options.levels (the current level when empty), Embree's times shared:
 // every round runs Embree single, each level's raytrace, Embree packets, each level's beam,

@@ -128,5 +128,19 @@ TEST(EmbreePeerHarness, TakesItsRatiosRoundByRound) {
         << csv;
 }
 
+TEST(EmbreePeerHarness, MeasuresAgainAWholeSceneTheRunsBestCanaryShowsSlow) {
+    // a scene measured throughout a spell: its canary's median 3.6 ms, while the run's best
+    // (found later, in calm) is 2.8 ms
+    RayRow row;
+    row.canary_ms = 3.6;
+    EXPECT_TRUE(measured_in_a_spell(row, 2.8, 0.2));
+    // within the tolerance: calm
+    row.canary_ms = 3.3;
+    EXPECT_FALSE(measured_in_a_spell(row, 2.8, 0.2));
+    // a tolerance of 0 turns the check off, as it does the rounds' own
+    row.canary_ms = 3.6;
+    EXPECT_FALSE(measured_in_a_spell(row, 2.8, 0.0));
+}
+
 }  // namespace
 }  // namespace fb89::peers
