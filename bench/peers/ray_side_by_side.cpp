@@ -90,7 +90,7 @@ double CanaryGauge::time() {
 }
 
 bool measured_in_a_spell(const RayRow& row, double best, double tolerance) {
-    return tolerance > 0 && row.canary_ms > best * (1 + tolerance);
+    return CanaryGauge{best}.slow(row.canary_ms, tolerance);
 }
 
 RayRow::Spread RayRow::ratio(double Round::*num, double Round::*den) const {
@@ -163,8 +163,8 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         t_canary = canary.time();
         if (!timed) continue;
         // a round the core ran it slower, before or after, is done again (up to a limit)
-        const double limit = canary.best * (1 + options.canary_tolerance);
-        if (options.canary_tolerance > 0 && (calm_before > limit || t_canary > limit) &&
+        if ((canary.slow(calm_before, options.canary_tolerance) ||
+             canary.slow(t_canary, options.canary_tolerance)) &&
             discarded < options.max_discarded) {
             ++discarded;
             continue;

@@ -34,6 +34,11 @@ std::vector<uint32_t> our_ray_face_ids(const RayScene& scene, const std::string&
 struct CanaryGauge {
     double best = INFINITY;  // ms
     double time();           // runs it once: ms
+    // True when `ms` of the canary ran more than `tolerance` above its best (0: never): the
+    // one rule for a round and for a whole scene
+    bool slow(double ms, double tolerance) const {
+        return tolerance > 0 && ms > best * (1 + tolerance);
+    }
 };
 
 struct RaySideBySideOptions {
