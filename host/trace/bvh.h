@@ -252,10 +252,12 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
     int top = 0;
     uint64_t visited = 0;
     uint32_t at = 0;
+    // the best hit so far as a float no nearer than it: changes only when a leaf is tested
+    float bound = float_up(best());
     for (;;) {
         // the node's slots: where the ray enters each box, within [t0, the best hit so far]
         const WideNode& n = m_wide[at];
-        const float limit = std::min(t1, float_up(best()));
+        const float limit = std::min(t1, bound);
         constexpr int kChunks = kWidth / Lanes;
         fv tn[kChunks];
         iv hit[kChunks];
@@ -303,14 +305,16 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
         // a leaf's pieces are tested, an inner node's slots next
         for (;;) {
             if (top == 0) return visited;
-            const Pending p = stack[--top];
-            if (!(p.t_enter <= float_up(best()))) continue;
-            if (p.count == 0) {
-                at = p.child;
+            const Pending& p = stack[--top];
+            if (!(p.t_enter <= bound)) continue;
+            const uint32_t child = p.child, count = p.count;
+            if (count == 0) {
+                at = child;
                 break;
             }
-            for (uint32_t i = p.child; i < p.child + p.count; ++i)
+            for (uint32_t i = child; i < child + count; ++i)
                 test(m_pieces[i]);
+            bound = float_up(best());
         }
     }
 }
