@@ -84,30 +84,27 @@ inline Hit closest_hit_body(const RayBvh& bvh, const TraceScene& scene, const Ra
 using ClosestHit = Hit (*)(const RayBvh&, const TraceScene&, const Ray&, double, uint32_t,
                            TraceCounts&, double);
 
-// Each entry point on x86-64 starts a 64-byte line, so its hot loops sit at the same places in
-// the instruction cache's lines whatever code precedes it in the binary: the AVX2 walk's time
-// on the random world moved by 6% with the padding of an unrelated change before it
-// (BENCHMARKS.md, round 3, a sixth sitting). The period guests keep their layout.
-#if defined(__x86_64__) && !defined(FB89_PORTABLE_KERNELS)
-#define FB89_KERNEL_ENTRY [[gnu::flatten, gnu::aligned(64)]]
-#else
-#define FB89_KERNEL_ENTRY [[gnu::flatten]]
-#endif
+// Each entry point on x86-64 (where the wide walk runs) starts a 64-byte line, so its hot loops
+// sit at the same places in the instruction cache's lines whatever code precedes it in the
+// binary: the AVX2 walk's time on the random world moved by 6% with the padding of an
+// unrelated change before it (BENCHMARKS.md, round 3, a sixth sitting). Elsewhere 1, which
+// leaves a function's alignment as it was: the period guests keep their layout.
+constexpr int kEntryAlign = RayBvh::kWide ? 64 : 1;
 
-FB89_KERNEL_ENTRY Hit closest_hit_baseline(const RayBvh& bvh, const TraceScene& scene,
-                                           const Ray& ray, double tmin, uint32_t skip,
-                                           TraceCounts& counts, double tmax) {
+[[gnu::flatten, gnu::aligned(kEntryAlign)]] Hit closest_hit_baseline(
+    const RayBvh& bvh, const TraceScene& scene, const Ray& ray, double tmin, uint32_t skip,
+    TraceCounts& counts, double tmax) {
     return closest_hit_body<4>(bvh, scene, ray, tmin, skip, counts, tmax);
 }
 
 #if defined(__x86_64__) && !defined(FB89_PORTABLE_KERNELS)
-FB89_KERNEL_ENTRY [[gnu::target("arch=x86-64-v3")]] Hit closest_hit_v3(
+[[gnu::flatten, gnu::aligned(kEntryAlign), gnu::target("arch=x86-64-v3")]] Hit closest_hit_v3(
     const RayBvh& bvh, const TraceScene& scene, const Ray& ray, double tmin, uint32_t skip,
     TraceCounts& counts, double tmax) {
     return closest_hit_body<8>(bvh, scene, ray, tmin, skip, counts, tmax);
 }
 
-FB89_KERNEL_ENTRY [[gnu::target("arch=x86-64-v4")]] Hit closest_hit_v4(
+[[gnu::flatten, gnu::aligned(kEntryAlign), gnu::target("arch=x86-64-v4")]] Hit closest_hit_v4(
     const RayBvh& bvh, const TraceScene& scene, const Ray& ray, double tmin, uint32_t skip,
     TraceCounts& counts, double tmax) {
     return closest_hit_body<8>(bvh, scene, ray, tmin, skip, counts, tmax);
