@@ -259,6 +259,12 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
     constexpr bool kKeepBound = Lanes == 8;
     float bound = float_up(best());
     const auto farthest = [&] { return kKeepBound ? bound : float_up(best()); };
+    // a leaf: its pieces tested, the bound brought up to the best hit they leave
+    const auto test_leaf = [&](uint32_t first, uint32_t count) {
+        for (uint32_t i = first; i < first + count; ++i)
+            test(m_pieces[i]);
+        if constexpr (kKeepBound) bound = float_up(best());
+    };
     for (;;) {
         // the node's slots: where the ray enters each box, within [t0, the best hit so far]
         const WideNode& n = m_wide[at];
@@ -288,7 +294,7 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
             std::memcpy(&t_at[c * Lanes], &tn[c], sizeof tn[c]);
             std::memcpy(&hit_at[c * Lanes], &hit[c], sizeof hit[c]);
         }
-        // the boxes entered, the nearest pushed last (of equal entries, the higher slot)
+        // the boxes entered, farthest first (of equal entries, the higher slot last)
         unsigned order[kWidth];
         int hits = 0;
         visited += n.used;
@@ -302,9 +308,20 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
             }
             order[i] = k;
         }
-        for (int i = 0; i < hits; ++i) {
+        // all but the nearest pushed; the nearest taken at once, with no pop and no test
+        // against the bound: it was entered within the bound, which holds (no leaf tested
+        // since). Pushed and popped, it cost the random world 10% (a seventh sitting).
+        for (int i = 0; i + 1 < hits; ++i) {
             const unsigned k = order[i];
             stack[top++] = Pending{n.child[k], n.count[k], t_at[k]};
+        }
+        if (hits > 0) {
+            const unsigned k = order[hits - 1];
+            if (n.count[k] == 0) {
+                at = n.child[k];
+                continue;
+            }
+            test_leaf(n.child[k], n.count[k]);
         }
         // the next pending box not entered beyond the best hit found since it was pushed:
         // a leaf's pieces are tested, an inner node's slots next
@@ -317,9 +334,7 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
                 at = child;
                 break;
             }
-            for (uint32_t i = child; i < child + count; ++i)
-                test(m_pieces[i]);
-            if constexpr (kKeepBound) bound = float_up(best());
+            test_leaf(child, count);
         }
     }
 }
