@@ -310,7 +310,8 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
         }
         // all but the nearest pushed; the nearest taken at once, with no pop and no test
         // against the bound: it was entered within the bound, which holds (no leaf tested
-        // since). Pushed and popped, it cost the random world 10% (a seventh sitting).
+        // since). Pushed and popped, it cost the random world 6-10% at 8 lanes (BENCHMARKS.md,
+        // round 3, a seventh sitting).
         for (int i = 0; i + 1 < hits; ++i) {
             const unsigned k = order[i];
             stack[top++] = Pending{n.child[k], n.count[k], t_at[k]};
