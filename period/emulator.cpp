@@ -108,6 +108,14 @@ std::string last_phase(const char* path) {
     return phase >= 0 ? fmt::format("in phase {}", phase_name(phase)) : "before its first phase";
 }
 
+// Whether `sig` is one a program gets for going wrong itself (a bad address or instruction, an
+// abort): the emulator passes on the guest's. Any other (SIGTERM, SIGKILL, SIGINT, SIGHUP) was
+// sent from outside.
+bool is_fault(int sig) {
+    return sig == SIGSEGV || sig == SIGBUS || sig == SIGILL || sig == SIGFPE || sig == SIGABRT ||
+           sig == SIGTRAP || sig == SIGSYS;
+}
+
 // The child's resident memory in bytes, from /proc; 0 if it cannot be read.
 uint64_t resident_bytes(pid_t child) {
     std::ifstream status("/proc/" + std::to_string(child) + "/status");
@@ -267,11 +275,21 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
             fmt::format("the emulated host ran out of memory (limit {} MiB) {} "
                         "on {} (nothing written){}",
                         limits.memory_bytes >> 20, where, what, said));
-    if (WIFSIGNALED(status))
-        throw EmulatorError(
-            fmt::format("the emulated host crashed (signal {}) {} on {} (nothing "
-                        "written){}",
-                        WTERMSIG(status), where, what, said));
+    if (WIFSIGNALED(status)) {
+        const int sig = WTERMSIG(status);
+        const char* name = ::sigabbrev_np(sig);
+        const std::string signal =
+            fmt::format("signal {}, SIG{}", sig, name != nullptr ? name : "?");
+        if (is_fault(sig))
+            throw EmulatorError(
+                fmt::format("the emulated host crashed ({}) {} on {} (nothing written){}", signal,
+                            where, what, said));
+        // a kill, a hang-up, an interrupt aimed at the emulator alone: no fault of the guest's
+        throw EmulatorError(fmt::format(
+            "the emulated host was ended from outside ({}{}) {} on {} (nothing written){}", signal,
+            sig == SIGKILL ? ", which the system's out-of-memory killer also sends" : "", where,
+            what, said));
+    }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
         throw EmulatorError(
             fmt::format("the emulated host failed (exit {}) {} on {} (nothing "

@@ -2,9 +2,11 @@
 // reports a 1989-host run that goes wrong (tests/period/failure_test.cpp). It marks the
 // phases as the real guest does, then in Phase::HiddenSurface does what its first argument
 // says: `crash` (writes through a null pointer), `loop` (never ends), `hog` (allocates memory
-// until there is none), `exit` (exits 3). Any other first argument, such as
+// until there is none), `exit` (exits 3), `term` (sends itself SIGTERM, as a kill from
+// outside would; not a crash). Any other first argument, such as
 // the scene a real guest is given, crashes, so that it can stand in for the guest program
 // ($FB89_GUEST) in command-line tests.
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -37,6 +39,7 @@ int main(int argc, char** argv) {
         }
     }
     if (std::strcmp(what, "exit") == 0) return 3;
+    if (std::strcmp(what, "term") == 0) std::raise(SIGTERM);
     volatile int* nowhere = nullptr;
     *nowhere = 1;
     return 0;

@@ -36,8 +36,19 @@ struct ScopedEnv {
 
 TEST(PeriodFailure, ACrashIsReportedWithItsSignalAndPhase) {
     const std::string e = failure("crash");
-    EXPECT_NE(e.find("crashed (signal 11) in phase hidden_surface"), std::string::npos) << e;
+    EXPECT_NE(e.find("crashed (signal 11, SIGSEGV) in phase hidden_surface"), std::string::npos)
+        << e;
     EXPECT_NE(e.find("fb89_kernel_fault"), std::string::npos) << e;
+}
+
+// A guest ended by a signal sent to it (here its own SIGTERM, as `kill` from a shell sends)
+// did not crash, and the message says so.
+TEST(PeriodFailure, ASignalFromOutsideIsNotCalledACrash) {
+    const std::string e = failure("term");
+    EXPECT_NE(e.find("was ended from outside (signal 15, SIGTERM) in phase hidden_surface"),
+              std::string::npos)
+        << e;
+    EXPECT_EQ(e.find("crashed"), std::string::npos) << e;
 }
 
 TEST(PeriodFailure, ALoopIsStoppedAtTheTimeLimit) {
@@ -70,7 +81,7 @@ TEST(PeriodFailure, RenderWritesNothingWhenTheGuestCrashes) {
             (dir / "a.fb89").string(),
         "FB89_M68K_GUEST=" + kernel + " ");
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find("crashed (signal 11) in phase hidden_surface"), std::string::npos)
+    EXPECT_NE(r.err.find("crashed (signal 11, SIGSEGV) in phase hidden_surface"), std::string::npos)
         << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "a.png"));
     EXPECT_FALSE(std::filesystem::exists(dir / "a.json"));
