@@ -206,7 +206,7 @@ GuestRun run_program(const EmulatorParts& parts, const std::string& program,
     const GuestLimits limits = guest_limits(time_limit_s);
     std::string plugin = parts.plugin + ",out=" + counts_path + ",phase=" + phase_path;
     for (const std::string_view option : parts.isa->plugin_options)
-        plugin += "," + std::string(option);
+        plugin.append(",").append(option);
     std::vector<std::string> argv_text{parts.qemu};
     for (const std::string_view option : parts.isa->qemu_options)
         argv_text.emplace_back(option);

@@ -3,6 +3,7 @@
 // renders for them, pixel for pixel (tests/golden/conformance/README.md).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include <fmt/format.h>
@@ -24,7 +25,8 @@ struct Mismatch {
 };
 
 Mismatch compare_with_fixture(const std::string& name) {
-    const std::string base = std::string(FB89_TEST_DATA_DIR) + "/golden/conformance/" + name;
+    const std::string base =
+        (std::filesystem::path(FB89_TEST_DATA_DIR) / "golden" / "conformance" / name).string();
     host::Scene scene = host::load_scene(base + ".tri");
     host::HostStats stats;
     host::ScreenScene ids = host::project_scene(scene, host::ColorMode::FaceId, stats.counters);

@@ -120,7 +120,7 @@ TEST(EmbreePeerHarness, TakesItsRatiosRoundByRound) {
     // a side that took no time has no ratio
     EXPECT_DOUBLE_EQ(row.ratio(&R::embree_single, &R::embree_robust).median, 0.0);
     // one line a round, and the header
-    row.scene = "s";
+    row.scene.assign(1, 's');
     row.isa = "v3";
     const std::string csv = ray_rounds_csv({row});
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10);

@@ -169,8 +169,8 @@ TEST(SparcPricingVariant, TheLibmSqrtSun4DiffersFromTheSun4OnlyInItsSquareRoot) 
 
 INSTANTIATE_TEST_SUITE_P(Sun4, SparcPricing,
                          ::testing::Values("sun4-260", "sparcstation-1", "sparcstation-2"),
-                         [](const auto& info) {
-                             std::string name = info.param;
+                         [](const auto& param_info) {
+                             std::string name = param_info.param;
                              for (char& c : name)
                                  if (c == '-') c = '_';
                              return name;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -183,7 +184,7 @@ TEST(Mesh, RadiosityScenesMeshToThePapersCountsAndFaceIntoTheRoom) {
     for (const RadiosityScene& rs : {RadiosityScene{"garish_room.json", 29, 820, 786, 17},
                                      RadiosityScene{"programmers_cell.json", 324, 1070, 1344, 6},
                                      RadiosityScene{"cornell_box.json", 16, 800, 980, 6}}) {
-        Scene s = load_scene(std::string(FB89_SCENES_DIR) + "/" + rs.file);
+        Scene s = load_scene(std::filesystem::path(FB89_SCENES_DIR) / rs.file);
         EXPECT_EQ(s.face_count, rs.faces) << rs.file;
         MeshOptions o;
         o.patch_size = patch_size_for(s, rs.patches_flag);

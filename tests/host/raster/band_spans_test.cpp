@@ -34,7 +34,7 @@ std::vector<uint32_t> color_table(const ScreenScene& scene) {
 std::vector<uint32_t> random_row(std::mt19937& rng, int width, int max_run, uint32_t faces) {
     std::vector<uint32_t> row;
     while (static_cast<int>(row.size()) < width) {
-        const uint32_t face = rng() % 3 == 0 ? 0 : 1 + rng() % faces;
+        const auto face = static_cast<uint32_t>(rng() % 3 == 0 ? 0 : 1 + rng() % faces);
         row.insert(row.end(), 1 + rng() % static_cast<uint32_t>(max_run), face);
     }
     row.resize(static_cast<size_t>(width));

@@ -33,7 +33,7 @@ Row random_row(std::mt19937& rng) {
     Row row;
     for (size_t x = 0; x < row.depth.size(); ++x) {
         row.depth[x] = z(rng);
-        row.face[x] = rng() % 2 ? 0 : 1 + rng() % 50;
+        row.face[x] = static_cast<uint32_t>(rng() % 2 ? 0 : 1 + rng() % 50);
     }
     return row;
 }

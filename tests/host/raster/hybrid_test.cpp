@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "host/model/analytic_model.h"
@@ -19,7 +20,7 @@ namespace fb89::host {
 namespace {
 
 ScreenScene scene_screen(const char* name, ColorMode mode) {
-    Scene scene = load_scene(std::string(FB89_SCENES_DIR) + "/" + name);
+    Scene scene = load_scene(std::filesystem::path(FB89_SCENES_DIR) / name);
     Counters counters;
     return project_scene(scene, mode, counters);
 }

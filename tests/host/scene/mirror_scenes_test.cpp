@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,7 @@ namespace fb89::host {
 namespace {
 
 Scene load(const std::string& name) {
-    return load_scene(std::string(FB89_SCENES_DIR) + "/" + name + ".json");
+    return load_scene(std::filesystem::path(FB89_SCENES_DIR) / (name + ".json"));
 }
 
 size_t mirror_faces(const Scene& s) {
