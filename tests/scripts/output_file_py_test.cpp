@@ -19,8 +19,7 @@ namespace {
 
 // Saves a one-line chart to `target` with Debian's python3 (which has matplotlib).
 int save_chart(const std::string& target, const std::string& redirect = "") {
-    const std::string script =
-        (std::filesystem::path(FB89_TEST_DATA_DIR) / ".." / "scripts").string();
+    const std::string script = FB89_TEST_DATA_DIR "/../scripts";
     const std::string command =
         "/usr/bin/python3 -c \"import sys; sys.path.insert(0, '" + script +
         "'); import matplotlib; matplotlib.use('Agg'); import matplotlib.pyplot as plt; "

@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <cstdlib>
-#include <filesystem>
 #include <string>
 
 #include "period/plugin/isa.h"
@@ -19,10 +18,7 @@ const fb89_isa* x86_classifier() {
     static const fb89_isa* isa = []() -> const fb89_isa* {
         const char* given = std::getenv("FB89_COUNT_PLUGIN");
         const std::string path =
-            given && *given
-                ? std::string(given)
-                : (std::filesystem::path(FB89_BUILD_DIR) / "period/plugin/libfb89_count.so")
-                      .string();
+            given && *given ? given : FB89_BUILD_DIR "/period/plugin/libfb89_count.so";
         if (::access(path.c_str(), R_OK) != 0) return nullptr;
         void* plugin = ::dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
         if (!plugin) return nullptr;

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <random>
 #include <string>
 
@@ -241,7 +240,7 @@ TEST(ScanLine, MergesAdjacentFacesOfOneColourIntoOneSpanLikeTheZBuffer) {
 }
 
 TEST(ScanLine, SendsTheZBuffersSpansOnTheShadedDemo) {
-    Scene scene = load_scene(std::filesystem::path(FB89_SCENES_DIR) / "demo.json");
+    Scene scene = load_scene(FB89_SCENES_DIR "/demo.json");
     expect_same_as_zbuffer(screen_scene(scene, ColorMode::Shaded));
 }
 
