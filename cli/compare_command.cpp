@@ -71,8 +71,8 @@ nlohmann::json rows_json(const Comparison& c) {
                         {"px_coverage", r.ids.coverage},
                         {"px_other_face", r.ids.other_face}});
         if (r.pipeline)
-            rows.back()["pipeline"] = pipeline_json(*r.pipeline, r.host_ms, r.controller.frame_ms,
-                                                    send_times_source(c.host != "native"));
+            rows.back()["pipeline"] =
+                pipeline_json(*r.pipeline, send_times_source(c.host != "native"));
     }
     return rows;
 }

@@ -34,12 +34,12 @@ std::string split_line(const std::string& host_name, double host_ms, const std::
 
 // The same frame through the pipeline in time (controller_sim/timed_pipeline.h) from its send
 // times -- "measured" natively, "counted" on a 1989 host: its frame time beside max(host,
-// controller) and their sum, how much of the smaller side it hides, the host's stalls and
-// both sides' utilization.
-std::string pipeline_line(const controller::PipelineFigures& p, double host_ms,
-                          double controller_ms, std::string_view sends);
-nlohmann::json pipeline_json(const controller::PipelineFigures& p, double host_ms,
-                             double controller_ms, std::string_view sends);
+// controller alone) and their sum, how much of the smaller side it hides, the host's stalls
+// and both sides' utilization; and, where the buffer slows the controller itself, the
+// controller alone through it beside `controller_ms`, the split's unbounded frame.
+std::string pipeline_line(const experiments::FramePipeline& p, double controller_ms,
+                          std::string_view sends);
+nlohmann::json pipeline_json(const experiments::FramePipeline& p, std::string_view sends);
 
 // How a run's send times were had: "counted" on a 1989 host, else "measured".
 inline std::string_view send_times_source(bool period) {

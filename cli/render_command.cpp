@@ -239,8 +239,7 @@ nlohmann::json stats_json(const RenderArgs& args, const experiments::RenderResul
     j["controller"] = ctl.stats().to_json();
     if (run.period) j["period_host"] = period_json(*run.period);
     if (run.pipeline)
-        j["pipeline"] = pipeline_json(*run.pipeline, run.host_frame_ms, run.controller.frame_ms,
-                                      send_times_source(run.period.has_value()));
+        j["pipeline"] = pipeline_json(*run.pipeline, send_times_source(run.period.has_value()));
     return j;
 }
 
@@ -356,9 +355,8 @@ int run_render(const RenderArgs& args) {
                    split_line(run.period ? run.period->cost.profile : "native", run.host_frame_ms,
                               ctl.profile().name, run.controller.frame_ms));
         if (run.pipeline)
-            fmt::print("{}",
-                       pipeline_line(*run.pipeline, run.host_frame_ms, run.controller.frame_ms,
-                                     send_times_source(run.period.has_value())));
+            fmt::print("{}", pipeline_line(*run.pipeline, run.controller.frame_ms,
+                                           send_times_source(run.period.has_value())));
     }
     return kSuccess;
 }

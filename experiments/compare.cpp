@@ -165,12 +165,10 @@ Table comparison_table(const Comparison& c) {
                                         std::to_string(r.ids.other_face)};
         if (r.pipeline) {
             const double frame = r.pipeline->frame_us / 1e3;
-            row.insert(row.end(),
-                       {fixed(frame, 3),
-                        fixed(pipeline_overlap(frame, r.host_ms, r.controller.frame_ms), 4),
-                        fixed(r.pipeline->host_stalled_us / 1e3, 3),
-                        fixed(r.pipeline->host_utilization(), 4),
-                        fixed(r.pipeline->controller_utilization(), 4)});
+            row.insert(row.end(), {fixed(frame, 3), fixed(r.pipeline->overlap(), 4),
+                                   fixed(r.pipeline->host_stalled_us / 1e3, 3),
+                                   fixed(r.pipeline->host_utilization(), 4),
+                                   fixed(r.pipeline->controller_utilization(), 4)});
         } else {
             row.resize(row.size() + 5);
         }

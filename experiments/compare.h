@@ -38,7 +38,7 @@ struct CompareRow {
     bool host_bound = false;  // the host's time bounds the frame, not the controller's
     IdDifferences ids;        // face ids that differ from the Z-buffer's
     // the frame through the pipeline in time (render_job.h), when it has send times
-    std::optional<controller::PipelineFigures> pipeline;
+    std::optional<FramePipeline> pipeline;
 };
 
 struct Comparison {

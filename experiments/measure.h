@@ -2,12 +2,14 @@
 // through it, and what the controller makes of a frame's commands.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "controller_sim/controller.h"
 #include "controller_sim/profile.h"
+#include "controller_sim/timed_pipeline.h"
 #include "experiments/progress.h"
 #include "experiments/settings.h"
 #include "host/methods.h"
@@ -105,6 +107,25 @@ ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,
                                      const controller::CostProfile& profile);
 // The same of a controller that has run one frame.
 ControllerFigures controller_figures(const controller::Controller& ctl);
+
+// A frame through the pipeline in time, and the two sides it is judged against: the host's
+// own work (host_us) and the controller alone -- every command waiting at the bus at 0,
+// through the same command buffer. A bounded buffer can make the controller alone slower
+// than the split's unbounded pipeline (a command crosses the bus only once the buffer has
+// room for it, so bus and execution take turns); unbounded, the two are the same. The frame
+// never takes less than the larger side or more than their sum (docs/COST_MODEL.md, "The
+// pipeline in time"), so overlap() lies in [0, 1].
+struct FramePipeline : controller::PipelineFigures {
+    double controller_alone_us = 0;
+    double max_us() const { return std::max(host_us, controller_alone_us); }
+    double sum_us() const { return host_us + controller_alone_us; }
+    // The share of the smaller side the pipeline hides: 0 when the frame takes the sum (no
+    // overlap), 1 when it takes the max. (Clamped: outside [0, 1] only by rounding.)
+    double overlap() const {
+        const double smaller = std::min(host_us, controller_alone_us);
+        return smaller > 0 ? std::clamp((sum_us() - frame_us) / smaller, 0.0, 1.0) : 1;
+    }
+};
 
 // Loads a scene file (into `scene`, which the result points into), at the settings' size
 // when one is given, and projects it shaded.

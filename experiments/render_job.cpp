@@ -71,13 +71,14 @@ std::vector<double> period_send_times_us(const period::HostCost& cost, std::size
     return out;
 }
 
-controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& commands,
-                                             const std::vector<double>& send_us, double host_end_us,
-                                             const controller::CostProfile& profile,
-                                             uint64_t buffer_bytes, ControllerFigures* controller,
-                                             std::vector<controller::CommandTiming>* timings) {
+FramePipeline pipeline_figures(const protocol::MemoryBuffer& commands,
+                               const std::vector<double>& send_us, double host_end_us,
+                               const controller::CostProfile& profile, uint64_t buffer_bytes,
+                               ControllerFigures* controller,
+                               std::vector<controller::CommandTiming>* timings) {
     controller::Controller ctl(profile);
     controller::TimedPipeline pipe(buffer_bytes);
+    controller::TimedPipeline alone(buffer_bytes);  // every command waiting at 0
     for (const uint32_t bytes : profile.bytes)
         if (bytes > buffer_bytes)
             throw std::invalid_argument("--buffer: " + std::to_string(buffer_bytes) +
@@ -93,9 +94,10 @@ controller::PipelineFigures pipeline_figures(const protocol::MemoryBuffer& comma
         const auto& cost = ctl.last_cost();
         pipe.push({controller::whole_ns(send_us[i]), cost.bytes, cost.bus_us, cost.exec_us},
                   timings ? &(*timings)[i] : nullptr);
+        alone.push({0, cost.bytes, cost.bus_us, cost.exec_us});
     }
     if (controller) *controller = controller_figures(ctl);
-    return pipe.finish(controller::whole_ns(host_end_us));
+    return {pipe.finish(controller::whole_ns(host_end_us)), alone.finish(0).frame_us};
 }
 
 void write_commands(protocol::StreamWriter& writer, const MethodRun& run) {

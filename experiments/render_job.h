@@ -73,7 +73,7 @@ struct MethodRun {
     // its packet's send mark; FRAME_BEGIN sent as the set-up starts, so that the clear
     // overlaps it -- with the job's command buffer. None when the 1989 host's counts have no
     // send marks (a results folder from before them).
-    std::optional<controller::PipelineFigures> pipeline;
+    std::optional<FramePipeline> pipeline;
     // What it came from: each command's send time in microseconds from the start of the
     // set-up (FRAME_BEGIN's 0), the set-up's end, the host's end; empty without a pipeline.
     std::vector<double> send_us;
@@ -92,15 +92,17 @@ struct RenderResult {
 RenderResult run_render_job(const RenderJob& job);
 
 // A frame's commands through the pipeline in time under `profile`: command i sent at
-// send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`; what the
-// controller made of the frame (controller_figures(), from the same pass) in `controller`
+// send_us[i], the host's own work ending at host_end_us, a buffer of `buffer_bytes`, and the
+// controller alone through the same buffer; what the controller made of the frame
+// (controller_figures(), from the same pass) in `controller`
 // and where each command went in `timings`, when given. Throws std::invalid_argument for a
 // buffer smaller than the profile's largest command and as TimedPipeline::push does.
-controller::PipelineFigures pipeline_figures(
-    const protocol::MemoryBuffer& commands, const std::vector<double>& send_us, double host_end_us,
-    const controller::CostProfile& profile, uint64_t buffer_bytes = controller::kUnboundedBuffer,
-    ControllerFigures* controller = nullptr,
-    std::vector<controller::CommandTiming>* timings = nullptr);
+FramePipeline pipeline_figures(const protocol::MemoryBuffer& commands,
+                               const std::vector<double>& send_us, double host_end_us,
+                               const controller::CostProfile& profile,
+                               uint64_t buffer_bytes = controller::kUnboundedBuffer,
+                               ControllerFigures* controller = nullptr,
+                               std::vector<controller::CommandTiming>* timings = nullptr);
 
 // Writes a run's commands to `writer`; a timed writer (a version-2 stream) also gets their
 // send times and the host's end, in whole nanoseconds (each SEND_TIME where the time changes,
@@ -112,13 +114,6 @@ void write_commands(protocol::StreamWriter& writer, const MethodRun& run);
 // starts (so that the clear overlaps it). Empty unless there is one for each of `commands`.
 std::vector<double> frame_send_times(std::vector<double> hs_us, double setup_us,
                                      std::size_t commands);
-
-// The share of the smaller side the pipeline in time hides: 0 when its frame takes host +
-// controller (no overlap), 1 when it takes max(host, controller).
-inline double pipeline_overlap(double frame_ms, double host_ms, double controller_ms) {
-    const double smaller = std::min(host_ms, controller_ms);
-    return smaller > 0 ? (host_ms + controller_ms - frame_ms) / smaller : 1;
-}
 
 // Each of a frame's `commands` commands' send time on a 1989 host in microseconds from the
 // start of the hidden-surface phase: the time of the send mark that closed its packet

@@ -67,9 +67,8 @@ Table experiment_split(const ExperimentSettings& s) {
             // the frame under a profile: the controller's figures and, with send times, the
             // pipeline in time, from one pass (none: a 1989 host's counts from before send
             // marks, or an untimed run)
-            const auto frame_under =
-                [&](const controller::CostProfile& p,
-                    ControllerFigures& ctl) -> std::optional<controller::PipelineFigures> {
+            const auto frame_under = [&](const controller::CostProfile& p,
+                                         ControllerFigures& ctl) -> std::optional<FramePipeline> {
                 if (run.send_us.empty()) {
                     ctl = controller_figures(run.commands, p);
                     return std::nullopt;
@@ -96,11 +95,10 @@ Table experiment_split(const ExperimentSettings& s) {
                                             fixed(host_ms + ctl.frame_ms, 3)};
             if (pipe) {
                 const double frame = pipe->frame_us / 1e3;
-                row.insert(
-                    row.end(),
-                    {fixed(frame, 3), fixed(pipeline_overlap(frame, host_ms, ctl.frame_ms), 4),
-                     fixed(pipe->host_stalled_us / 1e3, 3), fixed(pipe->host_utilization(), 4),
-                     fixed(pipe->controller_utilization(), 4)});
+                row.insert(row.end(), {fixed(frame, 3), fixed(pipe->overlap(), 4),
+                                       fixed(pipe->host_stalled_us / 1e3, 3),
+                                       fixed(pipe->host_utilization(), 4),
+                                       fixed(pipe->controller_utilization(), 4)});
             } else {
                 row.resize(row.size() + 5);
             }

@@ -148,8 +148,7 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
                   {"ratio", run.split.ratio}};
     if (run.pipeline)
         out->pipeline =
-            cli::pipeline_json(*run.pipeline, run.host_frame_ms, run.controller.frame_ms,
-                               cli::send_times_source(run.period.has_value()));
+            cli::pipeline_json(*run.pipeline, cli::send_times_source(run.period.has_value()));
     if (run.period) {
         const auto& p = *run.period;
         out->period = {{"profile", p.cost.profile},
@@ -259,7 +258,8 @@ PYBIND11_MODULE(_fb89, m) {
             "pipeline", [](const RenderOutcome& r) { return to_python(r.pipeline); },
             "The frame through the pipeline in time from the commands' send times, measured "
             "natively and counted on a 1989 host (docs/COST_MODEL.md): send_times, frame_ms "
-            "beside max_ms and sum_ms, overlap, host stalls, bus and controller busy, "
+            "beside max_ms and sum_ms, overlap, host stalls, bus and controller busy, the "
+            "controller alone through the buffer (controller_alone_ms), "
             "utilizations (render --stats' \"pipeline\"); None when there are no send times.")
         .def_property_readonly(
             "period", [](const RenderOutcome& r) { return to_python(r.period); },

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <stdexcept>
+#include <vector>
 
 namespace fb89::controller {
 namespace {
@@ -103,6 +106,46 @@ TEST(TimedPipeline, AMixedFrame) {
     EXPECT_EQ(f.high_water_bytes, 20u);
     // the next frame starts from 0 again
     EXPECT_EQ(p.push({0, 10, 1, 1}), 2);
+}
+
+// The bound docs/COST_MODEL.md states for the pipeline in time: a frame never takes less
+// than the larger of the host's own work and the controller alone (every command waiting at
+// 0, through the same buffer), nor more than their sum -- whatever the send times, costs and
+// buffer. Two thousand random frames, small buffers among them, so that most stall.
+TEST(TimedPipeline, AFrameLiesBetweenTheLargerSideAndTheSumOfTheHostAndTheControllerAlone) {
+    std::mt19937 rng(89);
+    std::uniform_int_distribution<int> count(1, 60), bytes(0, 24), cost(0, 40), gap(0, 30),
+        capacity(24, 120);
+    int stalled = 0, bounded_slower = 0;
+    for (int frame = 0; frame < 2000; ++frame) {
+        const uint64_t buffer = frame % 4 == 0 ? kUnboundedBuffer : capacity(rng);
+        TimedPipeline timed(buffer), alone(buffer), unbounded;
+        double send = 0;
+        for (int i = count(rng); i > 0; --i) {
+            send += gap(rng);
+            const uint32_t b = static_cast<uint32_t>(bytes(rng));
+            const double bus = b ? cost(rng) / 4.0 : 0, exec = b ? cost(rng) : 0;
+            timed.push({send, b, bus, exec});
+            alone.push({0, b, bus, exec});
+            unbounded.push({0, b, bus, exec});
+        }
+        const double host_end = send + gap(rng);
+        const PipelineFigures f = timed.finish(host_end);
+        const double alone_us = alone.finish(0).frame_us;
+        const double unbounded_us = unbounded.finish(0).frame_us;
+        ASSERT_EQ(f.host_us, host_end) << frame;  // its own work, stalls apart
+        ASSERT_GE(f.frame_us, std::max(f.host_us, alone_us)) << frame;
+        ASSERT_LE(f.frame_us, f.host_us + alone_us) << frame;
+        ASSERT_GE(alone_us, unbounded_us) << frame;  // a bound can only slow the controller
+        if (buffer == kUnboundedBuffer) {
+            ASSERT_EQ(alone_us, unbounded_us) << frame;
+        }
+        stalled += f.stalls > 0;
+        bounded_slower += alone_us > unbounded_us;
+    }
+    // the frames did exercise stalls and buffers that slow the controller alone
+    EXPECT_GT(stalled, 500);
+    EXPECT_GT(bounded_slower, 300);
 }
 
 TEST(TimedPipeline, RefusesWhatCannotBe) {

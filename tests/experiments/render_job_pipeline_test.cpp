@@ -38,6 +38,39 @@ TEST(RenderJobPipeline, NativelyTheFrameLiesBetweenTheLargerSideAndTheirSum) {
     }
 }
 
+// A bounded buffer the bus and the controller must take turns through (64 bytes, a few
+// commands, on the ISA bus's slow profile): the controller alone is slower than the split's
+// unbounded pipeline, and the frame, taken against it, still lies between max and sum -- the
+// overlap a share in [0, 1], not the negative one host + the unbounded controller would give.
+TEST(RenderJobPipeline, ABufferThatSlowsTheControllerIsCountedOnTheControllersSide) {
+    RenderJob job;
+    job.scene = FB89_SCENES_DIR "/A.json";
+    job.size = {256, 195};
+    job.repeat = 1;
+    job.controller = "tms34010-isa";
+    job.methods.emplace_back(host::Method::Warnock);
+    for (const uint64_t buffer : {uint64_t{64}, controller::kUnboundedBuffer}) {
+        job.buffer_bytes = buffer;
+        const RenderResult result = run_render_job(job);
+        const MethodRun& run = result.runs.front();
+        ASSERT_TRUE(run.pipeline.has_value());
+        const FramePipeline& p = *run.pipeline;
+        const double unbounded_us = run.controller.frame_ms * 1e3;
+        if (buffer == controller::kUnboundedBuffer) {
+            EXPECT_NEAR(p.controller_alone_us, unbounded_us, 1e-6);
+        } else {
+            // bus and execution in turn: the controller alone takes longer than the frame
+            // the split allows the host and controller together
+            EXPECT_GT(p.controller_alone_us, unbounded_us + 0.05 * unbounded_us);
+            EXPECT_GT(p.frame_us, p.host_us + unbounded_us);
+        }
+        EXPECT_GE(p.frame_us + 1e-6, p.max_us());
+        EXPECT_LE(p.frame_us, p.sum_us() + 1e-6);
+        EXPECT_GE(p.overlap(), 0);
+        EXPECT_LE(p.overlap(), 1);
+    }
+}
+
 // A frame's stream keeps its send times (a version-2 stream, whole nanoseconds): through the
 // pipeline from the stream alone, without the host, the frame's figures are the render's,
 // exactly -- the replay `fb89 replay --buffer` does.
