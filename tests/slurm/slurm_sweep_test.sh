@@ -7,7 +7,9 @@
 #   2. the same runs emitted as jobs and submitted as an array with the join after it; one task
 #      is cancelled while its run is under way: it writes nothing, and the join does not run;
 #   3. submitted again, the array recomputes only the cancelled run and the join's table equals
-#      the reference byte for byte (every column is counted or modelled from counts).
+#      the reference byte for byte (every column is counted or modelled from counts);
+#   4. a job file past sbatch's 4 MB script limit: its lines packed into the task script, each
+#      run once.
 # The daemons it started are stopped by their process ids on success and failure alike; their
 # logs are printed when it fails. Exit 77 (skipped) only when Slurm is not installed.
 #
@@ -149,5 +151,38 @@ done
 cmp "$scratch/local.csv" "$scratch/cluster.csv" ||
   fail "the joined table differs from the local run's: $(diff "$scratch/local.csv" "$scratch/cluster.csv")"
 [ "$(grep -c . "$scratch/cluster.csv")" = 5 ] || fail "a header and 4 rows expected: $(cat "$scratch/cluster.csv")"
+
+step="a job file past sbatch's 4 MB"
+# 1,200 lines of 4 KB each, 4.9 MB (as big as some 16,000 emitted runs of 300 bytes): each
+# run touches its own file. Over 4 MB of script sbatch refuses ("Pathname ... too long"), so
+# slurm-sweep packs the lines; every one must still run, once
+big="$scratch/big"
+mkdir -p "$big" || exit 1
+pad="$(printf '%04000d' 0)"
+for i in $(seq 1200); do
+  echo "bash -c 'touch $big/ran.$i' --results $big # $pad"
+done > "$scratch/big.txt"
+[ "$(stat -c %s "$scratch/big.txt")" -gt 4194304 ] || fail "the job file is not past 4 MB"
+"$src/scripts/slurm-sweep" --per-task 300 --wait "$scratch/big.txt" -- touch "$big/joined" \
+  > "$scratch/big.out" 2>&1 || fail "slurm-sweep: $(cat "$scratch/big.out")"
+[ "$(stat -c %s "$scratch/big.txt.sbatch")" -lt 4194304 ] || fail "the task script is not under 4 MB"
+[ -f "$big/joined" ] || fail "the join did not run: $(cat "$scratch/big.out")"
+ran="$(find "$big" -maxdepth 1 -name 'ran.*' | wc -l)"
+[ "$ran" = 1200 ] || fail "$ran of the 1200 runs ran"
+[ "$(cat "$big"/slurm/task-*.out | grep -c '^slurm-sweep task .* on .*: run ')" = 1200 ] ||
+  fail "not one run each: $(cat "$big"/slurm/task-*.out | head)"
+
+step="a task script past the cluster's own limit"
+# a cluster that takes at most 1,000 bytes of script (its scontrol says so): refused, naming
+# the sizes, before anything is submitted (--dry-run would print the sbatch lines)
+mkdir -p "$scratch/bin" || exit 1
+printf '#!/bin/sh\necho "SchedulerParameters     = max_script_size=1000"\n' > "$scratch/bin/scontrol"
+chmod +x "$scratch/bin/scontrol"
+PATH="$scratch/bin:$PATH" "$src/scripts/slurm-sweep" --dry-run "$scratch/jobs.txt" -- true \
+  > "$scratch/limit.out" 2>&1
+[ $? = 1 ] && grep -q "bytes, more than sbatch takes (max_script_size 1000)" "$scratch/limit.out" &&
+  ! grep -q "^sbatch" "$scratch/limit.out" || fail "not refused: $(cat "$scratch/limit.out")"
+
 echo "slurm sweep: 4 runs on array $array (task $victim cancelled, nothing written), array $array2" \
-     "recomputed 1 and kept 3; the joined table equals the local run's"
+     "recomputed 1 and kept 3; the joined table equals the local run's; 1,200 runs from a"\
+     "4.9 MB job file, packed, ran once each"
