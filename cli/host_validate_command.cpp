@@ -212,25 +212,34 @@ int run_host_validate(const HostValidateArgs& a) {
                         csv_field(one->figure->benchmark), modelled, published, error,
                         pass ? "yes" : "no", one->figure->id, other->figure->id);
     }
-    for (size_t i = 0; i < rows.size(); ++i)
-        for (size_t k = i + 1; k < rows.size(); ++k) {
-            const Row &one = rows[i], &other = rows[k];
-            if (one.figure->kernel != other.figure->kernel ||
-                one.figure->benchmark != other.figure->benchmark || one.figure == other.figure ||
-                one.figure->clock_mhz > 0 || other.figure->clock_mhz > 0 ||
-                one.figure->check != period::FigureCheck::Within ||
-                other.figure->check != period::FigureCheck::Within ||
-                checked.contains({one.figure, other.figure}) ||
-                checked.contains({other.figure, one.figure}))
-                continue;
-            const double modelled = one.modelled / other.modelled,
-                         published = one.figure->value / other.figure->value;
-            ratios += fmt::format("  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%)\n",
-                                  one.figure->kernel, one.profile, other.profile, modelled,
-                                  published, 100 * period::relative_error(modelled, published));
-        }
+    // the other pairs of machines, shown for what they say, and where one machine has several
+    // figures of a program, how far apart those lie
+    std::vector<period::ModelledFigure> modelled;
+    for (const Row& r : rows)
+        modelled.push_back({r.figure, r.profile, r.modelled});
+    for (const period::UncheckedRatio& u : period::unchecked_ratios(modelled, data.ratios)) {
+        const double low = period::relative_error(u.modelled, u.published_high),
+                     high = period::relative_error(u.modelled, u.published_low);
+        ratios += u.pairs == 1
+                      ? fmt::format("  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%)\n",
+                                    u.kernel, u.numerator, u.denominator, u.modelled,
+                                    u.published_low, 100 * low)
+                      : fmt::format(
+                            "  {} {} / {}: modelled {:.3g}, published {:.3g} to {:.3g} "
+                            "over {} pairs of figures ({:+.1f}% to {:+.1f}%)\n",
+                            u.kernel, u.numerator, u.denominator, u.modelled, u.published_low,
+                            u.published_high, u.pairs, 100 * low, 100 * high);
+    }
+    std::string spreads;
+    for (const period::FigureSpread& f : period::figure_spreads(modelled))
+        spreads += fmt::format("  {} {}: {} figures, {} to {} {} ({:.1f}% apart); modelled {}\n",
+                               f.kernel, f.profile, f.figures, number(f.low), number(f.high),
+                               f.unit, 100 * (f.high / f.low - 1), number(f.modelled));
     if (!ratios.empty())
         table += "the same program on two machines, the ratio of their figures:\n" + ratios;
+    if (!spreads.empty())
+        table += "one machine's several published figures of one program (compilers, systems):\n" +
+                 spreads;
     // What each profile makes of each kernel at its own clocks, in the kernel's usual unit.
     table += "modelled at the profiles' own clocks:\n";
     for (const auto& [asked, profile] : profiles) {

@@ -1,5 +1,6 @@
 #include "period/validation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -188,6 +189,84 @@ KernelRun run_validation_kernel(const EmulatorParts& parts, const ValidationKern
     if (!timed || timed->entered != 1 || timed->instructions == 0)
         throw EmulatorError(
             fmt::format("kernel {} did not mark its timed phase (3) once", kernel.program));
+    return out;
+}
+
+namespace {
+
+// The rows unchecked_ratios and figure_spreads take, by program and machine, in the order of
+// their first rows.
+struct FigureGroup {
+    const ModelledFigure* first = nullptr;
+    std::vector<const ModelledFigure*> rows;
+};
+std::vector<FigureGroup> own_clock_groups(const std::vector<ModelledFigure>& rows) {
+    std::vector<FigureGroup> groups;
+    for (const ModelledFigure& r : rows) {
+        const PublishedFigure& f = *r.figure;
+        if (f.check != FigureCheck::Within || f.clock_mhz > 0) continue;
+        const auto same = [&](const FigureGroup& g) {
+            return g.first->profile == r.profile && g.first->figure->kernel == f.kernel &&
+                   g.first->figure->benchmark == f.benchmark;
+        };
+        auto it = std::find_if(groups.begin(), groups.end(), same);
+        if (it == groups.end()) it = groups.insert(groups.end(), FigureGroup{&r, {}});
+        it->rows.push_back(&r);
+    }
+    return groups;
+}
+
+}  // namespace
+
+std::vector<UncheckedRatio> unchecked_ratios(const std::vector<ModelledFigure>& rows,
+                                             const std::vector<RatioCheck>& checks) {
+    const std::vector<FigureGroup> groups = own_clock_groups(rows);
+    const auto checked = [&](const FigureGroup& a, const FigureGroup& b) {
+        for (const RatioCheck& c : checks)
+            for (const ModelledFigure* x : a.rows)
+                for (const ModelledFigure* y : b.rows)
+                    if ((c.numerator == x->figure->id && c.denominator == y->figure->id) ||
+                        (c.numerator == y->figure->id && c.denominator == x->figure->id))
+                        return true;
+        return false;
+    };
+    std::vector<UncheckedRatio> out;
+    for (std::size_t i = 0; i < groups.size(); ++i)
+        for (std::size_t k = i + 1; k < groups.size(); ++k) {
+            const FigureGroup &a = groups[i], &b = groups[k];
+            if (a.first->figure->kernel != b.first->figure->kernel ||
+                a.first->figure->benchmark != b.first->figure->benchmark ||
+                a.first->profile == b.first->profile || checked(a, b))
+                continue;
+            UncheckedRatio r{a.first->figure->kernel, a.first->profile, b.first->profile,
+                             a.first->modelled / b.first->modelled};
+            for (const ModelledFigure* x : a.rows)
+                for (const ModelledFigure* y : b.rows) {
+                    if (x->figure == y->figure) continue;  // one figure, two profiles
+                    const double published = x->figure->value / y->figure->value;
+                    r.published_low = r.pairs ? std::min(r.published_low, published) : published;
+                    r.published_high = r.pairs ? std::max(r.published_high, published) : published;
+                    ++r.pairs;
+                }
+            if (r.pairs > 0) out.push_back(r);
+        }
+    return out;
+}
+
+std::vector<FigureSpread> figure_spreads(const std::vector<ModelledFigure>& rows) {
+    std::vector<FigureSpread> out;
+    for (const FigureGroup& g : own_clock_groups(rows)) {
+        if (g.rows.size() < 2) continue;
+        FigureSpread s{g.first->figure->kernel,        g.first->profile,
+                       g.first->figure->unit,          g.first->modelled,
+                       g.first->figure->value,         g.first->figure->value,
+                       static_cast<int>(g.rows.size())};
+        for (const ModelledFigure* r : g.rows) {
+            s.low = std::min(s.low, r->figure->value);
+            s.high = std::max(s.high, r->figure->value);
+        }
+        out.push_back(s);
+    }
     return out;
 }
 

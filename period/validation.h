@@ -97,6 +97,36 @@ inline bool passes(const PublishedFigure& f, double error) {
 }
 std::string_view check_name(FigureCheck check);  // "within", "at_most", "at_least"
 
+// A published figure as one host profile models it: a row of `fb89 host-validate`'s table.
+struct ModelledFigure {
+    const PublishedFigure* figure = nullptr;
+    std::string profile;
+    double modelled = 0;  // in the figure's unit
+};
+
+// The same program on two profiled machines where validation.json names no ratio check: the
+// ratio of the two modelled figures beside the published ratios over every pair of the two
+// machines' figures (a machine may have several: other compilers, other systems). Only
+// figures of the profiled machine itself at its own clocks (a "within" check, no clock of
+// their own) take part; two machines a RatioCheck already pairs are left out.
+struct UncheckedRatio {
+    std::string kernel, numerator, denominator;  // the profiles
+    double modelled = 0;
+    double published_low = 0, published_high = 0;  // over `pairs` pairs of figures
+    int pairs = 0;
+};
+std::vector<UncheckedRatio> unchecked_ratios(const std::vector<ModelledFigure>& rows,
+                                             const std::vector<RatioCheck>& checks);
+
+// One profiled machine's several published figures of one program (the same rows as
+// unchecked_ratios takes): how far apart they lie, beside the one modelled figure.
+struct FigureSpread {
+    std::string kernel, profile, unit;
+    double modelled = 0, low = 0, high = 0;
+    int figures = 0;
+};
+std::vector<FigureSpread> figure_spreads(const std::vector<ModelledFigure>& rows);
+
 // One kernel run on the emulator: its counts (the same for every host profile) and what it
 // printed (its own check).
 struct KernelRun {

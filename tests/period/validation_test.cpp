@@ -233,5 +233,59 @@ TEST(PeriodValidation, TheProfilesMeetThePublishedRatios) {
     }
 }
 
+// The pairs host-validate shows beside its checks: one line per two machines over all their
+// figures, none of a machine with itself, none for figures at another clock or of another
+// kind of check, none for a pair a ratio check covers; and one machine's figures' spread.
+TEST(Validation, UncheckedRatiosPairMachinesNotFigures) {
+    const auto figure = [](std::string id, double value, FigureCheck check = FigureCheck::Within,
+                           double clock = 0) {
+        PublishedFigure f;
+        f.id = std::move(id);
+        f.kernel = "fft2d";
+        f.benchmark = "ffbench";
+        f.unit = "s/pass";
+        f.value = value;
+        f.check = check;
+        f.clock_mhz = clock;
+        return f;
+    };
+    const std::vector<PublishedFigure> figures = {figure("a", 60),
+                                                  figure("pc-1", 50),
+                                                  figure("pc-2", 40),
+                                                  figure("pc-3", 55),
+                                                  figure("b", 12),
+                                                  figure("c-fast", 30, FigureCheck::Within, 33),
+                                                  figure("a-slow", 80, FigureCheck::AtLeast)};
+    const std::vector<ModelledFigure> rows = {{&figures[0], "a", 66},  {&figures[1], "pc", 44},
+                                              {&figures[2], "pc", 44}, {&figures[3], "pc", 44},
+                                              {&figures[4], "b", 11},  {&figures[5], "pc", 33},
+                                              {&figures[6], "a", 66}};
+    const std::vector<RatioCheck> checks = {{"a-over-b", "b", "a", 0.2, ""}};
+
+    const std::vector<UncheckedRatio> r = unchecked_ratios(rows, checks);
+    ASSERT_EQ(r.size(), 2u);  // a/pc and pc/b; not a/b (checked), not pc/pc
+    EXPECT_EQ(r[0].numerator, "a");
+    EXPECT_EQ(r[0].denominator, "pc");
+    EXPECT_DOUBLE_EQ(r[0].modelled, 1.5);
+    EXPECT_EQ(r[0].pairs, 3);  // a against each of pc's three own-clock figures
+    EXPECT_DOUBLE_EQ(r[0].published_low, 60.0 / 55);
+    EXPECT_DOUBLE_EQ(r[0].published_high, 60.0 / 40);
+    EXPECT_EQ(r[1].numerator, "pc");
+    EXPECT_EQ(r[1].denominator, "b");
+    EXPECT_DOUBLE_EQ(r[1].modelled, 4);
+    EXPECT_EQ(r[1].pairs, 3);
+    EXPECT_DOUBLE_EQ(r[1].published_low, 40.0 / 12);
+    EXPECT_DOUBLE_EQ(r[1].published_high, 55.0 / 12);
+
+    const std::vector<FigureSpread> s = figure_spreads(rows);
+    ASSERT_EQ(s.size(), 1u);  // pc's three; the 33 MHz figure is at another clock
+    EXPECT_EQ(s[0].profile, "pc");
+    EXPECT_EQ(s[0].figures, 3);
+    EXPECT_EQ(s[0].low, 40);
+    EXPECT_EQ(s[0].high, 55);
+    EXPECT_EQ(s[0].modelled, 44);
+    EXPECT_EQ(s[0].unit, "s/pass");
+}
+
 }  // namespace
 }  // namespace fb89::period
