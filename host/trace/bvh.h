@@ -129,6 +129,19 @@ using Float8 = float __attribute__((vector_size(32)));
 using Int4 = int32_t __attribute__((vector_size(16)));
 using Int8 = int32_t __attribute__((vector_size(32)));
 
+// Which of 4 lanes of comparison results are true, as 4 bits (movmskps on x86, the lanes'
+// sign bits; lane by lane elsewhere).
+inline unsigned lane_bits(Int4 m) {
+#if defined(__SSE__)
+    return static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<Float4>(m)));
+#else
+    unsigned bits = 0;
+    for (int k = 0; k < 4; ++k)
+        bits |= (m[k] != 0 ? 1u : 0u) << k;
+    return bits;
+#endif
+}
+
 // A distance t >= 0 as a float no smaller than it, and one no larger (for pruning and box
 // tests, where a float on the wrong side would lose a hit): the float nearest t is within
 // half an ulp of it, so stepping 2^-22 of it outward always lands on the right side.
@@ -287,19 +300,26 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
             tn[c] = near_t;
             hit[c] = near_t <= far_t;
         }
-        // the entries and hits lane by lane, as plain arrays
+        // the entries lane by lane, as a plain array; the hits too, at 8 lanes, and at 4 as
+        // bits from movmskps: stored and read back lane by lane, they cost the SSE2 walk 4%
+        // on the random world (BENCHMARKS.md, round 3, an eighth sitting); at 8 lanes the
+        // bits measured no better
         float t_at[kWidth];
         int32_t hit_at[kWidth];
+        unsigned hit_bits = 0;
         for (int c = 0; c < kChunks; ++c) {
             std::memcpy(&t_at[c * Lanes], &tn[c], sizeof tn[c]);
-            std::memcpy(&hit_at[c * Lanes], &hit[c], sizeof hit[c]);
+            if constexpr (Lanes == 4)
+                hit_bits |= lane_bits(hit[c]) << (c * Lanes);
+            else
+                std::memcpy(&hit_at[c * Lanes], &hit[c], sizeof hit[c]);
         }
         // the boxes entered, farthest first (of equal entries, the higher slot last)
         unsigned order[kWidth];
         int hits = 0;
         visited += n.used;
         for (unsigned k = 0; k < kWidth; ++k) {
-            if (!hit_at[k]) continue;
+            if (Lanes == 4 ? !(hit_bits >> k & 1u) : !hit_at[k]) continue;
             int i = hits++;
             const float t = t_at[k];
             while (i > 0 && t_at[order[i - 1]] < t) {
