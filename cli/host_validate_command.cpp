@@ -192,11 +192,9 @@ int run_host_validate(const HostValidateArgs& a) {
         return nullptr;
     };
     std::string ratios, ratio_csv;
-    std::set<std::pair<const period::PublishedFigure*, const period::PublishedFigure*>> checked;
     for (const period::RatioCheck& c : data.ratios) {
         const Row *one = row_of(c.numerator), *other = row_of(c.denominator);
         if (!one || !other) continue;  // a profile of it was not asked for
-        checked.insert({one->figure, other->figure});
         const double modelled = one->modelled / other->modelled,
                      published = one->figure->value / other->figure->value;
         const double error = period::relative_error(modelled, published);

@@ -319,7 +319,11 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
         int hits = 0;
         visited += n.used;
         for (unsigned k = 0; k < kWidth; ++k) {
-            if (Lanes == 4 ? !(hit_bits >> k & 1u) : !hit_at[k]) continue;
+            if constexpr (Lanes == 4) {
+                if (!(hit_bits >> k & 1u)) continue;
+            } else {
+                if (!hit_at[k]) continue;
+            }
             int i = hits++;
             const float t = t_at[k];
             while (i > 0 && t_at[order[i - 1]] < t) {
@@ -335,8 +339,8 @@ uint64_t RayBvh::walk_wide(const FloatRay& r, float t0, float t1, Test&& test, B
         for (int i = 0; i + 1 < hits; ++i) {
             const unsigned k = order[i];
             stack[top++] = Pending{n.child[k], n.count[k], t_at[k]};
-            // an inner node's 256 bytes asked for now, to be in cache when it is popped:
-            // 1-4.5% at baseline (BENCHMARKS.md, round 3, an eighth sitting)
+            // an inner node's first cache line asked for now, to be in cache when it is
+            // popped: 1-4.5% at baseline (BENCHMARKS.md, round 3, an eighth sitting)
             if (n.count[k] == 0) __builtin_prefetch(&m_wide[n.child[k]]);
         }
         if (hits > 0) {
