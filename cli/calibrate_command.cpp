@@ -3,7 +3,7 @@
 // mirrored Cornell box), repeated until two sweeps agree (calibrate_stably: timing is
 // noisy), printed on stdout -- the table, the sweeps' choices, and a last line with the
 // chosen threshold (-q: that line alone) -- and saved where `render --method hybrid|beam`
-// and `compare` pick it up (cli/calibration.h). A choice of 0 (the hybrid off) is a
+// and `compare` pick it up (frontend/calibration.h). A choice of 0 (the hybrid off) is a
 // warning on stderr saying why. The paper's 0.04 is always on the ramp and stays available
 // as `--threshold paper`.
 #include <unistd.h>
@@ -17,12 +17,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/calibration.h"
-#include "cli/common.h"
-#include "cli/data_dir.h"
-#include "cli/period_host.h"
-#include "cli/runs.h"
+#include "cli/commands.h"
 #include "experiments/calibration.h"
+#include "frontend/calibration.h"
+#include "frontend/data_dir.h"
+#include "frontend/period_host.h"
+#include "frontend/runs.h"
 #include "host/raster/hybrid.h"
 
 namespace fb89::cli {

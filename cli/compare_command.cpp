@@ -10,12 +10,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/calibration.h"
-#include "cli/common.h"
-#include "cli/data_dir.h"
-#include "cli/period_host.h"
+#include "cli/commands.h"
 #include "controller_sim/png_io.h"
 #include "experiments/compare.h"
+#include "frontend/calibration.h"
+#include "frontend/data_dir.h"
+#include "frontend/period_host.h"
 
 namespace fb89::cli {
 

@@ -25,7 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/common.h"
+#include "cli/commands.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/display.h"
 #include "controller_sim/png_io.h"

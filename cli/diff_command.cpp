@@ -17,9 +17,9 @@
 
 #include <fmt/format.h>
 
-#include "cli/common.h"
-#include "cli/stream_edit.h"
-#include "cli/stream_tools.h"
+#include "cli/commands.h"
+#include "frontend/stream_edit.h"
+#include "frontend/stream_tools.h"
 
 namespace fb89::cli {
 

@@ -6,9 +6,9 @@
 // cancelled or timed-out Slurm task) ends the emulator and writes nothing.
 #include <csignal>
 
-#include "cli/common.h"
-#include "cli/data_dir.h"
+#include "cli/commands.h"
 #include "experiments/period_runs.h"
+#include "frontend/data_dir.h"
 #include "period/isa.h"
 #include "period/stop.h"
 

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "cli/common.h"
+#include "cli/commands.h"
 #include "period/isa.h"
 #include "period/validation.h"
 

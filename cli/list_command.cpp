@@ -9,10 +9,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.h"
-#include "cli/data_dir.h"
+#include "cli/commands.h"
 #include "controller_sim/profile.h"
 #include "experiments/catalog.h"
+#include "frontend/data_dir.h"
 #include "host/methods.h"
 #include "period/host_profile.h"
 

@@ -6,9 +6,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/common.h"
-#include "cli/data_dir.h"
+#include "cli/commands.h"
 #include "controller_sim/profile.h"
+#include "frontend/data_dir.h"
 #include "host/scene/scene_error.h"
 #include "protocol/output_file.h"
 #include "protocol/stream_reader.h"

@@ -26,13 +26,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.h"
-#include "cli/data_dir.h"
+#include "cli/commands.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "experiments/id_pass.h"
 #include "experiments/id_view.h"
 #include "experiments/progress.h"
+#include "frontend/data_dir.h"
 #include "host/methods.h"
 #include "host/radiosity/pipeline.h"
 #include "host/raster/screen_setup.h"

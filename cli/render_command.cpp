@@ -12,10 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/calibration.h"
-#include "cli/common.h"
-#include "cli/data_dir.h"
-#include "cli/period_host.h"
+#include "cli/commands.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "experiments/beam_mask.h"
@@ -24,6 +21,9 @@
 #include "experiments/period_runs.h"
 #include "experiments/progress.h"
 #include "experiments/timeline.h"
+#include "frontend/calibration.h"
+#include "frontend/data_dir.h"
+#include "frontend/period_host.h"
 #include "host/methods.h"
 #include "host/raster/scene_measures.h"
 #include "host/raster/screen_setup.h"

@@ -26,12 +26,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.h"
-#include "cli/stream_tools.h"
+#include "cli/commands.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "controller_sim/timed_pipeline.h"
 #include "experiments/timeline.h"
+#include "frontend/stream_tools.h"
 
 namespace fb89::cli {
 

@@ -10,10 +10,10 @@
 
 #include <fmt/format.h>
 
-#include "cli/common.h"
-#include "cli/data_dir.h"
-#include "cli/period_host.h"
-#include "cli/runs.h"
+#include "cli/commands.h"
+#include "frontend/data_dir.h"
+#include "frontend/period_host.h"
+#include "frontend/runs.h"
 
 namespace fb89::cli {
 

@@ -19,11 +19,11 @@
 
 #include <fmt/format.h>
 
-#include "cli/common.h"
-#include "cli/stream_tools.h"
+#include "cli/commands.h"
 #include "controller_sim/display.h"
 #include "controller_sim/png_io.h"
 #include "controller_sim/view_player.h"
+#include "frontend/stream_tools.h"
 
 namespace fb89::cli {
 

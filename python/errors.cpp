@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "cli/common.h"
+#include "frontend/common.h"
 #include "host/scene/scene_error.h"
 #include "period/emulator.h"
 #include "protocol/stream_format.h"
@@ -64,7 +64,7 @@ void register_errors(py::module_& m) {
             PyErr_SetString(file_error.ptr(), e.what());
         } catch (const period::EmulatorError& e) {
             PyErr_SetString(emulator_error.ptr(), e.what());
-        } catch (const cli::UsageError& e) {
+        } catch (const frontend::UsageError& e) {
             PyErr_SetString(option_error.ptr(), e.what());
         } catch (const std::invalid_argument& e) {
             PyErr_SetString(option_error.ptr(), e.what());

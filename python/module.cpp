@@ -1,7 +1,7 @@
 // The fb89 Python module (import fb89): a thin layer over the libraries the command line uses
 // -- the render job (experiments/render_job.h), the id pass, the controller, the stream reader
-// -- and the front end's own rules for scene names and thresholds (cli/data_dir.h,
-// cli/calibration.h), so that a call reads its arguments and does its work exactly as the
+// -- and the front end's own rules for scene names and thresholds (frontend/data_dir.h,
+// frontend/calibration.h), so that a call reads its arguments and does its work exactly as the
 // matching command does. Arrays are numpy views of fb89's buffers that keep their owner
 // alive; the GIL is released while fb89 works. docs/PYTHON.md is the tour.
 #include <pybind11/numpy.h>
@@ -16,16 +16,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/calibration.h"
-#include "cli/common.h"
-#include "cli/data_dir.h"
-#include "cli/period_host.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/profile.h"
 #include "experiments/catalog.h"
 #include "experiments/id_pass.h"
 #include "experiments/period_runs.h"
 #include "experiments/render_job.h"
+#include "frontend/calibration.h"
+#include "frontend/common.h"
+#include "frontend/data_dir.h"
+#include "frontend/period_host.h"
 #include "host/methods.h"
 #include "host/scene/scene_error.h"
 #include "host/scene/scene_loader.h"
@@ -70,8 +70,8 @@ void check_applies(const host::MethodInfo& info, host::OptionGroup group, const 
     std::string users;
     for (const auto& m : host::methods())
         if (m.uses(group)) users += (users.empty() ? "" : " and ") + std::string(m.name);
-    throw cli::UsageError(std::string(option) + ": the " + std::string(info.name) +
-                          " method does not use it (only " + users + " do)");
+    throw frontend::UsageError(std::string(option) + ": the " + std::string(info.name) +
+                               " method does not use it (only " + users + " do)");
 }
 
 std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::string& method,
@@ -81,7 +81,7 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
                                       const std::optional<std::string>& beam_threshold,
                                       const std::optional<int>& reflections) {
     auto out = std::make_shared<RenderOutcome>();
-    out->scene = cli::resolve_scene(scene);
+    out->scene = frontend::resolve_scene(scene);
     out->method = method;
     out->host = host;
     out->controller = controller_profile;
@@ -91,9 +91,9 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     check_applies(info, host::kBeamOptions, "beam_threshold", beam_threshold.has_value());
     check_applies(info, host::kTraceOptions, "reflections", reflections.has_value());
     options.hybrid.threshold =
-        cli::resolve_threshold(threshold.value_or("calibrated"), nullptr, host);
+        frontend::resolve_threshold(threshold.value_or("calibrated"), nullptr, host);
     options.beam.threshold =
-        cli::resolve_beam_threshold(beam_threshold.value_or("calibrated"), nullptr, host);
+        frontend::resolve_beam_threshold(beam_threshold.value_or("calibrated"), nullptr, host);
     if (reflections) options.trace.max_reflections = *reflections;
     host::validate(options);
 
@@ -104,7 +104,7 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
         } catch (const period::EmulatorError&) {
             throw;
         } catch (const std::runtime_error& e) {
-            throw cli::UsageError(std::string(what) + ": " + e.what());
+            throw frontend::UsageError(std::string(what) + ": " + e.what());
         }
     };
     const controller::CostProfile cost =
@@ -113,7 +113,7 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     experiments::RenderJob job;
     job.scene = out->scene;
     job.methods = {options};
-    if (!size.empty()) job.size = cli::parse_size(size);
+    if (!size.empty()) job.size = frontend::parse_size(size);
     job.repeat = repeat;
     job.controller = controller_profile;
     if (host != "native")
@@ -130,7 +130,7 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     out->ids = experiments::id_framebuffer(out->result.scene, *run.renderer);
     out->face_ids = face_ids(out->ids);
     out->stream = std::make_shared<StreamFile>();
-    out->stream->header = {{"scene", cli::scene_display_name(out->scene)},
+    out->stream->header = {{"scene", frontend::scene_display_name(out->scene)},
                            {"method", method},
                            {"resolution", std::to_string(out->result.screen.width) + "x" +
                                               std::to_string(out->result.screen.height)},
@@ -147,8 +147,8 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
                   {"bound_by", run.split.host_bounds ? "host" : "controller"},
                   {"ratio", run.split.ratio}};
     if (run.pipeline)
-        out->pipeline =
-            cli::pipeline_json(*run.pipeline, cli::send_times_source(run.period.has_value()));
+        out->pipeline = frontend::pipeline_json(
+            *run.pipeline, frontend::send_times_source(run.period.has_value()));
     if (run.period) {
         const auto& p = *run.period;
         out->period = {{"profile", p.cost.profile},
@@ -178,7 +178,8 @@ PYBIND11_MODULE(_fb89, m) {
         "scenes",
         [] {
             std::vector<std::string> names;
-            for (const auto& e : std::filesystem::directory_iterator(cli::data_dir() / "scenes"))
+            for (const auto& e :
+                 std::filesystem::directory_iterator(frontend::data_dir() / "scenes"))
                 if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
             std::sort(names.begin(), names.end());
             return names;
@@ -276,7 +277,7 @@ PYBIND11_MODULE(_fb89, m) {
             "The frame's commands as a structured array (fb89.COMMAND_DTYPE), one row a "
             "command: render.stream.commands.")
         .def("__repr__", [](const RenderOutcome& r) {
-            return "<fb89.Render " + cli::scene_display_name(r.scene) + " " + r.method + " " +
+            return "<fb89.Render " + frontend::scene_display_name(r.scene) + " " + r.method + " " +
                    std::to_string(r.result.screen.width) + "x" +
                    std::to_string(r.result.screen.height) + " on " + r.host + ">";
         });
@@ -311,13 +312,13 @@ PYBIND11_MODULE(_fb89, m) {
     m.def(
         "_installed_at",
         [](const std::string& prefix) {
-            cli::set_install_prefix(prefix);
-            cli::use_installed_period_parts();
+            frontend::set_install_prefix(prefix);
+            frontend::use_installed_period_parts();
         },
         "Called by the installed package (fb89/_install.py): the prefix it is installed in, where "
         "the bundled data and the 1989 hosts' parts are, as for the installed fb89 command.");
     m.def("_scene_info", [](const std::string& argument) {
-        const std::string file = cli::resolve_scene(argument);
+        const std::string file = frontend::resolve_scene(argument);
         host::Scene scene;
         {
             py::gil_scoped_release unlocked;
@@ -325,7 +326,7 @@ PYBIND11_MODULE(_fb89, m) {
         }
         py::dict d;
         d["path"] = file;
-        d["name"] = cli::scene_display_name(file);
+        d["name"] = frontend::scene_display_name(file);
         d["width"] = scene.width;
         d["height"] = scene.height;
         d["faces"] = scene.faces.size();

@@ -1,5 +1,5 @@
 // The long-running commands from Python: experiment, sweep threshold and calibrate through
-// the same requests as the command line (cli/runs.h), their tables handed over as columns and
+// the same requests as the command line (frontend/runs.h), their tables handed over as columns and
 // rows for fb89.Table (fb89/_table.py).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "cli/data_dir.h"
-#include "cli/runs.h"
+#include "frontend/data_dir.h"
+#include "frontend/runs.h"
 #include "python/convert.h"
 #include "python/work.h"
 
@@ -28,11 +28,11 @@ py::dict table_parts(const experiments::Table& t) {
 }
 
 // What the three requests share, from the keyword arguments the Python functions pass on.
-void fill(cli::RunRequest& r, const std::vector<std::string>& scenes, const std::string& size,
+void fill(frontend::RunRequest& r, const std::vector<std::string>& scenes, const std::string& size,
           int repeat, const std::string& controller, const std::string& host, int jobs,
           const std::string& results) {
     for (const std::string& scene : scenes)
-        r.scenes.push_back(cli::resolve_scene(scene));
+        r.scenes.push_back(frontend::resolve_scene(scene));
     r.size = size;
     r.repeat = repeat;
     r.profile = controller;
@@ -41,7 +41,7 @@ void fill(cli::RunRequest& r, const std::vector<std::string>& scenes, const std:
     r.host.results = results;
 }
 
-// Runs a request through `run` (cli/runs.h) as run_work() runs work: without the GIL, its
+// Runs a request through `run` (frontend/runs.h) as run_work() runs work: without the GIL, its
 // progress line on or off as `progress` says.
 template <class Request, class Run>
 auto run_request(const py::object& progress, Request& request, Run run) {
@@ -63,7 +63,7 @@ void register_runs(py::module_& m) {
                             const std::string& accel, int patches, int reference_rays,
                             const std::vector<std::string>& methods, const std::string& host,
                             int jobs, const std::string& results, const py::object& progress) {
-        cli::ExperimentRequest r;
+        frontend::ExperimentRequest r;
         fill(r, scenes, size, repeat, controller, host, jobs, results);
         r.name = name;
         r.threshold = threshold;
@@ -74,7 +74,7 @@ void register_runs(py::module_& m) {
         r.patches = patches;
         r.reference_rays = reference_rays;
         r.methods = methods;
-        const auto out = run_request(progress, r, cli::run_experiment);
+        const auto out = run_request(progress, r, frontend::run_experiment);
         return table_parts(out.table);
     });
     m.def("_sweep", [](const std::vector<std::string>& scenes, double start, double stop, int steps,
@@ -82,21 +82,21 @@ void register_runs(py::module_& m) {
                        const std::string& size, int repeat, const std::string& controller,
                        const std::string& host, int jobs, const std::string& results,
                        const py::object& progress) {
-        cli::SweepRequest r;
+        frontend::SweepRequest r;
         fill(r, scenes, size, repeat, controller, host, jobs, results);
         r.from = start;
         r.to = stop;
         r.steps = steps;
         r.window_test = window_test;
         r.depth_estimate = depth_estimate;
-        const auto out = run_request(progress, r, cli::run_threshold_sweep);
+        const auto out = run_request(progress, r, frontend::run_threshold_sweep);
         return table_parts(out.table);
     });
     m.def("_calibrate",
           [](const std::string& method, const std::vector<std::string>& scenes, double start,
              double stop, int steps, int repeat, double tolerance, const std::string& host,
              int jobs, const std::string& results, bool save, const py::object& progress) {
-              cli::CalibrateRequest r;
+              frontend::CalibrateRequest r;
               fill(r, scenes, "", repeat, r.profile, host, jobs, results);
               r.method = method;
               r.from = start;
@@ -104,7 +104,7 @@ void register_runs(py::module_& m) {
               r.steps = steps;
               r.tolerance = tolerance;
               r.dry_run = !save;
-              const auto out = run_request(progress, r, cli::run_calibration);
+              const auto out = run_request(progress, r, frontend::run_calibration);
               const experiments::Calibration& c = out.calibration;
               py::dict d;
               d["chosen"] = c.chosen;

@@ -12,11 +12,11 @@
 #include <optional>
 #include <string>
 
-#include "cli/common.h"
-#include "cli/stream_edit.h"
-#include "cli/stream_tools.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/profile.h"
+#include "frontend/common.h"
+#include "frontend/stream_edit.h"
+#include "frontend/stream_tools.h"
 #include "protocol/call_set.h"
 #include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
@@ -32,7 +32,7 @@ namespace {
 std::shared_ptr<StreamFile> open_stream(const std::string& path,
                                         const std::optional<std::string>& calls) {
     std::optional<protocol::CallSet> selection;
-    if (calls) selection = cli::parse_call_set_option("calls", *calls);
+    if (calls) selection = frontend::parse_call_set_option("calls", *calls);
     auto out = std::make_shared<StreamFile>();
     out->path = path;
     std::optional<protocol::StreamReader> opened;
@@ -101,10 +101,10 @@ std::shared_ptr<StreamFile> stream_from(
               [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& [row, text] : out->commands.markers) {
         if (row >= out->commands.rows.size() || out->commands.rows[row].opcode != 4)
-            throw cli::UsageError("markers: row " + std::to_string(row) + " is not a MARKER");
+            throw frontend::UsageError("markers: row " + std::to_string(row) + " is not a MARKER");
         if (text.size() > protocol::kMaxMarkerLength)
-            throw cli::UsageError("markers: row " + std::to_string(row) + ": longer than " +
-                                  std::to_string(protocol::kMaxMarkerLength) + " bytes");
+            throw frontend::UsageError("markers: row " + std::to_string(row) + ": longer than " +
+                                       std::to_string(protocol::kMaxMarkerLength) + " bytes");
     }
     return out;
 }
@@ -310,17 +310,17 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
 
     m.def("_trim", [](const std::string& input, const std::string& output, const std::string& calls,
                       const std::string& frames, bool salvage) {
-        cli::TrimRequest r{input, output, calls, frames, salvage};
-        cli::TrimOutcome out;
+        frontend::TrimRequest r{input, output, calls, frames, salvage};
+        frontend::TrimOutcome out;
         {
             py::gil_scoped_release unlocked;
-            out = cli::trim_stream(r);
+            out = frontend::trim_stream(r);
         }
-        using Result = cli::TrimOutcome::Result;
+        using Result = frontend::TrimOutcome::Result;
         const std::string said = out.error ? std::string("; ") + out.error->what() : "";
         if (out.result == Result::NothingMatched)
-            throw cli::UsageError("trim: the selection matched no command of " + input + "; " +
-                                  out.output + " not written" + said);
+            throw frontend::UsageError("trim: the selection matched no command of " + input + "; " +
+                                       out.output + " not written" + said);
         if (out.result == Result::Damaged)
             throw protocol::StreamError(std::string(out.error->what()) + "; " + out.output +
                                             " not written (salvage=True keeps what was read "
@@ -335,10 +335,10 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
     });
 
     m.def("_diff", [](const std::string& a, const std::string& b, const std::string& image) {
-        cli::DiffOutcome out;
+        frontend::DiffOutcome out;
         {
             py::gil_scoped_release unlocked;
-            out = cli::diff_streams(a, b, image);
+            out = frontend::diff_streams(a, b, image);
         }
         if (out.error)
             throw protocol::StreamError(std::string(out.error->what()) + "; compared " +
@@ -346,7 +346,7 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
                                             " frame(s) before the error",
                                         out.error->offset(), out.error->command());
         py::list frames;
-        for (const cli::FrameDiff& f : out.frames) {
+        for (const frontend::FrameDiff& f : out.frames) {
             py::dict d;
             d["frame"] = f.frame;
             d["size_a"] = f.size_a.empty() ? py::object(py::none()) : py::str(f.size_a);

@@ -1,4 +1,4 @@
-#include "cli/runs.h"
+#include "frontend/runs.h"
 
 #include <chrono>
 #include <cmath>
@@ -6,15 +6,15 @@
 
 #include <fmt/format.h>
 
-#include "cli/calibration.h"
-#include "cli/common.h"
-#include "cli/data_dir.h"
 #include "experiments/catalog.h"
 #include "experiments/experiments.h"
 #include "experiments/period_runs.h"
+#include "frontend/calibration.h"
+#include "frontend/common.h"
+#include "frontend/data_dir.h"
 #include "host/raster/hybrid.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 using namespace experiments;
 
@@ -247,4 +247,4 @@ CalibrationOutcome run_calibration(const CalibrateRequest& r) {
     return out;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

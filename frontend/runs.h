@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/period_host.h"
 #include "experiments/calibration.h"
 #include "experiments/settings.h"
 #include "experiments/table.h"
+#include "frontend/period_host.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 // What the three requests share: the scenes (resolved, see resolve_scene; empty: each one's
 // default set), an image size "WxH" ("": the scenes' own), timing rounds, the controller
@@ -79,4 +79,4 @@ struct CalibrationOutcome {
 };
 CalibrationOutcome run_calibration(const CalibrateRequest& request);
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

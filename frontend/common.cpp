@@ -1,4 +1,4 @@
-#include "cli/common.h"
+#include "frontend/common.h"
 
 #include <algorithm>
 #include <charconv>
@@ -12,7 +12,7 @@
 #include "host/trace/kernel_level.h"
 #include "protocol/output_file.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::string& profile) {
     if (text.empty()) return std::nullopt;
@@ -134,4 +134,4 @@ std::string profile_option_help() {
     return "Controller cost profile: " + names + "or a .json file (fb89 list profiles)";
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

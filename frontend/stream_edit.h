@@ -9,7 +9,7 @@
 
 #include "protocol/stream_format.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 // trim (cli/trim_command.cpp says what is kept and how frames are closed).
 struct TrimRequest {
@@ -51,4 +51,4 @@ struct DiffOutcome {
 // pixels red, the rest A's dimmed to a third).
 DiffOutcome diff_streams(const std::string& a, const std::string& b, const std::string& image);
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

@@ -1,4 +1,4 @@
-#include "cli/data_dir.h"
+#include "frontend/data_dir.h"
 
 #include <unistd.h>
 
@@ -10,7 +10,7 @@
 #include "host/scene/scene_error.h"
 #include "period/isa.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 namespace fs = std::filesystem;
 
@@ -112,4 +112,4 @@ void use_installed_period_parts() {
     }
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

@@ -1,17 +1,17 @@
-#include "cli/stream_edit.h"
+#include "frontend/stream_edit.h"
 
 #include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
 
-#include "cli/common.h"
-#include "cli/stream_tools.h"
 #include "controller_sim/png_io.h"
 #include "controller_sim/timed_pipeline.h"
+#include "frontend/common.h"
+#include "frontend/stream_tools.h"
 #include "protocol/stream_writer.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 namespace {
 
@@ -302,4 +302,4 @@ DiffOutcome diff_streams(const std::string& path_a, const std::string& path_b,
     return out;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 // Both thresholds live in one file: "threshold" (the Warnock/Z-buffer hybrid's) and
 // "beam_threshold" (the beam-ray hybrid's), each with the details of its calibration.
@@ -28,4 +28,4 @@ double resolve_threshold(const std::string& text, std::string* source = nullptr,
 double resolve_beam_threshold(const std::string& text, std::string* source = nullptr,
                               const std::string& host = "native");
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

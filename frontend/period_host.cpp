@@ -1,4 +1,4 @@
-#include "cli/period_host.h"
+#include "frontend/period_host.h"
 
 #include <unistd.h>
 
@@ -10,14 +10,14 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.h"
 #include "controller_sim/controller.h"
 #include "experiments/measure.h"
 #include "experiments/period_runs.h"
+#include "frontend/common.h"
 #include "period/emulator.h"
 #include "protocol/stream_reader.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 std::string period_summary(const experiments::PeriodFrame& run) {
     const auto& p = run.cost.phases;
@@ -255,4 +255,4 @@ bool report_emitted(const experiments::ExperimentSettings& s, const HostArgs& a)
     return true;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

@@ -1,14 +1,14 @@
 // Helpers shared by fb89 replay, dump, info, trim and diff (see stream_tools.h).
-#include "cli/stream_tools.h"
+#include "frontend/stream_tools.h"
 
 #include <iostream>
 
 #include <fmt/format.h>
 
-#include "cli/common.h"
 #include "controller_sim/cost_model.h"
+#include "frontend/common.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 protocol::CallSet parse_call_set_option(const std::string& option, const std::string& text) {
     try {
@@ -124,4 +124,4 @@ std::string frame_table(const controller::Controller& ctl) {
     return out;
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

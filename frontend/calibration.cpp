@@ -1,4 +1,4 @@
-#include "cli/calibration.h"
+#include "frontend/calibration.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -10,11 +10,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.h"
+#include "frontend/common.h"
 #include "host/raster/hybrid.h"
 #include "host/trace/beam_ray_hybrid.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 std::string calibration_path() {
     if (const char* p = std::getenv("FB89_CALIBRATION"); p && *p) return p;
@@ -147,4 +147,4 @@ double resolve_beam_threshold(const std::string& text, std::string* source,
                    "a number >= 0, inf or calibrated", source);
 }
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

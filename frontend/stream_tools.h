@@ -15,7 +15,7 @@
 #include "protocol/call_set.h"
 #include "protocol/stream_reader.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 // Parses a call set given to `option`; a CallSetError becomes a UsageError naming the option.
 protocol::CallSet parse_call_set_option(const std::string& option, const std::string& text);
@@ -57,4 +57,4 @@ std::string send_times_of(const protocol::StreamReader& reader);
 // ms and checksum, one row per closed frame plus the open one (if any) marked "open".
 std::string frame_table(const controller::Controller& ctl);
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

@@ -1,4 +1,5 @@
-// What every fb89 subcommand shares: exit codes, errors, output helpers.
+// What every fb89 front end shares (the command line, the Python module): exit codes,
+// errors, output helpers.
 #pragma once
 
 #include <filesystem>
@@ -16,7 +17,7 @@
 #include "experiments/settings.h"
 #include "protocol/output_file.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 // DESIGN.md "Command line": 0 success, 1 a check failed, 2 usage, I/O or corrupt input.
 enum ExitCode : int { kSuccess = 0, kCheckFailed = 1, kBadInput = 2 };
@@ -68,22 +69,4 @@ struct Console {
     void note(const std::string& text) const;
 };
 
-void register_render(CLI::App& app, int& exit_code);
-void register_model(CLI::App& app, int& exit_code);
-void register_experiment(CLI::App& app, int& exit_code);
-void register_sweep(CLI::App& app, int& exit_code);
-void register_compare(CLI::App& app, int& exit_code);
-void register_calibrate(CLI::App& app, int& exit_code);
-void register_replay(CLI::App& app, int& exit_code);
-void register_dump(CLI::App& app, int& exit_code);
-void register_info(CLI::App& app, int& exit_code);
-void register_trim(CLI::App& app, int& exit_code);
-void register_diff(CLI::App& app, int& exit_code);
-void register_controller(CLI::App& app, int& exit_code);
-void register_view(CLI::App& app, int& exit_code);
-void register_radiosity(CLI::App& app, int& exit_code);
-void register_host_run(CLI::App& app, int& exit_code);
-void register_list(CLI::App& app, int& exit_code);
-void register_host_validate(CLI::App& app, int& exit_code);
-
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 std::filesystem::path executable_dir();
 // Where an installed fb89 would sit: the executable's folder's parent, unless a front end that
@@ -32,4 +32,4 @@ std::string scene_display_name(const std::string& path);
 // prefix (and the caller set neither $FB89_GUEST nor $FB89_COUNT_PLUGIN).
 void use_installed_period_parts();
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend

@@ -17,7 +17,7 @@
 #include "host/methods.h"
 #include "period/host_cost.h"
 
-namespace fb89::cli {
+namespace fb89::frontend {
 
 // A method's 1989-host run (experiments/render_job.h) as "load 1.2 ms, set-up 3.4 ms, ..."
 // lines for people, and as the JSON for --stats.
@@ -59,4 +59,4 @@ std::shared_ptr<experiments::PeriodRuns> make_period_runs(const HostArgs& args);
 // table is incomplete and is not written).
 bool report_emitted(const experiments::ExperimentSettings& s, const HostArgs& args);
 
-}  // namespace fb89::cli
+}  // namespace fb89::frontend
