@@ -7,7 +7,9 @@
 // It prints, per frame, both sizes and the number of differing pixels (a pixel outside one
 // of two differently sized frames differs); a frame only one stream has is a difference.
 // --image F writes, for the first differing frame, the diff image: differing pixels red,
-// the rest A's pixels dimmed to a third. Exit 0 when every frame is identical, 1 when any
+// the rest A's pixels dimmed to a third; when no frame both streams have differs, the first
+// frame they both have, all dimmed (an output asked for is always written, or the command
+// fails). Exit 0 when every frame is identical, 1 when any
 // differs, 2 on usage or a truncated or corrupt stream (after the frames compared so far).
 // A frame that ends without FRAME_END (the next FRAME_BEGIN, or the end of a cut stream)
 // is compared as it stands then, as the controller closes it. When either stream carries send
@@ -71,13 +73,20 @@ int run_diff(const DiffArgs& args_in) {
     }
     if (!args.quiet) {
         if (out.differing_frames == 0)
-            fmt::print("identical: {} frame(s)\n", out.frames.size());
+            fmt::print("identical: {} frame(s){}\n", out.frames.size(),
+                       out.image_frame ? fmt::format("; image of frame {} (nothing differs): {}",
+                                                     *out.image_frame, args.image)
+                                       : "");
         else
             fmt::print(
                 "A and B differ in {} of {} frame(s){}\n", out.differing_frames, out.frames.size(),
-                out.image_frame
-                    ? fmt::format("; diff image of frame {}: {}", *out.image_frame, args.image)
-                    : "");
+                out.image_frame ? fmt::format("; diff image of frame {}{}: {}", *out.image_frame,
+                                              out.differing_frames && out.frames.size() > 0 &&
+                                                      !out.frames[*out.image_frame].differs()
+                                                  ? " (no frame of both differs)"
+                                                  : "",
+                                              args.image)
+                                : "");
     }
     return out.differing_frames == 0 ? kSuccess : kCheckFailed;
 }

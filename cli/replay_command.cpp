@@ -188,15 +188,23 @@ int run_replay(const ReplayArgs& args) {
     replay(args, snapshots, reader, ctl, run);
     const bool write = !run.error || args.salvage;  // a failed replay leaves nothing
 
+    // an output asked for and not written is a failure: the command writes none of them
     if (write && !args.png.empty() && snapshots.empty()) {
-        if (run.last_frame) {
-            make_parent_dirs(args.png);
-            controller::write_png(args.png, *run.last_frame);
-        } else {
-            console.note(
-                fmt::format("{}: no complete frame; {} not written", args.stream, args.png));
+        if (!run.last_frame) {
+            if (run.error)
+                std::cerr << fmt::format(
+                    "fb89: warning: {}; --salvage: no complete frame before it\n",
+                    run.error->what());
+            throw std::runtime_error(args.stream + ": no complete frame; " + args.png +
+                                     " not written");
         }
+        make_parent_dirs(args.png);
+        controller::write_png(args.png, *run.last_frame);
     }
+    if (write && !snapshots.empty() && run.snapshots == 0)
+        throw std::runtime_error(
+            fmt::format("--snapshot {}: the call set matched no command of {}; no snapshot written",
+                        args.snapshot, args.stream));
     if (write && !snapshots.empty())
         console.note(fmt::format("{} snapshot(s) written{}", run.snapshots,
                                  run.snapshots ? ", the last " + run.last_snapshot : ""));
@@ -225,11 +233,12 @@ int run_replay(const ReplayArgs& args) {
         for (std::size_t i = 0; i < run.pipelines.size(); ++i) {
             const controller::PipelineFigures& p = run.pipelines[i];
             fmt::print(
-                "pipeline, frame {} ({}; buffer {}): frame {:.3f} ms, host {:.3f} ms, host "
-                "stalled {:.3f} ms, controller idle {:.3f} ms, buffer high water {} bytes\n",
+                "pipeline, frame {} ({}; buffer {}): frame {:.3f} ms, host {:.3f} ms, {}, "
+                "controller idle {:.3f} ms, buffer high water {} bytes\n",
                 i, sends, controller::command_buffer_text(p.buffer_bytes), p.frame_us / 1e3,
-                p.host_us / 1e3, p.host_stalled_us / 1e3, p.controller_idle_us / 1e3,
-                p.high_water_bytes);
+                p.host_us / 1e3,
+                controller::host_stall_text(p.buffer_bytes, p.host_stalled_us / 1e3),
+                p.controller_idle_us / 1e3, p.high_water_bytes);
         }
         if (args.benchmark) {
             const controller::OpcodeCounters all = sum(ctl.stats().totals);

@@ -65,6 +65,20 @@ void write_text(const std::string& path, const std::string& text, protocol::Publ
 }
 
 bool claims_stdout(std::initializer_list<std::pair<std::string_view, std::string_view>> outputs) {
+    // two outputs into one file: the second would silently replace the first
+    std::vector<std::pair<std::string_view, std::filesystem::path>> files;
+    for (const auto& [option, value] : outputs) {
+        if (value.empty() || value == "-") continue;
+        std::error_code ec;
+        std::filesystem::path file = std::filesystem::weakly_canonical(std::string(value), ec);
+        if (ec) file = std::filesystem::absolute(std::string(value)).lexically_normal();
+        for (const auto& [other, seen] : files)
+            if (seen == file)
+                throw UsageError(
+                    fmt::format("{} and {} both write to {}; give each a file of its own", other,
+                                option, value));
+        files.emplace_back(option, std::move(file));
+    }
     std::string_view first;
     for (const auto& [option, value] : outputs) {
         if (value != "-") continue;

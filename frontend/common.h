@@ -50,7 +50,8 @@ void write_text(const std::string& path, const std::string& text,
 void make_parent_dirs(const std::string& path);
 
 // True when one of the (option, value) outputs is "-" (standard output), so the command
-// must print nothing else there; a UsageError when two of them are.
+// must print nothing else there; a UsageError when two of them are, or when two name the
+// same file (the second would replace the first).
 bool claims_stdout(std::initializer_list<std::pair<std::string_view, std::string_view>> outputs);
 
 // "; did you mean 'render'?" when a known name is near `word` (edit distance), else "".

@@ -133,10 +133,12 @@ std::string period_classes(const experiments::PeriodFrame& run, period::Phase ph
 std::string split_line(const std::string& host_name, double host_ms, const std::string& profile,
                        double controller_ms) {
     const experiments::FrameSplit f = experiments::frame_split(host_ms, controller_ms);
+    // what the host's figure is: this machine's CPU time, or a 1989 host's modelled time
+    const char* kind = host_name == "native" ? "CPU" : "modelled";
     return fmt::format(
-        "split: host {} {:.3f} ms | controller {} {:.3f} ms | frame {:.3f} ms, bounded by the "
-        "{} ({})\n",
-        host_name, host_ms, profile, controller_ms, f.frame_ms,
+        "split: host {} {:.3f} ms {} | controller {} {:.3f} ms modelled | frame {:.3f} ms, "
+        "bounded by the {} ({})\n",
+        host_name, host_ms, kind, profile, controller_ms, f.frame_ms,
         f.host_bounds ? "host" : "controller",
         f.ratio > 0 ? fmt::format("{:.2f}x the {}", f.ratio, f.host_bounds ? "controller" : "host")
                     : "the other side takes no time");
@@ -153,10 +155,11 @@ std::string pipeline_line(const experiments::FramePipeline& p, double controller
             : "";
     return fmt::format(
         "pipeline (send times {}, buffer {}): frame {:.3f} ms (max {:.3f}, sum {:.3f}; {:.1f}% "
-        "of the smaller side overlapped{}), host stalled {:.3f} ms, utilization host {:.1f}% "
+        "of the smaller side overlapped{}), {}, utilization host {:.1f}% "
         "controller {:.1f}%\n",
         sends, controller::command_buffer_text(p.buffer_bytes), p.frame_us / 1e3, p.max_us() / 1e3,
-        p.sum_us() / 1e3, 100 * p.overlap(), alone, p.host_stalled_us / 1e3,
+        p.sum_us() / 1e3, 100 * p.overlap(), alone,
+        controller::host_stall_text(p.buffer_bytes, p.host_stalled_us / 1e3),
         100 * p.host_utilization(), 100 * p.controller_utilization());
 }
 

@@ -272,6 +272,10 @@ DiffOutcome diff_streams(const std::string& path_a, const std::string& path_b,
                          const std::string& image) {
     FrameSource a(path_a), b(path_b);
     DiffOutcome out;
+    // the first frame both streams have, kept until a differing one replaces it: an image
+    // asked for is written whatever the streams hold, the first difference if there is one
+    std::optional<std::pair<controller::Framebuffer, controller::Framebuffer>> first_pair;
+    std::optional<uint64_t> first_frame;
     out.header_a = header_line(a.reader());
     out.header_b = header_line(b.reader());
     out.timed = a.reader().timed() || b.reader().timed();
@@ -289,6 +293,10 @@ DiffOutcome diff_streams(const std::string& path_a, const std::string& path_b,
                 f.compared = cmp.compared;
             }
             out.frames.push_back(f);
+            if (has_a && has_b && !image.empty() && !first_frame) {
+                first_pair.emplace(a.framebuffer(), b.framebuffer());
+                first_frame = frame;
+            }
             if (!f.differs()) continue;
             ++out.differing_frames;
             if (has_a && has_b && !image.empty() && !out.image_frame) {
@@ -298,6 +306,15 @@ DiffOutcome diff_streams(const std::string& path_a, const std::string& path_b,
         }
     } catch (const protocol::StreamError& e) {
         out.error = e;
+        return out;
+    }
+    if (!image.empty() && !out.image_frame) {
+        // no frame of both differs: the image of the first one both have (nothing in red)
+        if (!first_pair)
+            throw std::runtime_error(fmt::format(
+                "{} and {} have no frame in common; {} not written", path_a, path_b, image));
+        write_diff_image(image, first_pair->first, first_pair->second);
+        out.image_frame = first_frame;
     }
     return out;
 }

@@ -48,7 +48,8 @@ struct DiffOutcome {
     std::optional<protocol::StreamError> error;  // what ended the comparison early
 };
 // With `image` non-empty, writes the first differing frame's diff image there (differing
-// pixels red, the rest A's dimmed to a third).
+// pixels red, the rest A's dimmed to a third), or, when no frame both have differs, the
+// first frame both have (all dimmed); throws std::runtime_error when they have none.
 DiffOutcome diff_streams(const std::string& a, const std::string& b, const std::string& image);
 
 }  // namespace fb89::frontend

@@ -227,6 +227,67 @@ void OutputFile::commit() {
     m_committed = true;
 }
 
+LiveFile::LiveFile(fs::path target, Publish publish) : m_final(final_path(target)) {
+    const auto fail_at = [&](const char* what, int error) {
+        throw std::runtime_error(
+            fmt::format("{}: {}: {}", output_name(target), what, std::strerror(error)));
+    };
+    const mode_t mode = output_mode(m_final);
+    struct stat st {};
+    if (::stat(m_final.c_str(), &st) == 0 && S_ISREG(st.st_mode)) {
+        // the old file aside, under a hidden name of its own beside it (same file system)
+        const fs::path dir = m_final.parent_path().empty() ? fs::path(".") : m_final.parent_path();
+        std::string name = (dir / ("." + m_final.filename().string() + ".old-XXXXXX")).string();
+        const int placeholder = ::mkstemp(name.data());
+        if (placeholder < 0) fail_at("cannot open for writing", errno);
+        ::close(placeholder);
+        if (::rename(m_final.c_str(), name.c_str()) != 0) {
+            const int error = errno;
+            ::unlink(name.c_str());
+            fail_at("cannot open for writing", error);
+        }
+        m_backup = name;
+    }
+    m_fd = ::open(m_final.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
+    if (m_fd < 0) {
+        const int error = errno;
+        if (!m_backup.empty()) ::rename(m_backup.c_str(), m_final.c_str());
+        fail_at("cannot open for writing", error);
+    }
+    ::fchmod(m_fd, mode);  // open's mode passed through the umask; the old file's is kept whole
+    OutputBatch* batch = publish == Publish::WithCommand ? OutputBatch::current() : nullptr;
+    if (batch) {
+        batch->add_live(m_final, m_backup);
+        m_batched = true;
+    }
+}
+
+LiveFile::~LiveFile() {
+    if (m_decided || m_batched) return;
+    if (!m_backup.empty()) restore_live(m_final, m_backup);  // never lose the old file
+}
+
+void LiveFile::keep() noexcept {
+    if (m_decided) return;
+    m_decided = true;
+    if (!m_batched && !m_backup.empty()) ::unlink(m_backup.c_str());
+}
+
+void LiveFile::abandon() noexcept {
+    if (m_decided) return;
+    m_decided = true;
+    if (m_batched)
+        if (OutputBatch* batch = OutputBatch::current()) batch->drop_live(m_final);
+    restore_live(m_final, m_backup);
+}
+
+void restore_live(const fs::path& final, const fs::path& backup) noexcept {
+    if (backup.empty())
+        ::unlink(final.c_str());
+    else
+        ::rename(backup.c_str(), final.c_str());  // over the new file, in one step
+}
+
 void write_output(const fs::path& path, std::string_view bytes, Publish publish) {
     OutputFile file(path, publish);
     errno = 0;
@@ -263,8 +324,8 @@ OutputBatch::~OutputBatch() {
     }
     for (const Waiting& w : m_waiting)
         ::unlink(w.temporary.c_str());
-    for (const fs::path& f : m_streams)
-        ::unlink(f.c_str());
+    for (const Live& l : m_live)
+        restore_live(l.final, l.backup);
 }
 
 OutputBatch* OutputBatch::current() {
@@ -278,9 +339,14 @@ void OutputBatch::add_temporary(const fs::path& temporary, const fs::path& final
     m_waiting.push_back({temporary, final, name});
 }
 
-void OutputBatch::add_stream(const fs::path& file) {
+void OutputBatch::add_live(const fs::path& final, const fs::path& backup) {
     std::lock_guard lock(m_mutex);
-    m_streams.push_back(file);
+    m_live.push_back({final, backup});
+}
+
+void OutputBatch::drop_live(const fs::path& final) {
+    std::lock_guard lock(m_mutex);
+    std::erase_if(m_live, [&](const Live& l) { return l.final == final; });
 }
 
 std::size_t OutputBatch::waiting() const {
@@ -290,7 +356,9 @@ std::size_t OutputBatch::waiting() const {
 
 void OutputBatch::publish() {
     std::lock_guard lock(m_mutex);
-    m_streams.clear();
+    for (const Live& l : m_live)
+        if (!l.backup.empty()) ::unlink(l.backup.c_str());
+    m_live.clear();
     for (std::size_t i = 0; i < m_waiting.size(); ++i) {
         const Waiting& w = m_waiting[i];
         if (::rename(w.temporary.c_str(), w.final.c_str()) != 0) {

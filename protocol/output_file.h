@@ -9,6 +9,13 @@
 //   synced and closed with every error checked, then renamed over the target. On any
 //   failure the temporary is removed and the old target is left as it was; a process killed
 //   part-way leaves the old target and, at most, a hidden temporary.
+// - A regular file written as it is made (a stream, which a viewer may follow while it
+//   grows: LiveFile) is written at the target itself, but is as all-or-nothing towards
+//   the file it replaces: an old file there is first renamed aside to a hidden
+//   `.out.fb89.old-XXXXXX` beside it, and renamed back over the new one when the output is
+//   abandoned (the command fails, or the writer gives up); kept, the old one is removed.
+//   A process killed part-way leaves the new, cut stream at the target and the old file
+//   in the hidden name beside it.
 // - Anything else that exists — a character device (/dev/null, /dev/full, a terminal), a
 //   FIFO, a Unix socket — is opened and written in place, also when reached through a
 //   symbolic link such as /dev/stdout. It is never renamed over: a device stays a device.
@@ -101,6 +108,46 @@ class OutputFile {
     bool m_committed = false;
 };
 
+// A regular file written in place as it is made (a stream a viewer follows), all or
+// nothing towards an old file at its path (see the top of this file). Opening renames an
+// old file aside and creates the target afresh, with the old one's permissions. While an
+// OutputBatch exists (and `publish` is WithCommand) the batch decides the file's fate with
+// the command: kept when it publishes, else removed and the old file put back; abandon()
+// does that at once. Without a batch, keep() keeps it, and abandon() -- or destruction
+// without either -- puts the old file back (a new path keeps what was written, a cut
+// stream; there was nothing to lose).
+class LiveFile {
+  public:
+    // Throws std::runtime_error naming the target when it cannot be made.
+    explicit LiveFile(std::filesystem::path target, Publish publish = Publish::WithCommand);
+    ~LiveFile();
+    LiveFile(const LiveFile&) = delete;
+    LiveFile& operator=(const LiveFile&) = delete;
+
+    // The descriptor, open for writing; the LiveFile never closes it (its writer does).
+    int fd() const { return m_fd; }
+    // The target with links followed: where the bytes go.
+    const std::filesystem::path& path() const { return m_final; }
+    // The hidden name the old file waits under; empty when there was none.
+    const std::filesystem::path& backup() const { return m_backup; }
+
+    // The file stands (without a batch: the old one is removed now; under a batch the batch
+    // decides with the command).
+    void keep() noexcept;
+    // The new file is removed and the old one, if any, put back where it was.
+    void abandon() noexcept;
+
+  private:
+    std::filesystem::path m_final, m_backup;
+    int m_fd = -1;
+    bool m_batched = false;  // an OutputBatch decides
+    bool m_decided = false;
+};
+
+// Puts a live file's old version back (`backup` renamed over `final`), or removes `final`
+// when there was no old one (`backup` empty).
+void restore_live(const std::filesystem::path& final, const std::filesystem::path& backup) noexcept;
+
 // Writes `bytes` to the output `path` ("-": stdout).
 void write_output(const std::filesystem::path& path, std::string_view bytes,
                   Publish publish = Publish::WithCommand);
@@ -115,9 +162,9 @@ void write_output(const std::filesystem::path& path, const std::function<void(st
 // "Outputs"). While a batch exists (fb89's main makes one around each command), an
 // OutputFile to a regular file commits to its synced temporary and the batch renames every
 // temporary over its target in publish(); a batch destroyed unpublished removes them, and
-// removes the streams written in place under it (a stream is written live, so a viewer can
-// follow it; see protocol/stream_writer.h). Outputs to stdout, devices and pipes cannot
-// wait: they are written at once. One batch at a time, shared by the process's threads.
+// puts back the old files the live ones (streams, written in place so that a viewer can
+// follow them: LiveFile) replaced, removing what they wrote. Outputs to stdout, devices and pipes
+// cannot wait: they are written at once. One batch at a time, shared by the process's threads.
 class OutputBatch {
   public:
     OutputBatch();  // becomes the current batch; throws std::logic_error if one exists
@@ -137,8 +184,11 @@ class OutputBatch {
     // OutputFile::commit: `temporary` waits to be renamed to `final`.
     void add_temporary(const std::filesystem::path& temporary, const std::filesystem::path& final,
                        const std::string& name);
-    // StreamWriter: a regular file written in place, removed unless the batch is published.
-    void add_stream(const std::filesystem::path& file);
+    // LiveFile: `final` written in place, the old file waiting under `backup` (empty: none):
+    // publish() removes the backup; a batch destroyed unpublished puts it back.
+    void add_live(const std::filesystem::path& final, const std::filesystem::path& backup);
+    // LiveFile::abandon: the live file was put back already; the batch forgets it.
+    void drop_live(const std::filesystem::path& final);
 
   private:
     struct Waiting {
@@ -147,7 +197,10 @@ class OutputBatch {
     };
     mutable std::mutex m_mutex;
     std::vector<Waiting> m_waiting;
-    std::vector<std::filesystem::path> m_streams;
+    struct Live {
+        std::filesystem::path final, backup;
+    };
+    std::vector<Live> m_live;
 };
 
 }  // namespace fb89::protocol

@@ -48,16 +48,10 @@ StreamWriter::StreamWriter(const std::string& path, const Properties& properties
             }
             m_owns_fd = true;
             break;
-        case OutputKind::Replace:  // a regular file, replaced at once: live, cut if killed
-            m_fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-            if (m_fd < 0) {
-                throw std::runtime_error(fmt::format("cannot open stream {} for writing: {}", path,
-                                                     std::strerror(errno)));
-            }
+        case OutputKind::Replace:  // a regular file, written live; an old one kept aside
+            m_live = std::make_unique<LiveFile>(path);  // throws "PATH: cannot open for writing: …"
+            m_fd = m_live->fd();
             m_owns_fd = true;
-            m_file = std::filesystem::weakly_canonical(path);
-            // a command that fails after this leaves no stream (protocol/output_file.h)
-            if (OutputBatch* batch = OutputBatch::current()) batch->add_stream(m_file);
             break;
     }
     struct stat st {};
@@ -93,8 +87,8 @@ StreamWriter::~StreamWriter() {
 void StreamWriter::discard() noexcept {
     close_file();
     m_closed = true;
-    if (!m_file.empty()) ::unlink(m_file.c_str());
-    m_file.clear();
+    if (m_live) m_live->abandon();  // the old file back, or none (protocol/output_file.h)
+    m_live.reset();
 }
 
 void StreamWriter::frame_begin(const FrameBegin& c) {
@@ -183,7 +177,8 @@ void StreamWriter::close() {
         m_fd = -1;
         if (::close(fd) != 0) fail("close failed");
     }
-    m_file.clear();  // whole: discard() no longer removes it
+    if (m_live) m_live->keep();  // whole: it stands (with the command, under a batch)
+    m_live.reset();
 }
 
 void StreamWriter::flush_buffer() {

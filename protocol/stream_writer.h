@@ -12,16 +12,20 @@
 // protocol/output_file.h decides how the target is opened: a regular file is replaced at
 // once and written in place (live, for a viewer or a reader that follows it); a device,
 // FIFO, socket or stdout (`-`, /dev/stdout) is written where it is, never replaced. A
-// regular file opened while an OutputBatch exists (every fb89 command) is removed if the
-// command fails: a failed command leaves no stream (docs/RELIABILITY.md, "Outputs").
+// regular file is a LiveFile: an old file at its path waits aside and is put back if the
+// stream is discarded, or if the command fails while an OutputBatch exists (every fb89
+// command): a failed command leaves the old stream as it was, or none where there was none
+// (docs/RELIABILITY.md, "Outputs").
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "protocol/command_sink.h"
+#include "protocol/output_file.h"
 #include "protocol/stream_format.h"
 
 namespace fb89::protocol {
@@ -71,7 +75,8 @@ class StreamWriter final : public CommandSink {
     // already closed. Throws std::runtime_error naming the path on a write error.
     void close();
 
-    // Abandons the stream before close(): a regular file of its own is closed and removed;
+    // Abandons the stream before close(): a regular file of its own is closed and removed,
+    // and the file it replaced put back;
     // a descriptor, device or pipe is closed as it stands (bytes already sent cannot be
     // taken back). What a command calls when it decides it has failed.
     void discard() noexcept;
@@ -96,8 +101,8 @@ class StreamWriter final : public CommandSink {
     [[noreturn]] void fail(const std::string& what);
 
     std::string m_path;
-    int m_fd = -1;                 // -1: in memory
-    std::filesystem::path m_file;  // a regular file of its own until close(): discard() removes it
+    int m_fd = -1;                     // -1: in memory
+    std::unique_ptr<LiveFile> m_live;  // a regular file of its own until close() keeps it
     bool m_owns_fd = false;
     bool m_is_socket = false;  // write with send(MSG_NOSIGNAL)
     bool m_closed = false;

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <thread>
@@ -106,18 +107,18 @@ TEST(AtomicOutput, ASuccessfulRenderReplacesEveryOutputAndLeavesNoTemporary) {
     EXPECT_TRUE(temporaries(dir).empty());
 }
 
-// A stream is written in place, by design: it replaces the old file when opened, and a cut
-// stream is readable up to its last whole record. The cut is an error naming the stream.
-TEST(AtomicOutput, AStreamUnderAFileSizeLimitIsAnErrorAndLeavesNothing) {
+// A stream is written in place, by design (live, for a viewer), the old file waiting aside;
+// the cut is an error naming the stream, and the old file is put back.
+TEST(AtomicOutput, AStreamUnderAFileSizeLimitIsAnErrorAndKeepsTheOldStream) {
     const fs::path dir = outputs(), target = dir / "out.fb89";
     put(target, kOld);
     const CliRun r = run_fb89("render " + kScenes + "/demo.json -q --stream " + target.string(),
                               "bash -c 'ulimit -f 1; exec \"$0\" \"$@\"' ");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(r.err, "fb89: error: cannot write stream " + target.string() + ": File too large\n");
-    // the command failed: no stream is left, neither the cut one nor the old file
-    EXPECT_FALSE(fs::exists(target));
-    EXPECT_TRUE(fs::is_empty(dir));
+    // the command failed: the old file is back, byte for byte, and nothing beside it
+    EXPECT_EQ(slurp(target), kOld);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
 TEST(AtomicOutput, AFailureAfterTheStreamIsWrittenLeavesNoStreamAndNoOtherOutput) {

@@ -11,82 +11,25 @@
 #include <vector>
 
 #include "tests/cli/cli_runner.h"
+#include "tests/cli/every_output.h"
 #include "tests/special_files.h"
 
 namespace fs = std::filesystem;
 using fb89::testing::CliRun;
 using fb89::testing::describe;
+using fb89::testing::every_output;
 using fb89::testing::FifoReader;
 using fb89::testing::identity_of;
 using fb89::testing::make_char_device;
+using fb89::testing::OutputCase;
 using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
+using fb89::testing::with_target;
 
 namespace {
 
 const std::string kScenes = FB89_SCENES_DIR;
-
-// One output option of one command; "@OUT@" stands for the target.
-struct OutputCase {
-    std::string option;  // for messages: "render --png"
-    std::string command;
-    int exit_code = 0;  // diff finds a difference: 1
-};
-
-// Two small streams that differ, for replay, trim and diff.
-struct Streams {
-    std::string demo, other;
-};
-
-const Streams& streams() {
-    static const Streams s = [] {
-        const fs::path dir = fb89::testing::scratch_dir() / "output_targets_streams";
-        fs::create_directories(dir);
-        Streams out{(dir / "demo.fb89").string(), (dir / "a.fb89").string()};
-        run_fb89("render " + kScenes + "/demo.json --size 64x48 -q --stream " + out.demo);
-        run_fb89("render " + kScenes + "/A.json --size 64x48 -q --stream " + out.other);
-        return out;
-    }();
-    return s;
-}
-
-// Every output option there is, on inputs small enough to run in a blink.
-std::vector<OutputCase> every_output() {
-    const std::string demo = kScenes + "/demo.json --size 64x48 -q";
-    const std::string room = kScenes + "/garish_room.json --size 64x48 -q";
-    const std::string a = kScenes + "/A.json --size 64x48 -q --repeat 1";
-    std::vector<OutputCase> cases;
-    for (const char* option : {"--png", "--ids", "--ids-view", "--stream", "--stats"})
-        cases.push_back(
-            {std::string("render ") + option, "render " + demo + " " + option + " @OUT@"});
-    cases.push_back({"render --mask", "render " + demo + " -m beam --mask @OUT@"});
-    for (const char* option : {"--png", "--ids", "--ids-view", "--stream", "--stats"})
-        cases.push_back(
-            {std::string("radiosity ") + option, "radiosity " + room + " " + option + " @OUT@"});
-    cases.push_back({"experiment --csv", "experiment fig2.1 " + a + " --csv @OUT@"});
-    cases.push_back({"sweep --csv", "sweep threshold " + a + " --steps 2 --csv @OUT@"});
-    cases.push_back({"model --csv", "model --es 64 --fv 16 --csv @OUT@"});
-    cases.push_back({"calibrate --csv", "calibrate --dry-run --repeat 1 --steps 2 -q " + kScenes +
-                                            "/A.json --csv @OUT@"});
-    cases.push_back({"compare --sheet", "compare " + demo + " --repeat 1 --sheet @OUT@"});
-    for (const char* option : {"--csv", "--json"})
-        cases.push_back({std::string("compare ") + option,
-                         "compare " + demo + " --repeat 1 --sheet " +
-                             (test_dir() / "sheet.png").string() + " " + option + " @OUT@"});
-    const Streams& s = streams();
-    cases.push_back({"replay --png", "replay -q " + s.demo + " --png @OUT@"});
-    cases.push_back({"replay --stats", "replay -q " + s.demo + " --stats @OUT@"});
-    cases.push_back({"trim -o", "trim -q " + s.demo + " --frames 0 -o @OUT@"});
-    cases.push_back({"diff --image", "diff -q " + s.demo + " " + s.other + " --image @OUT@", 1});
-    return cases;
-}
-
-std::string with_target(std::string command, const std::string& target) {
-    const std::string mark = "@OUT@";
-    const auto at = command.find(mark);
-    return command.replace(at, mark.size(), target);
-}
 
 // compare --sheet is the one whose other outputs are files: an own sheet for each run
 std::string fresh_sheet(const OutputCase& c) {
@@ -153,6 +96,7 @@ TEST(OutputTargets, EveryOutputGoesToStandardOutputAsDash) {
         const bool timed = c.option.find("--stats") != std::string::npos ||
                            c.option.find("--csv") != std::string::npos ||
                            c.option.find("--json") != std::string::npos ||
+                           c.option.find("--timeline") != std::string::npos ||
                            c.option == "compare --sheet" ||  // the sheet prints its times
                            c.option == "render --stream";    // it keeps measured send times
         fs::remove(file);

@@ -362,3 +362,53 @@ TEST(RenderCommand, IdsViewGivesEachIdItsOwnColourBesideTheExactIds) {
 }
 
 }  // namespace
+
+namespace {
+
+// Labels that read right without the docs (issue: "do no harm, round 2").
+TEST(RenderCommand, ItsLinesSayWhatEachFigureIs) {
+    const CliRun r = fb89("render " + kScenes + "/demo.json --size 128x98");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // the controller's header once
+    std::size_t headers = 0;
+    for (std::size_t at = r.out.find("controller: tms34010-50mhz"); at != std::string::npos;
+         at = r.out.find("controller: tms34010-50mhz", at + 1))
+        ++headers;
+    EXPECT_EQ(headers, 1u) << r.out;
+    EXPECT_EQ(r.out.find("controller (tms34010-50mhz):"), std::string::npos) << r.out;
+    // the split's host figure is this machine's CPU time; the controller's is modelled
+    EXPECT_NE(r.out.find("split: host native "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" ms CPU | controller tms34010-50mhz "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" ms modelled | frame "), std::string::npos) << r.out;
+    // with an unbounded buffer the host only ever waits for the bus
+    EXPECT_NE(r.out.find("buffer unbounded): frame "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(", host waited for the bus "), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("host stalled"), std::string::npos) << r.out;
+    const CliRun bounded = fb89("render " + kScenes + "/demo.json --size 128x98 --buffer 64");
+    ASSERT_EQ(bounded.exit_code, 0) << bounded.err;
+    EXPECT_NE(bounded.out.find(" ms (bus or full buffer)"), std::string::npos) << bounded.out;
+}
+
+TEST(RenderCommand, SmallMistakesAreRefusedInWords) {
+    const std::string demo = "render " + kScenes + "/demo.json --size 64x48 -q ";
+    CliRun r = fb89(demo + "--repeat 1.5");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err,
+              "fb89: usage: render: --repeat: '1.5' is not an integer (fb89 render --help says "
+              "more)\n");
+    r = fb89(demo + "--repeat many");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--repeat: 'many' is not an integer"), std::string::npos) << r.err;
+    const std::string same = scratch("same.png").string();
+    fs::remove(same);
+    r = fb89(demo + "--png " + same + " --ids " + same);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "fb89: usage: --png and --ids both write to " + same +
+                         "; give each a file of its own\n");
+    EXPECT_FALSE(fs::exists(same));
+    r = fb89(demo + "--untimed-stream");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--untimed-stream requires --stream"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -129,11 +129,11 @@ TEST(ReplayCommand, TheBufferAndTheTimelineRunTheStreamsFramesThroughThePipeline
     const nlohmann::json t = nlohmann::json::parse(slurp(timeline));
     EXPECT_EQ(t["otherData"]["send_times"], "none: every command ready at 0");
     EXPECT_EQ(t["otherData"]["buffer_bytes"], 64);
-    EXPECT_LE(t["otherData"]["high_water_bytes"].get<uint64_t>(), 64u);
+    EXPECT_LE(t["otherData"]["buffer_high_water_bytes"].get<uint64_t>(), 64u);
     double controller_us = 0;
     for (const auto& e : t["traceEvents"])
         if (e["ph"] == "X" && e["tid"] == 3) controller_us += e["dur"].get<double>();
-    EXPECT_NEAR(controller_us, t["otherData"]["controller_busy_us"].get<double>(),
+    EXPECT_NEAR(controller_us, t["otherData"]["controller_busy_ms"].get<double>() * 1e3,
                 1e-6 * controller_us);
     r = fb89("replay " + stream + " --buffer 5");
     EXPECT_EQ(r.exit_code, 2);
@@ -233,7 +233,7 @@ TEST(ReplayCommand, ATimedStreamGoesThroughThePipelineAtItsSendTimesAsRendered) 
     EXPECT_EQ(number_after(r.out, "host stalled "), number_after(render.out, "host stalled "));
     const nlohmann::json t = nlohmann::json::parse(slurp(timeline));
     EXPECT_EQ(t["otherData"]["send_times"], "measured on native");
-    EXPECT_NEAR(t["otherData"]["frame_us"].get<double>() / 1e3, frame_ms, 0.0005);
+    EXPECT_NEAR(t["otherData"]["frame_ms"].get<double>(), frame_ms, 0.0005);
 }
 
 TEST(StreamTools, InfoDumpTrimAndDiffShowAndKeepTheSendTimes) {
@@ -293,6 +293,37 @@ TEST(StreamTools, ATimeThatGoesBackIsRefusedNamingItsByteAndCommand) {
                   std::string::npos)
             << tool << ": " << r.err;
     }
+}
+
+// A frame that never ended has no host end: info says so rather than print a time.
+TEST(InfoCommand, AFrameThatNeverEndedHasNoHostEnd) {
+    std::vector<uint8_t> bytes;
+    pr::encode_header(bytes, {}, pr::kTimedVersion);
+    pr::encode_command(bytes, pr::FrameBegin{0, 8, 6, pr::Rgb{}});
+    pr::encode_time(bytes, pr::kSendTimeOpcode, 1000);
+    pr::encode_command(bytes, pr::FillRect{0, 0, 2, 2, pr::Rgb{}});
+    pr::encode_time(bytes, pr::kHostEndOpcode, 3000);
+    pr::encode_command(bytes, pr::FrameEnd{});
+    pr::encode_command(bytes, pr::FrameBegin{1, 8, 6, pr::Rgb{}});
+    pr::encode_time(bytes, pr::kSendTimeOpcode, 2000);
+    pr::encode_command(bytes, pr::FillRect{0, 0, 2, 2, pr::Rgb{}});  // and the stream ends
+    const std::string path = scratch("never_ended.fb89");
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+    CliRun r = fb89("info " + path + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["frames"].size(), 2u);
+    EXPECT_EQ(j["frames"][0]["host_end_us"].get<double>(), 3.0);
+    EXPECT_TRUE(j["frames"][1]["host_end_us"].is_null()) << j["frames"][1];
+    EXPECT_EQ(j["frames"][1]["last_send_us"].get<double>(), 2.0);
+    r = fb89("info " + path);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto lines = lines_of(r.out);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_NE(lines.back().find("never ended"), std::string::npos) << r.out;
+    EXPECT_EQ(lines.back().find("0.003000"), std::string::npos) << r.out;
 }
 
 TEST(DumpCommand, PrintsOneNumberedLinePerCommand) {
@@ -470,6 +501,17 @@ TEST(DiffCommand, SameFramesExitZeroAcrossMethods) {
     CliRun r = fb89("diff " + z + " " + w);
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("identical: 1 frame(s)"), std::string::npos) << r.out;
+    // an image asked for is written: the first frame, nothing in red
+    const std::string image = scratch("same.png");
+    r = fb89("diff " + z + " " + w + " --image " + image);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("identical: 1 frame(s); image of frame 0 (nothing differs): " + image),
+              std::string::npos)
+        << r.out;
+    const auto png = fb89::controller::read_png(image);
+    ASSERT_EQ(png.width, 256u);
+    for (std::size_t i = 0; i < png.pixels.size(); i += 3)
+        ASSERT_LE(png.pixels[i], 85) << "pixel " << i / 3 << " is red";
 }
 
 TEST(DiffCommand, ADifferentPixelExitsOneWithARedDiffImage) {

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_runner.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
@@ -188,6 +190,27 @@ TEST(ViewCommand, WithoutADisplayExitsTwoSayingSo) {
                               "env -u DISPLAY -u WAYLAND_DISPLAY SDL_VIDEODRIVER=x11 ");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("no display"), std::string::npos) << r.err;
+}
+
+// Refused before a window opens (no display needed): a speed that is not one, in words,
+// and a start past the stream's last command, as dump refuses --calls past it.
+TEST(ViewCommand, ASpeedOfZeroAndAStartPastTheEndAreRefusedInWords) {
+    const fs::path stream = record_stream("64x48");
+    CliRun r = run_fb89("view " + stream.string() + " --speed 0");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("'0' is not a speed: give a number above 0 and at most 1e+09, e.g. 0.1 "
+                         "(slower) or 10 (faster)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("1.79769e+308"), std::string::npos) << r.err;
+    const CliRun info = run_fb89("info " + stream.string() + " --json");
+    const std::size_t commands = nlohmann::json::parse(info.out)["commands"].get<std::size_t>();
+    r = run_fb89("view " + stream.string() + " --start-call " + std::to_string(commands),
+                 "env -u DISPLAY -u WAYLAND_DISPLAY ");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "fb89: usage: --start-call: command " + std::to_string(commands) +
+                         " is past the stream's last (it has " + std::to_string(commands) +
+                         " commands)\n");
 }
 
 TEST(ViewCommand, MissingStreamExitsTwo) {

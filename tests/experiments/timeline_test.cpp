@@ -31,7 +31,7 @@ TEST(Timeline, ItsLanesAddUpToThePipelinesFigures) {
         controller::PipelineFigures f;
         const nlohmann::json j = nlohmann::json::parse(
             timeline_json(run.commands, run.send_us, frame, profile, buffer, &f));
-        EXPECT_EQ(j.at("otherData").at("frame_us").get<double>(), f.frame_us);
+        EXPECT_EQ(j.at("otherData").at("frame_ms").get<double>(), f.frame_us / 1e3);
         std::map<std::string, int> lanes;  // thread name -> tid
         double controller_us = 0, bus_us = 0, stalled_us = 0, host_end = 0, last_send = 0;
         uint64_t sends = 0, high = 0, held = 1, executed = 0;

@@ -146,6 +146,96 @@ TEST(StreamWriter, AnUnpublishedOutputBatchRemovesTheStreamAPublishedOneKeepsIt)
     std::filesystem::remove(path);
 }
 
+// A stream replacing an old file: written live at the path, the old file aside under a
+// hidden name; put back byte for byte when the stream is discarded, when an unpublished batch
+// ends, or when a writer without a batch is destroyed unclosed; gone when the stream stands.
+namespace {
+const std::string kOldStream = "an old stream, which must survive\n";
+
+void put_old(const std::filesystem::path& path) {
+    std::ofstream(path, std::ios::binary) << kOldStream;
+    std::filesystem::permissions(path, std::filesystem::perms::owner_read |
+                                           std::filesystem::perms::owner_write |
+                                           std::filesystem::perms::group_read);
+}
+
+std::string slurp_text(const std::filesystem::path& path) {
+    const Bytes b = read_file(path);
+    return std::string(b.begin(), b.end());
+}
+
+// Files beside `path` whose names start with its hidden prefix (".NAME.").
+std::size_t hidden_beside(const std::filesystem::path& path) {
+    std::size_t n = 0;
+    const std::string prefix = "." + path.filename().string() + ".";
+    for (const auto& e : std::filesystem::directory_iterator(path.parent_path()))
+        n += e.path().filename().string().rfind(prefix, 0) == 0;
+    return n;
+}
+}  // namespace
+
+TEST(StreamWriter, DiscardPutsBackTheFileItReplaced) {
+    const auto path = temp_path("replaced_discarded.fb89");
+    put_old(path);
+    {
+        StreamWriter writer(path.string(), {});
+        writer.frame_begin(FrameBegin{0, 4, 4, Rgb{}});
+        writer.frame_end(FrameEnd{});
+        EXPECT_NE(slurp_text(path), kOldStream) << "written live at its path";
+        EXPECT_EQ(hidden_beside(path), 1u) << "the old file waits beside it";
+        writer.discard();
+    }
+    EXPECT_EQ(slurp_text(path), kOldStream);
+    EXPECT_EQ(hidden_beside(path), 0u);
+    std::filesystem::remove(path);
+}
+
+TEST(StreamWriter, AnUnpublishedBatchPutsBackTheOldStreamAPublishedOneReplacesIt) {
+    const auto path = temp_path("replaced_batched.fb89");
+    for (const bool publish : {false, true}) {
+        put_old(path);
+        {
+            OutputBatch batch;
+            StreamWriter writer(path.string(), {});
+            for (const Command& c : testing::two_frames())
+                writer.submit(c);
+            writer.close();
+            if (publish) batch.publish();
+        }
+        if (publish) {
+            EXPECT_EQ(read_file(path), encode_stream(testing::two_frames(), {}));
+            // the new file takes the old one's permissions
+            EXPECT_EQ(std::filesystem::status(path).permissions() & std::filesystem::perms::all,
+                      std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+                          std::filesystem::perms::group_read);
+        } else {
+            EXPECT_EQ(slurp_text(path), kOldStream);
+        }
+        EXPECT_EQ(hidden_beside(path), 0u) << "publish " << publish;
+    }
+    std::filesystem::remove(path);
+}
+
+TEST(StreamWriter, WithoutABatchAnUnclosedWriterPutsBackTheOldAndACloseReplacesIt) {
+    const auto path = temp_path("replaced_unbatched.fb89");
+    put_old(path);
+    {
+        StreamWriter writer(path.string(), {});
+        for (const Command& c : testing::two_frames())
+            writer.submit(c);
+    }
+    EXPECT_EQ(slurp_text(path), kOldStream) << "a writer given up never loses the old file";
+    {
+        StreamWriter writer(path.string(), {});
+        for (const Command& c : testing::two_frames())
+            writer.submit(c);
+        writer.close();
+    }
+    EXPECT_EQ(read_file(path), encode_stream(testing::two_frames(), {}));
+    EXPECT_EQ(hidden_beside(path), 0u);
+    std::filesystem::remove(path);
+}
+
 TEST(StreamWriter, AFifoIsWrittenInPlaceAndStaysAFifo) {
     const auto fifo = temp_path("fifo");
     std::filesystem::remove(fifo);
