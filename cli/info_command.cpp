@@ -117,7 +117,10 @@ json info_json(const protocol::StreamReader& reader, const controller::Controlle
     if (reader.timed()) {
         for (std::size_t i = 0; i < frames.size(); ++i) {
             frames[i]["last_send_us"] = controller::from_ns(info.last_send_ns[i]);
-            frames[i]["host_end_us"] = controller::from_ns(info.host_end_ns[i]);
+            // a frame that never ended (open at the end, or no FRAME_END) has no host end
+            frames[i]["host_end_us"] = frames[i]["complete"].get<bool>()
+                                           ? json(controller::from_ns(info.host_end_ns[i]))
+                                           : json(nullptr);
         }
     }
     json j{{"stream", reader.name()},
@@ -175,8 +178,11 @@ void print_text(const json& j) {
                printable(j["send_times"].get<std::string>()));
     fmt::print("{:>6} {:>14} {:>14}\n", "frame", "last send ms", "host end ms");
     for (const json& f : j["frames"])
-        fmt::print("{:>6} {:>14.6f} {:>14.6f}\n", f["frame"].get<uint32_t>(),
-                   f["last_send_us"].get<double>() / 1e3, f["host_end_us"].get<double>() / 1e3);
+        fmt::print("{:>6} {:>14.6f} {:>14}\n", f["frame"].get<uint32_t>(),
+                   f["last_send_us"].get<double>() / 1e3,
+                   f["host_end_us"].is_null()
+                       ? std::string("never ended")
+                       : fmt::format("{:.6f}", f["host_end_us"].get<double>() / 1e3));
 }
 
 int run_info(const InfoArgs& args) {

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <csignal>
 #include <iostream>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +14,30 @@
 #include "host/scene/scene_error.h"
 #include "protocol/output_file.h"
 #include "protocol/stream_reader.h"
+
+namespace {
+
+// "--repeat: '1.5' is not an integer" for the first integer option whose given value is not
+// one, else nothing. (CLI11 keeps what was given as text, checked or not.)
+std::optional<std::string> not_an_integer(const CLI::App& command) {
+    for (const CLI::Option* o : command.get_options()) {
+        const std::string type = o->get_type_name();
+        if (type.rfind("INT", 0) != 0 && type.rfind("UINT", 0) != 0) continue;
+        for (const std::string& given : o->results()) {
+            std::size_t digits = given.size();
+            try {
+                (void)std::stoll(given, &digits);
+            } catch (const std::exception&) {
+                digits = 0;
+            }
+            if (given.empty() || digits != given.size())
+                return o->get_name() + ": '" + given + "' is not an integer";
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace fb89::cli;
@@ -98,6 +124,13 @@ int main(int argc, char** argv) {
         }
         // CLI11's own words, said as fb89 says every usage error: one line, and where to look
         const bool command = argc > 1 && argv[1][0] != '-';
+        // an integer option given a fraction or a word: say that, not "not in range"
+        if (command && app.get_subcommand(argv[1])->parsed())
+            if (const auto what = not_an_integer(*app.get_subcommand(argv[1]))) {
+                std::cerr << "fb89: usage: " << argv[1] << ": " << *what << " (fb89 " << argv[1]
+                          << " --help says more)\n";
+                return kBadInput;
+            }
         std::cerr << "fb89: usage: " << (command ? std::string(argv[1]) + ": " : "") << e.what()
                   << " (fb89 " << (command ? std::string(argv[1]) + " " : "")
                   << "--help says more)\n";

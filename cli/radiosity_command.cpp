@@ -298,7 +298,7 @@ int run_radiosity_command(const RadiosityArgs& args) {
 
     if (!args.quiet && !stdout_taken) {
         fmt::print("{}", summary(args, run));
-        fmt::print("controller ({}):\n{}", profile.name, ctl.stats().summary());
+        fmt::print("{}", ctl.stats().summary());  // its first line names the profile
     }
     return kSuccess;
 }

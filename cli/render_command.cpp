@@ -350,7 +350,7 @@ int run_render(const RenderArgs& args) {
                 "tiles):\n");
         }
         fmt::print("{}", run.stats.summary());
-        fmt::print("controller ({}):\n{}", ctl.profile().name, ctl.stats().summary());
+        fmt::print("{}", ctl.stats().summary());  // its first line names the profile
         fmt::print("{}",
                    split_line(run.period ? run.period->cost.profile : "native", run.host_frame_ms,
                               ctl.profile().name, run.controller.frame_ms));
@@ -430,9 +430,11 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--stream", args->stream,
                     "Record the command stream ('-' for stdout), with each command's send time "
                     "(format version 2)");
+    auto* stream = sub->get_option("--stream");
     sub->add_flag("--untimed-stream", args->untimed_stream,
-                  "Record the stream without send times (format version 1: the same bytes "
-                  "every run)");
+                  "With --stream: record it without send times (format version 1: the same "
+                  "bytes every run)")
+        ->needs(stream);
     sub->add_option("--connect", args->connect,
                     "Also stream the commands to `fb89 controller --listen PATH` on this socket");
     sub->add_option("--stats", args->stats,

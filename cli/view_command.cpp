@@ -24,6 +24,7 @@
 #include "controller_sim/png_io.h"
 #include "controller_sim/view_player.h"
 #include "frontend/stream_tools.h"
+#include "protocol/stream_reader.h"
 
 namespace fb89::cli {
 
@@ -34,6 +35,8 @@ using controller::PipelineFigures;
 using controller::ViewGoal;
 using controller::ViewPlayer;
 using Clock = std::chrono::steady_clock;
+
+constexpr double kMaxSpeed = 1e9;  // '+' doubles the speed up to here
 
 struct ViewArgs {
     std::string stream;
@@ -150,7 +153,7 @@ bool on_key(int key, ViewPlayer& p, Ui& ui) {
         case '+':
         case '=':
         case ']':
-            ui.speed = std::min(ui.speed * 2, 1e9);
+            ui.speed = std::min(ui.speed * 2, kMaxSpeed);
             ui.paced = true;
             break;
         case '-':
@@ -185,7 +188,28 @@ void save_screenshot(controller::Display& display, const ViewPlayer& p, const Ui
     controller::write_png(path, w, h, rgb);
 }
 
+// --start-call past the stream's last command is refused before a window opens, as dump
+// refuses --calls past it (a file is counted through; stdin cannot be read twice).
+void check_start_call(const ViewArgs& args) {
+    if (args.start_call < 0 || args.stream == "-") return;
+    protocol::StreamReader reader(args.stream);
+    protocol::Command c;
+    uint64_t commands = 0;
+    bool damaged = false;
+    try {
+        while (reader.next(c))
+            ++commands;
+    } catch (const protocol::StreamError&) {
+        damaged = true;  // the player reports the damage when it reaches it
+    }
+    if (static_cast<uint64_t>(args.start_call) >= commands)
+        throw UsageError(
+            fmt::format("--start-call: command {} is past the stream's last (it has {} {}commands)",
+                        args.start_call, commands, damaged ? "readable " : ""));
+}
+
 int run_view(const ViewArgs& args) {
+    check_start_call(args);
     ViewPlayer player(args.stream, controller::load_profile(args.profile),
                       parse_buffer_option(args.buffer, args.profile));
     if (args.start_frame >= 0) player.seek_frame_number(static_cast<uint32_t>(args.start_frame));
@@ -259,7 +283,23 @@ void register_view(CLI::App& app, int& exit_code) {
     sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
     auto* speed =
         sub->add_option("--speed", args->speed, "Modelled time per wall time; 1 = real 1989 time")
-            ->check(CLI::PositiveNumber)
+            ->check(CLI::Validator(
+                [](const std::string& text) {
+                    double v = 0;
+                    std::size_t used = 0;
+                    try {
+                        v = std::stod(text, &used);
+                    } catch (const std::exception&) {
+                        used = 0;
+                    }
+                    return used == text.size() && v > 0 && v <= kMaxSpeed
+                               ? std::string()
+                               : fmt::format(
+                                     "'{}' is not a speed: give a number above 0 and "
+                                     "at most {:g}, e.g. 0.1 (slower) or 10 (faster)",
+                                     text, kMaxSpeed);
+                },
+                "SPEED"))
             ->capture_default_str();
     auto* call = sub->add_option("--start-call", args->start_call, "Start at this command number")
                      ->check(CLI::NonNegativeNumber);

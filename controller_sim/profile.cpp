@@ -313,6 +313,12 @@ std::string command_buffer_text(uint64_t bytes) {
     return bytes == kUnboundedBuffer ? std::string(kUnbounded) : fmt::format("{} bytes", bytes);
 }
 
+std::string host_stall_text(uint64_t buffer_bytes, double stalled_ms) {
+    return buffer_bytes == kUnboundedBuffer
+               ? fmt::format("host waited for the bus {:.3f} ms", stalled_ms)
+               : fmt::format("host stalled {:.3f} ms (bus or full buffer)", stalled_ms);
+}
+
 CostProfile band_end(const CostProfile& profile, bool dear) {
     CostProfile p = profile;
     p.name += dear ? " (dear end)" : " (cheap end)";

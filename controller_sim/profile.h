@@ -82,6 +82,10 @@ CostProfile band_end(const CostProfile& profile, bool dear);
 // the number of bytes; and as text: "unbounded" or "N bytes".
 nlohmann::json command_buffer_json(uint64_t bytes);
 std::string command_buffer_text(uint64_t bytes);
+// The host's stalls as a reader should read them: with an unbounded buffer the host only
+// ever waits for the bus ("host waited for the bus 1.234 ms"); with a bounded one, for the
+// bus or for room in the buffer ("host stalled 1.234 ms (bus or full buffer)").
+std::string host_stall_text(uint64_t buffer_bytes, double stalled_ms);
 
 // A profile compiled into the library.
 struct BuiltinProfile {

@@ -51,6 +51,18 @@ std::string given(const InstructionSet& isa, const std::string& what, std::strin
     return "";
 }
 
+// How to build a missing guest part: the guests' own target, in the build tree the part's
+// path lies in (<build>/guest-<isa>/...), which a full build and scripts/test build too.
+std::string how_to_build(const std::string& built, const InstructionSet& isa) {
+    std::filesystem::path tree;
+    for (std::filesystem::path p = built; !p.empty() && p != p.parent_path(); p = p.parent_path())
+        if (p.filename().string().rfind("guest-", 0) == 0) tree = p.parent_path();
+    return fmt::format(
+        "build it with `cmake --build {} --target fb89_guests` (a full build and scripts/test "
+        "build it too), with Debian's {} installed (scripts/bootstrap installs them)",
+        tree.empty() ? std::string("BUILD") : tree.string(), isa.packages);
+}
+
 std::string part(const char* variable, const std::string& set, const std::string& built,
                  const std::string& what, const InstructionSet& isa) {
     if (!set.empty()) {
@@ -60,9 +72,12 @@ std::string part(const char* variable, const std::string& set, const std::string
     }
     if (built.empty() || ::access(built.c_str(), R_OK) != 0)
         throw EmulatorError(fmt::format(
-            "{} is not built ({}): build fb89 with Debian's {} installed (scripts/bootstrap "
-            "installs them), or set {}",
-            what, built.empty() ? "the cross build was off" : built + " is missing", isa.packages,
+            "{} is not built ({}): {}, or set {}", what,
+            built.empty() ? "the cross build was off" : built + " is missing",
+            built.empty() ? fmt::format("configure fb89 with -DFB89_PERIOD_GUEST=ON and Debian's "
+                                        "{} installed (scripts/bootstrap installs them)",
+                                        isa.packages)
+                          : how_to_build(built, isa),
             variable));
     return built;
 }
@@ -319,9 +334,8 @@ std::filesystem::path find_kernel(const InstructionSet& isa, const std::string& 
     const std::filesystem::path path = dir / name;
     if (dir.empty() || ::access(path.c_str(), R_OK) != 0)
         throw EmulatorError(fmt::format(
-            "the validation kernel {} for {} is not built ({} is missing): build fb89 with "
-            "Debian's {} installed (scripts/bootstrap installs them), or set {}",
-            name, isa.name, path.string(), isa.packages, variable));
+            "the validation kernel {} for {} is not built ({} is missing): {}, or set {}", name,
+            isa.name, path.string(), how_to_build(path.string(), isa), variable));
     return path;
 }
 
