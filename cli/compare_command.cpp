@@ -26,6 +26,7 @@ namespace {
 struct CompareArgs {
     HostArgs host;
     std::string scene, size, csv, json;
+    std::string given;  // the scene as the user named it
     std::string threshold = "calibrated", beam_threshold = "calibrated";
     std::string sheet = "out/compare.png";
     std::string profile = "tms34010-50mhz";
@@ -57,7 +58,7 @@ std::vector<host::MethodOptions> settings_of(const CompareArgs& a, std::string& 
 nlohmann::json rows_json(const Comparison& c) {
     nlohmann::json rows = nlohmann::json::array();
     for (const CompareRow& r : c.rows) {
-        rows.push_back({{"scene", c.scene},
+        rows.push_back({{"scene", c.name},
                         {"method", r.method},
                         {"host", c.host},
                         {"host_ms", r.host_ms},
@@ -105,12 +106,13 @@ int run_compare(const CompareArgs& a) {
     s.period = make_period_runs(a.host);
     const bool stdout_taken =
         claims_stdout({{"--sheet", a.sheet}, {"--csv", a.csv}, {"--json", a.json}});
-    const Comparison c = compare_methods(a.scene, settings, s);
+    // named as the console names it: a bundled scene by its name, a file as it was given
+    const std::string shown = scene_display_name(a.scene);
+    const Comparison c = compare_methods(a.scene, settings, s, shown == a.scene ? a.given : shown);
     if (report_emitted(s, a.host)) return kSuccess;
     make_parent_dirs(a.sheet);
     controller::write_png(a.sheet, c.sheet);
-    Table table = comparison_table(c);
-    table.map_column("scene", scene_display_name);
+    const Table table = comparison_table(c);
     if (!a.csv.empty()) write_text(a.csv, table.csv());
     if (!a.json.empty()) write_json(a.json, rows_json(c));
     if (!a.quiet && !stdout_taken) std::cout << thresholds << table.text() << differences_note(c);
@@ -150,6 +152,7 @@ void register_compare(CLI::App& app, int& exit_code) {
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
     add_isa_option(sub);
     sub->callback([a, &exit_code] {
+        a->given = a->scene;
         a->scene = resolve_scene(a->scene);
         exit_code = run_compare(*a);
     });

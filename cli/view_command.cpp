@@ -1,6 +1,7 @@
 // fb89 view STREAM: plays a recorded command stream in an SDL2 window at the modelled
 // controller speed (1x is the 1989 board's own time, as the cost profile models it), with
-// the opcode overlay (the paper's Fig. 4.7 idea), a pixel inspector and on-screen help.
+// the opcode overlay (the paper's Fig. 4.7 idea), a pixel inspector and a key panel (`h`).
+// The status lines wrap to the window (controller_sim/hud_layout.h): every field is shown.
 //
 // Pacing: each wall-clock tick adds wall seconds x speed of modelled time to a budget;
 // commands execute while the budget lasts, each spending what the controller's pipeline
@@ -46,8 +47,9 @@ struct ViewArgs {
     int64_t start_call = -1, start_frame = -1;
     bool overlay = false;
     double scale = 1;
-    std::string screenshot, buffer;
+    std::string screenshot, window_screenshot, buffer;
     bool exit_at_end = false;
+    bool show_keys = false;
 };
 
 const std::vector<std::string> kHelp = {
@@ -62,7 +64,7 @@ const std::vector<std::string> kHelp = {
     "         green FILL_RECT  red DRAW_SPAN",
     "         blue FRAME_BEGIN (background)",
     "mouse    inspect the pixel under it",
-    "h        hide / show this help",
+    "h        hide / show these keys",
     "q, Esc   quit",
 };
 
@@ -72,7 +74,7 @@ std::string speed_text(double speed, bool paced) {
 }
 
 struct Ui {
-    bool help = true;
+    bool help = false;  // the key panel: hidden until `h`, so that it covers nothing
     bool overlay = false;
     double speed = 1;
     bool paced = true;
@@ -80,22 +82,29 @@ struct Ui {
     uint32_t mouse_x = 0, mouse_y = 0;
 };
 
-controller::Hud make_hud(const ViewPlayer& p, const Ui& ui, int columns) {
+// The status lines, their fields apart by two spaces (where a line wraps when the window is
+// too narrow for it).
+controller::Hud make_hud(const ViewPlayer& p, const Ui& ui) {
     controller::Hud hud;
-    auto fit = [columns](std::string s) {
-        if (static_cast<int>(s.size()) > columns) s.resize(static_cast<std::size_t>(columns));
-        return s;
-    };
     const char* state = p.at_end()                    ? "END"
                         : p.goal() == ViewGoal::Pause ? "PAUSED"
                         : p.goal() == ViewGoal::Play  ? "PLAYING"
                                                       : "SEEKING";
-    hud.status.push_back(fit(fmt::format(
+    hud.status.push_back(fmt::format(
         "frame {} [{}{}]  cmd {}  t {:.3f} ms in frame, {:.3f} s  {}  {}{}",
         p.frame_number() < 0 ? std::string("-") : std::to_string(p.frame_number()),
         p.frame_ordinal() + 1, p.frame_count() ? fmt::format("/{}", *p.frame_count()) : "",
         p.next_command(), p.frame_us() / 1e3, p.elapsed_us() / 1e6, speed_text(ui.speed, ui.paced),
-        state, ui.overlay ? "  overlay" : "")));
+        state, ui.overlay ? "  overlay" : ""));
+    if (p.timed()) {  // the pipeline in time: who waited on whom, in this frame so far
+        const PipelineFigures& f = p.pipeline_so_far();
+        hud.status.push_back(fmt::format(
+            "pipeline: send times {}, buffer {}  {}  controller idle {:.3f} "
+            "ms  buffer high water {} bytes",
+            send_times_of(p.reader()), controller::command_buffer_text(p.buffer_bytes()),
+            controller::host_stall_text(p.buffer_bytes(), f.host_stalled_us / 1e3),
+            std::max(0.0, p.frame_us() - f.controller_busy_us) / 1e3, f.high_water_bytes));
+    }
     std::string inspect = "inspector: move the mouse over the image";
     const auto& fb = p.controller().framebuffer();
     if (ui.mouse_in && ui.mouse_x < fb.width() && ui.mouse_y < fb.height()) {
@@ -104,22 +113,15 @@ controller::Hud make_hud(const ViewPlayer& p, const Ui& ui, int columns) {
         if (const auto w = p.recorder().writer(x, y))
             inspect += fmt::format(" by #{} {}", w->number, protocol::to_string(*w->command));
     }
-    if (p.timed()) {  // the pipeline in time: who waited on whom, in this frame so far
-        const PipelineFigures& f = p.pipeline_so_far();
-        hud.status.push_back(fit(fmt::format(
-            "pipeline (send times {}, buffer {}): host stalled {:.3f} ms, controller idle "
-            "{:.3f} ms, buffer high water {} bytes",
-            send_times_of(p.reader()), controller::command_buffer_text(p.buffer_bytes()),
-            f.host_stalled_us / 1e3, std::max(0.0, p.frame_us() - f.controller_busy_us) / 1e3,
-            f.high_water_bytes)));
-    }
-    hud.status.push_back(fit(inspect));
-    hud.status.push_back(fit(!p.error().empty() ? "stream error: " + p.error()
-                             : p.last_command()
-                                 ? fmt::format("last #{} {}  (h: help)", p.last_number(),
-                                               protocol::to_string(*p.last_command()))
-                                 : std::string("(h: help)")));
-    if (ui.help) hud.help = kHelp;
+    hud.status.push_back(inspect);
+    std::string last = !p.error().empty() ? "stream error: " + p.error()
+                       : p.last_command() ? fmt::format("last #{} {}", p.last_number(),
+                                                        protocol::to_string(*p.last_command()))
+                                          : "";
+    hud.status.push_back(last + (last.empty() ? "" : "  ") +
+                         (ui.help ? "h: hide keys" : "h: keys"));
+    hud.help = kHelp;
+    hud.help_shown = ui.help;
     return hud;
 }
 
@@ -188,6 +190,16 @@ void save_screenshot(controller::Display& display, const ViewPlayer& p, const Ui
     controller::write_png(path, w, h, rgb);
 }
 
+// Saves the whole window as it shows: the frame, the status lines, the key panel if open.
+void save_window_screenshot(controller::Display& display, const ViewPlayer& p, const Ui& ui,
+                            const std::string& path) {
+    uint32_t w = 0, h = 0;
+    const std::vector<uint8_t> rgb = display.capture_window(
+        p.controller().framebuffer(), ui.overlay ? &p.recorder() : nullptr, make_hud(p, ui), w, h);
+    make_parent_dirs(path);
+    controller::write_png(path, w, h, rgb);
+}
+
 // --start-call past the stream's last command is refused before a window opens, as dump
 // refuses --calls past it (a file is counted through; stdin cannot be read twice).
 void check_start_call(const ViewArgs& args) {
@@ -228,7 +240,7 @@ int run_view(const ViewArgs& args) {
     ui.overlay = args.overlay;
     ui.speed = args.speed;
     ui.paced = !(args.exit_at_end && !args.speed_given);  // a screenshot run: as fast as we can
-    ui.help = !args.exit_at_end;
+    ui.help = args.show_keys;
     bool shot_taken = false;
     double budget_us = 0;
     auto last = Clock::now();
@@ -258,8 +270,10 @@ int run_view(const ViewArgs& args) {
             player.run(deadline);
         }
 
-        if (player.at_end() && !shot_taken && !args.screenshot.empty()) {
-            save_screenshot(*display, player, ui, args.screenshot);
+        if (player.at_end() && !shot_taken) {
+            if (!args.screenshot.empty()) save_screenshot(*display, player, ui, args.screenshot);
+            if (!args.window_screenshot.empty())
+                save_window_screenshot(*display, player, ui, args.window_screenshot);
             shot_taken = true;
         }
         if (player.at_end() && args.exit_at_end) {
@@ -268,7 +282,7 @@ int run_view(const ViewArgs& args) {
             return kBadInput;
         }
         display->show(player.controller().framebuffer(), ui.overlay ? &player.recorder() : nullptr,
-                      make_hud(player, ui, display->columns()));
+                      make_hud(player, ui));
         if (busy) std::this_thread::sleep_until(now + std::chrono::milliseconds(16));
     }
 }
@@ -319,6 +333,11 @@ void register_view(CLI::App& app, int& exit_code) {
     sub->add_option("--screenshot", args->screenshot,
                     "At the end of the stream, save what the window shows of the image as PNG "
                     "(with the overlay when it is on)");
+    sub->add_option("--window-screenshot", args->window_screenshot,
+                    "At the end of the stream, save the whole window as PNG: the image, the "
+                    "status lines and the key panel when it is open");
+    sub->add_flag("--show-keys", args->show_keys,
+                  "Start with the key panel open over the image (h shows and hides it)");
     sub->add_flag("--exit-at-end", args->exit_at_end,
                   "Exit at the end of the stream (as fast as possible unless --speed)");
     sub->callback([args, speed, &exit_code] {

@@ -3,7 +3,9 @@
 // The framebuffer is uploaded each frame to a streaming RGB24 texture and drawn with
 // nearest-neighbour scaling by SDL's software renderer, so what the window shows is the
 // controller's pixels exactly (the screenshot test compares them byte for byte). Text uses
-// the 5x7 font of bitmap_font.h, baked once into a glyph atlas texture.
+// the 5x7 font of bitmap_font.h, baked once into a glyph atlas texture, and goes where
+// layout_hud() (hud_layout.h) puts it: status rows wrapped to the window under the image,
+// the key panel over the image only when it is shown.
 //
 // NOT SHOWN / NOT MODELLED:
 //  - The monitor: no CRT gamma, no interlace, no overscan, no pixel aspect ratio (the
@@ -12,8 +14,8 @@
 //    60 times a second of wall time; the 1989 board scanned its VRAM out continuously, so
 //    a real screen could show a fill half done. We never show a command half executed.
 //  - VRAM shift-register transfers and the time they steal: not in the cost model either.
-//  - The host's screen: the window is sized to the framebuffer, never less than 640 pixels
-//    wide so the status text fits; there is no zoom or pan beyond --scale (1/8 to 8).
+//  - The host's screen: the window is sized to the framebuffer (never less than 640 pixels
+//    wide) and its text; there is no zoom or pan beyond --scale (1/8 to 8).
 #include "controller_sim/display.h"
 
 #include <SDL.h>
@@ -30,9 +32,6 @@
 namespace fb89::controller {
 
 namespace {
-
-constexpr int kMinWindowWidth = 640;
-constexpr int kPad = 4;  // pixels around the status text
 
 constexpr const char* kNoDisplay = "no display to open a window on";
 
@@ -89,20 +88,22 @@ struct Display::Impl {
     SDL_Texture* font = nullptr;
     double scale = 1;                      // window pixels per framebuffer pixel: 1/8 to 8
     uint32_t fb_width = 0, fb_height = 0;  // of the texture
-    int status_lines = 0;
+    int status_rows = 0;                   // the most the bar has held at this size
     int win_width = 0, win_height = 0;
+    HudLayout layout;  // of the last frame drawn
     std::vector<uint8_t> rgb;
 
-    int text_scale() const { return win_width >= 960 ? 2 : 1; }
     // n framebuffer pixels in window pixels (at least 1 for n > 0)
     int scaled(uint32_t n) const {
         return n == 0 ? 0 : std::max(1, static_cast<int>(std::lround(n * scale)));
     }
     void make_font();
-    void fit(uint32_t width, uint32_t height, int lines);
+    void fit(uint32_t width, uint32_t height, const Hud& hud);
+    void resize_window(int w, int h);
     void draw_image(const Framebuffer& fb, const Recorder* overlay);
-    void draw_text(int x, int y, const std::string& text, SDL_Color color);
-    void draw_hud(const Hud& hud);
+    void draw_text(const TextRow& row, SDL_Color color);
+    void draw_hud();
+    std::vector<uint8_t> read_pixels(int w, int h);
 };
 
 // glyph atlas: 95 cells in a row, white where a glyph pixel is set, transparent elsewhere
@@ -120,8 +121,9 @@ void Display::Impl::make_font() {
     SDL_SetTextureBlendMode(font, SDL_BLENDMODE_BLEND);
 }
 
-// window and texture sized for a width x height framebuffer and `lines` status lines
-void Display::Impl::fit(uint32_t width, uint32_t height, int lines) {
+// texture sized for a width x height framebuffer, the layout made for `hud`, and the
+// window sized to the layout
+void Display::Impl::fit(uint32_t width, uint32_t height, const Hud& hud) {
     if (width != fb_width || height != fb_height || !image) {
         if (image) SDL_DestroyTexture(image);
         image = SDL_CreateTexture(renderer, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
@@ -130,28 +132,28 @@ void Display::Impl::fit(uint32_t width, uint32_t height, int lines) {
         if (!image) throw DisplayUnavailable(std::string("SDL_CreateTexture: ") + SDL_GetError());
         fb_width = width;
         fb_height = height;
+        status_rows = 0;
     }
-    const int image_w = scaled(width);
-    const int w = std::max(image_w, kMinWindowWidth);
-    const int ts = w >= 960 ? 2 : 1;
-    const int h = scaled(height) + lines * kCellHeight * ts + 2 * kPad;
-    if (w != win_width || h != win_height) {
-        SDL_SetWindowSize(window, w, h);
-        // centre the window when it is first shown, or when it grew off the screen
-        int x = 0, y = 0;
-        SDL_Rect screen{0, 0, 0, 0};
-        SDL_GetWindowPosition(window, &x, &y);
-        const bool fits =
-            SDL_GetDisplayUsableBounds(SDL_GetWindowDisplayIndex(window), &screen) != 0 ||
-            (x + w <= screen.x + screen.w && y + h <= screen.y + screen.h);
-        if (win_width == 0 || !fits)
-            SDL_SetWindowPosition(window, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED);
-        if (win_width == 0) SDL_ShowWindow(window);
-        SDL_PumpEvents();  // let the renderer see the new size before drawing
-        win_width = w;
-        win_height = h;
-    }
-    status_lines = lines;
+    layout = layout_hud(scaled(width), scaled(height), hud, status_rows);
+    status_rows = std::max(status_rows, static_cast<int>(layout.status.size()));
+    resize_window(layout.window_width, layout.window_height);
+}
+
+void Display::Impl::resize_window(int w, int h) {
+    if (w == win_width && h == win_height) return;
+    SDL_SetWindowSize(window, w, h);
+    // centre the window when it is first shown, or when it grew off the screen
+    int x = 0, y = 0;
+    SDL_Rect screen{0, 0, 0, 0};
+    SDL_GetWindowPosition(window, &x, &y);
+    const bool fits = SDL_GetDisplayUsableBounds(SDL_GetWindowDisplayIndex(window), &screen) != 0 ||
+                      (x + w <= screen.x + screen.w && y + h <= screen.y + screen.h);
+    if (win_width == 0 || !fits)
+        SDL_SetWindowPosition(window, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED);
+    if (win_width == 0) SDL_ShowWindow(window);
+    SDL_PumpEvents();  // let the renderer see the new size before drawing
+    win_width = w;
+    win_height = h;
 }
 
 void Display::Impl::draw_image(const Framebuffer& fb, const Recorder* overlay) {
@@ -164,46 +166,44 @@ void Display::Impl::draw_image(const Framebuffer& fb, const Recorder* overlay) {
     SDL_RenderCopy(renderer, image, nullptr, &dst);
 }
 
-void Display::Impl::draw_text(int x, int y, const std::string& text, SDL_Color color) {
-    const int ts = text_scale();
+void Display::Impl::draw_text(const TextRow& row, SDL_Color color) {
+    const int ts = layout.text_scale;
     SDL_SetTextureColorMod(font, color.r, color.g, color.b);
-    for (char c : text) {
+    int x = row.box.x;
+    for (char c : row.text) {
         const auto u = static_cast<unsigned char>(c);
         const int g = (u >= 32 && u <= 126) ? u - 32 : '?' - 32;
         const SDL_Rect src{g * kCellWidth, 0, kGlyphWidth, kGlyphHeight};
-        const SDL_Rect dst{x, y, kGlyphWidth * ts, kGlyphHeight * ts};
+        const SDL_Rect dst{x, row.box.y, kGlyphWidth * ts, kGlyphHeight * ts};
         SDL_RenderCopy(renderer, font, &src, &dst);
         x += kCellWidth * ts;
     }
 }
 
-void Display::Impl::draw_hud(const Hud& hud) {
-    const int ts = text_scale();
-    const int line_h = kCellHeight * ts;
-    // status bar under the image
-    int y = scaled(fb_height) + kPad;
-    for (const std::string& line : hud.status) {
-        draw_text(kPad, y, line, SDL_Color{230, 230, 230, 255});
-        y += line_h;
-    }
-    if (hud.help.empty()) return;
+void Display::Impl::draw_hud() {
+    for (const TextRow& row : layout.status)
+        draw_text(row, SDL_Color{230, 230, 230, 255});
+    if (layout.panel_rows.empty()) return;
 
-    // help box over the image, top left
-    std::size_t longest = 0;
-    for (const std::string& line : hud.help)
-        longest = std::max(longest, line.size());
-    const SDL_Rect box{kPad, kPad, static_cast<int>(longest) * kCellWidth * ts + 4 * kPad,
-                       static_cast<int>(hud.help.size()) * line_h + 3 * kPad};
+    // the key panel, over the image
+    const SDL_Rect box{layout.panel.x, layout.panel.y, layout.panel.width, layout.panel.height};
     SDL_SetRenderDrawBlendMode(renderer, SDL_BLENDMODE_BLEND);
     SDL_SetRenderDrawColor(renderer, 0, 0, 0, 200);
     SDL_RenderFillRect(renderer, &box);
     SDL_SetRenderDrawColor(renderer, 255, 210, 80, 255);
     SDL_RenderDrawRect(renderer, &box);
-    y = box.y + 2 * kPad;
-    for (const std::string& line : hud.help) {
-        draw_text(box.x + 2 * kPad, y, line, SDL_Color{255, 230, 140, 255});
-        y += line_h;
-    }
+    for (const TextRow& row : layout.panel_rows)
+        draw_text(row, SDL_Color{255, 230, 140, 255});
+}
+
+// The top-left w x h of what the renderer drew, as RGB888 rows.
+std::vector<uint8_t> Display::Impl::read_pixels(int w, int h) {
+    std::vector<uint8_t> out(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+    const SDL_Rect area{0, 0, w, h};
+    if (w > 0 && h > 0 &&
+        SDL_RenderReadPixels(renderer, &area, SDL_PIXELFORMAT_RGB24, out.data(), w * 3) != 0)
+        throw std::runtime_error(std::string("SDL_RenderReadPixels: ") + SDL_GetError());
+    return out;
 }
 
 Display::Display(const std::string& title, double scale) : m(std::make_unique<Impl>()) {
@@ -267,24 +267,32 @@ std::vector<InputEvent> Display::poll(int timeout_ms) {
 }
 
 void Display::show(const Framebuffer& fb, const Recorder* overlay, const Hud& hud) {
-    m->fit(fb.width(), fb.height(), static_cast<int>(hud.status.size()));
+    m->fit(fb.width(), fb.height(), hud);
     m->draw_image(fb, overlay);
-    m->draw_hud(hud);
+    m->draw_hud();
     SDL_RenderPresent(m->renderer);
 }
 
 std::vector<uint8_t> Display::capture(const Framebuffer& fb, const Recorder* overlay,
                                       uint32_t& width, uint32_t& height) {
-    m->fit(fb.width(), fb.height(), m->status_lines);
+    if (fb.width() != m->fb_width || fb.height() != m->fb_height || !m->image)
+        m->fit(fb.width(), fb.height(), Hud{});
     m->draw_image(fb, overlay);
     width = static_cast<uint32_t>(m->scaled(fb.width()));
     height = static_cast<uint32_t>(m->scaled(fb.height()));
-    std::vector<uint8_t> rgb(std::size_t{width} * height * 3);
-    const SDL_Rect area{0, 0, static_cast<int>(width), static_cast<int>(height)};
-    if (width > 0 && height > 0 &&
-        SDL_RenderReadPixels(m->renderer, &area, SDL_PIXELFORMAT_RGB24, rgb.data(),
-                             static_cast<int>(width * 3)) != 0)
-        throw std::runtime_error(std::string("SDL_RenderReadPixels: ") + SDL_GetError());
+    std::vector<uint8_t> rgb = m->read_pixels(static_cast<int>(width), static_cast<int>(height));
+    SDL_RenderPresent(m->renderer);
+    return rgb;
+}
+
+std::vector<uint8_t> Display::capture_window(const Framebuffer& fb, const Recorder* overlay,
+                                             const Hud& hud, uint32_t& width, uint32_t& height) {
+    m->fit(fb.width(), fb.height(), hud);
+    m->draw_image(fb, overlay);
+    m->draw_hud();
+    width = static_cast<uint32_t>(m->layout.window_width);
+    height = static_cast<uint32_t>(m->layout.window_height);
+    std::vector<uint8_t> rgb = m->read_pixels(m->layout.window_width, m->layout.window_height);
     SDL_RenderPresent(m->renderer);
     return rgb;
 }
@@ -295,10 +303,6 @@ std::optional<std::pair<uint32_t, uint32_t>> Display::pixel_at(int x, int y) con
                py = static_cast<uint32_t>(y / m->scale);  // floor
     if (px >= m->fb_width || py >= m->fb_height) return std::nullopt;
     return std::pair{px, py};
-}
-
-int Display::columns() const {
-    return (std::max(m->win_width, kMinWindowWidth) - 2 * kPad) / (kCellWidth * m->text_scale());
 }
 
 }  // namespace fb89::controller

@@ -1,5 +1,6 @@
 // Display: an SDL2 window showing the controller's framebuffer as a 1989 monitor would,
-// with fb89's own text on top (status lines under the image, help over it).
+// with fb89's own text beside it (status lines under the image, the key panel over it when
+// asked for), laid out by hud_layout.h so that all of it fits the window.
 //
 // Reusable by any owner of a Controller: `fb89 view` plays a recorded stream through it,
 // and `fb89 controller --view` can show a live one the same way:
@@ -19,6 +20,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "controller_sim/hud_layout.h"
 
 namespace fb89::controller {
 
@@ -51,12 +54,6 @@ struct InputEvent {
     int x = 0, y = 0;  // MouseMove: window coordinates
 };
 
-// What is drawn on top of the framebuffer.
-struct Hud {
-    std::vector<std::string> status;  // lines in the bar under the image
-    std::vector<std::string> help;    // a box over the image, when not empty
-};
-
 class Display {
   public:
     // Opens a window; the framebuffer is drawn `scale` window pixels per pixel, from 1/8 (a
@@ -74,8 +71,15 @@ class Display {
     std::vector<InputEvent> poll(int timeout_ms);
 
     // Draws the framebuffer (tinted by its writers when `overlay` is given), then the HUD,
-    // and presents. Resizes the window when the framebuffer's size changed.
+    // and presents. Resizes the window when the layout's size changed: the framebuffer's,
+    // or the status bar grew (it does not shrink again for the same framebuffer size).
     void show(const Framebuffer& fb, const Recorder* overlay, const Hud& hud);
+
+    // Draws as show() does, reads the whole window back as the renderer drew it -- image,
+    // status bar and key panel -- and presents. RGB888 rows, width * 3 bytes each; the size
+    // is the window's.
+    std::vector<uint8_t> capture_window(const Framebuffer& fb, const Recorder* overlay,
+                                        const Hud& hud, uint32_t& width, uint32_t& height);
 
     // Draws the framebuffer as show() does (tinted by its writers when `overlay` is given)
     // but without the text, reads back the image area as the renderer drew it, and
@@ -86,9 +90,6 @@ class Display {
 
     // The framebuffer pixel under window point (x, y) of the last frame shown, if any.
     std::optional<std::pair<uint32_t, uint32_t>> pixel_at(int x, int y) const;
-
-    // Characters of status text that fit on one line of the window.
-    int columns() const;
 
   private:
     struct Impl;

@@ -9,6 +9,7 @@
 
 #include "controller_sim/bitmap_font.h"
 #include "controller_sim/controller.h"
+#include "controller_sim/hud_layout.h"
 #include "experiments/id_pass.h"
 #include "experiments/period_runs.h"
 #include "experiments/render_job.h"
@@ -18,7 +19,7 @@ namespace fb89::experiments {
 
 namespace {
 
-constexpr uint32_t kMaxColumns = 3, kThumbWidth = 256, kGap = 8, kCaptionLines = 6;
+constexpr uint32_t kMaxColumns = 3, kThumbWidth = 256, kGap = 8, kCaptionLines = 7;
 constexpr uint64_t kMaxThumbHeight = 4 * kThumbWidth;  // a frame far taller than wide
 constexpr protocol::Rgb kBackground{24, 24, 28}, kBand{44, 44, 52};
 constexpr protocol::Rgb kWhite{255, 255, 255}, kGrey{200, 200, 200};
@@ -77,20 +78,19 @@ std::vector<std::string> caption(const CompareRow& row) {
             fmt::format("controller {:.3f} ms", row.controller.frame_ms),
             fmt::format("frame {:.3f} ms, {}-bound", row.frame_ms,
                         row.host_bound ? "host" : "controller"),
-            fmt::format("{} commands: {} fills, {} spans", row.controller.commands,
-                        row.controller.fills, row.controller.spans),
+            fmt::format("{} commands", row.controller.commands),
+            fmt::format("{} fills, {} spans", row.controller.fills, row.controller.spans),
             fmt::format("{} px differ from zbuffer", row.ids.total())};
 }
 
 controller::Framebuffer draw_sheet(const Comparison& c) {
-    const SheetLayout l = sheet_layout(c.width, c.height, c.frames.size());
+    const SheetLayout l = sheet_layout(c.width, c.height, c.frames.size(), sheet_title(c));
     controller::Framebuffer sheet(l.width, l.height);
     sheet.clear(kBackground);
-    const int text_y = static_cast<int>((l.title_height - controller::kGlyphHeight) / 2);
-    draw_text(sheet, static_cast<int>(l.gap), text_y,
-              fmt::format("{}  {}x{}  host {}  controller {}", c.scene, c.width, c.height, c.host,
-                          c.profile),
-              kWhite);
+    for (size_t k = 0; k < l.title_rows.size(); ++k)
+        draw_text(sheet, static_cast<int>(l.gap),
+                  static_cast<int>(l.title_y + k * controller::kCellHeight), l.title_rows[k],
+                  kWhite);
     for (size_t i = 0; i < c.frames.size(); ++i) {
         const uint32_t x = l.gap + static_cast<uint32_t>(i % l.columns) * (l.thumb_width + l.gap);
         const uint32_t y = l.title_height + static_cast<uint32_t>(i / l.columns) *
@@ -111,9 +111,10 @@ controller::Framebuffer draw_sheet(const Comparison& c) {
 
 Comparison compare_methods(const std::string& file,
                            const std::vector<host::MethodOptions>& settings,
-                           const ExperimentSettings& s) {
+                           const ExperimentSettings& s, const std::string& name) {
     Comparison c;
     c.scene = file;
+    c.name = name.empty() ? file : name;
     c.host = s.period ? s.period->profile().name : "native";
     c.profile = s.profile;
     RenderJob job;
@@ -150,7 +151,7 @@ Table comparison_table(const Comparison& c) {
                  "px_other_face", "pipeline_ms", "overlap", "host_stalled_ms", "host_util",
                  "controller_util"});
     for (const CompareRow& r : c.rows) {
-        std::vector<std::string> row = {c.scene,
+        std::vector<std::string> row = {c.name,
                                         r.method,
                                         c.host,
                                         fixed(r.host_ms, 3),
@@ -177,7 +178,7 @@ Table comparison_table(const Comparison& c) {
     return table;
 }
 
-SheetLayout sheet_layout(uint32_t width, uint32_t height, size_t tiles) {
+SheetLayout sheet_layout(uint32_t width, uint32_t height, size_t tiles, const std::string& title) {
     SheetLayout l;
     const auto n = static_cast<uint32_t>(std::max<size_t>(tiles, 1));
     l.columns = std::min(n, kMaxColumns);
@@ -187,10 +188,19 @@ SheetLayout sheet_layout(uint32_t width, uint32_t height, size_t tiles) {
     const uint64_t scaled = width > 0 ? (uint64_t{height} * kThumbWidth + width / 2) / width : 1;
     l.thumb_height = static_cast<uint32_t>(std::clamp<uint64_t>(scaled, 1, kMaxThumbHeight));
     l.caption_height = kCaptionLines * controller::kCellHeight + 6;
-    l.title_height = controller::kCellHeight + 2 * kGap;
     l.width = l.columns * l.thumb_width + (l.columns + 1) * l.gap;
+    const auto title_columns = static_cast<int>((l.width - 2 * l.gap) / controller::kCellWidth);
+    l.title_rows = controller::wrap_line(title, title_columns);
+    l.title_height =
+        static_cast<uint32_t>(l.title_rows.size()) * controller::kCellHeight + 2 * kGap;
+    l.title_y = kGap + (controller::kCellHeight - controller::kGlyphHeight) / 2;
     l.height = l.title_height + l.rows * (l.thumb_height + l.caption_height + l.gap);
     return l;
+}
+
+std::string sheet_title(const Comparison& c) {
+    return fmt::format("{}  {}x{}  host {}  controller {}", c.name, c.width, c.height, c.host,
+                       c.profile);
 }
 
 void draw_text(controller::Framebuffer& fb, int x, int y, const std::string& text,

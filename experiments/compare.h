@@ -43,6 +43,7 @@ struct CompareRow {
 
 struct Comparison {
     std::string scene;    // the file as given
+    std::string name;     // how the sheet and the table name the scene (default: the file)
     std::string host;     // "native" or the 1989 host profile's name
     std::string profile;  // the controller's cost profile
     uint32_t width = 0, height = 0;
@@ -52,10 +53,12 @@ struct Comparison {
 };
 
 // Renders `file` with each of `settings` (times under `s`; s.scenes is not read) and lays
-// out the sheet. Throws what loading the scene or the profile throws.
+// out the sheet, naming the scene `name` there and in the table (the file when empty: a
+// front end passes a bundled scene's name, or the path as the user gave it). Throws what
+// loading the scene or the profile throws.
 Comparison compare_methods(const std::string& file,
                            const std::vector<host::MethodOptions>& settings,
-                           const ExperimentSettings& s);
+                           const ExperimentSettings& s, const std::string& name = "");
 
 // The rows as a table: scene, method, host, host_ms, commands, fills, spans, controller_ms,
 // frame_ms, bound_by, pixels_differing (px_coverage + px_other_face), then the pipeline in
@@ -70,9 +73,19 @@ struct SheetLayout {
     uint32_t thumb_width = 0, thumb_height = 0;
     uint32_t caption_height = 0, title_height = 0, gap = 0;
     uint32_t width = 0, height = 0;  // of the whole sheet
+    // the title's rows, wrapped to the sheet's width (controller::wrap_line), each drawn at
+    // x = gap, y = title_y + k * kCellHeight
+    std::vector<std::string> title_rows;
+    uint32_t title_y = 0;
 };
-// The layout for `tiles` frames of width x height: up to 3 columns, thumbnails 256 px wide.
-SheetLayout sheet_layout(uint32_t width, uint32_t height, size_t tiles);
+// The layout for `tiles` frames of width x height: up to 3 columns, thumbnails 256 px wide,
+// the title band as tall as `title` takes.
+SheetLayout sheet_layout(uint32_t width, uint32_t height, size_t tiles,
+                         const std::string& title = "");
+
+// The sheet's title: the scene's name, the frame's size, the host and the controller's
+// profile.
+std::string sheet_title(const Comparison& c);
 
 // Draws `text` in the 5x7 bitmap font (controller_sim/bitmap_font.h) with its top-left
 // corner at (x, y), one 6x10 cell per character; pixels outside `fb` are skipped.

@@ -1,6 +1,8 @@
 // `fb89 compare` as a user runs it: one row per method in the CSV and JSON, the contact
-// sheet PNG at its layout's size, no face id differing from the Z-buffer's for the exact
-// raster methods, exit 2 for a bad scene, and the same on a 1989 host.
+// sheet PNG at its layout's size, its title and captions read back whole from the pixels,
+// the scene named as the console names it (a bundled scene by name, a file as given), no
+// face id differing from the Z-buffer's for the exact raster methods, exit 2 for a bad
+// scene, and the same on a 1989 host.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 
 #include "controller_sim/png_io.h"
 #include "experiments/compare.h"
+#include "tests/cli/bitmap_text.h"
 #include "tests/cli/cli_runner.h"
 
 namespace {
@@ -122,6 +125,91 @@ TEST(CompareCommand, SheetDefaultsToOutComparePngUnderTheCurrentFolder) {
     EXPECT_TRUE(r.out.empty()) << r.out;
     EXPECT_TRUE(fs::exists(dir / "out" / "compare.png"));
     EXPECT_FALSE(fs::exists(dir / "compare.png"));
+}
+
+// The sheet's title band and each tile's caption, read back from the pixels.
+struct SheetText {
+    std::vector<std::string> title;
+    std::vector<std::vector<std::string>> captions;  // the grey lines under each frame
+};
+
+SheetText read_sheet(const fb89::controller::PngImage& png,
+                     const fb89::experiments::SheetLayout& l) {
+    using fb89::testing::PixelArea;
+    SheetText t;
+    t.title = fb89::testing::read_bitmap_text(png, PixelArea{0, 0, png.width, l.title_height},
+                                              {255, 255, 255}, 1);
+    for (uint32_t i = 0; i < l.columns * l.rows; ++i) {
+        const uint32_t x = l.gap + (i % l.columns) * (l.thumb_width + l.gap);
+        const uint32_t y = l.title_height +
+                           (i / l.columns) * (l.thumb_height + l.caption_height + l.gap) +
+                           l.thumb_height;
+        t.captions.push_back(fb89::testing::read_bitmap_text(
+            png, PixelArea{x, y, l.thumb_width, l.caption_height}, {200, 200, 200}, 1));
+    }
+    return t;
+}
+
+std::string trimmed(const std::string& row) {
+    return row.substr(std::min(row.find_first_not_of(' '), row.size()));
+}
+
+// Given by name, the bundled scene is named so on the sheet, in the CSV and in the JSON -- not
+// by the path it was found at -- and the title and captions read whole inside the sheet.
+TEST(CompareCommand, ABundledSceneIsNamedByItsNameOnTheSheetAndInTheTables) {
+    const fs::path dir = test_dir();
+    const fs::path sheet = dir / "sheet.png", csv = dir / "compare.csv",
+                   json = dir / "compare.json";
+    CliRun r =
+        fb89::testing::run_fb89("compare A --size 128x98 --repeat 1 -q --sheet " + sheet.string() +
+                                    " --csv " + csv.string() + " --json " + json.string(),
+                                "cd " + dir.string() + " && ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string title = "A  128x98  host native  controller tms34010-50mhz";
+    const fb89::controller::PngImage png = fb89::controller::read_png(sheet);
+    const SheetText text = read_sheet(png, fb89::experiments::sheet_layout(128, 98, 6, title));
+    ASSERT_EQ(text.title.size(), 1u) << ::testing::PrintToString(text.title);
+    EXPECT_EQ(trimmed(text.title[0]), title);
+    for (const auto& caption : text.captions) {
+        ASSERT_EQ(caption.size(), 6u) << ::testing::PrintToString(caption);
+        EXPECT_NE(caption[4].find(" spans"), std::string::npos) << caption[4];
+    }
+    for (const auto& row : read_csv(slurp(csv)))
+        EXPECT_EQ(row.at("scene"), "A");
+    for (const auto& row : nlohmann::json::parse(slurp(json)))
+        EXPECT_EQ(row["scene"], "A");
+}
+
+// A scene file of the user's is named by the path as given (relative, not made absolute); a
+// title longer than the sheet is wide wraps onto more rows, all of it inside the sheet.
+TEST(CompareCommand, AFileIsNamedAsGivenAndALongTitleWrapsInsideTheSheet) {
+    const fs::path dir = test_dir();
+    const std::string given =
+        "scenes_of_my_own_in_a_folder_with_a_long_name/and_another_folder_inside_it/"
+        "the_scene_A_copied_here.json";
+    fs::create_directories((dir / given).parent_path());
+    fs::copy_file(fs::path(FB89_SCENES_DIR) / "A.json", dir / given,
+                  fs::copy_options::overwrite_existing);
+    const fs::path sheet = dir / "sheet.png";
+    CliRun r = fb89::testing::run_fb89(
+        "compare " + given + " --size 64x49 --repeat 1 --sheet " + sheet.string() + " --json -",
+        "cd " + dir.string() + " && ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const auto& row : nlohmann::json::parse(r.out))
+        EXPECT_EQ(row["scene"], given);
+
+    const std::string title = given + "  64x49  host native  controller tms34010-50mhz";
+    const fb89::experiments::SheetLayout layout = fb89::experiments::sheet_layout(64, 49, 6, title);
+    const fb89::controller::PngImage png = fb89::controller::read_png(sheet);
+    EXPECT_EQ(png.height, layout.height);
+    const SheetText text = read_sheet(png, layout);
+    EXPECT_GE(text.title.size(), 2u) << ::testing::PrintToString(text.title);
+    EXPECT_EQ(fb89::testing::ink_of(text.title), fb89::testing::ink_of({title}))
+        << ::testing::PrintToString(text.title);
+    const auto extent = fb89::testing::ink_extent(
+        png, fb89::testing::PixelArea{0, 0, png.width, layout.title_height}, {255, 255, 255});
+    ASSERT_TRUE(extent.has_value());
+    EXPECT_LT(extent->x + extent->width, png.width) << "the title reaches the sheet's edge";
 }
 
 TEST(CompareCommand, BadInputExitsTwo) {
