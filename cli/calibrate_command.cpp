@@ -136,15 +136,15 @@ void register_calibrate(CLI::App& app, int& exit_code) {
     sub->add_option("--to", a->request.to, "Largest threshold of the ramp")->capture_default_str();
     sub->add_option("--steps", a->request.steps,
                     "Thresholds on the ramp, log-spaced (0 and 0.04 are added)")
-        ->check(CLI::Range(1, 200))
+        ->check(cli_check(limits::kSteps))
         ->capture_default_str();
     sub->add_option("--repeat", a->request.repeat, "Interleaved timing rounds per scene (median)")
-        ->check(CLI::Range(1, 1000))
+        ->check(cli_check(limits::kRepeat))
         ->capture_default_str();
     sub->add_option("--tolerance", a->request.tolerance,
                     "A threshold is eligible only if no scene is slower than the pure Z-buffer "
                     "by more than this fraction")
-        ->check(CLI::Range(0.0, 100.0))
+        ->check(cli_check(limits::kTolerance))
         ->capture_default_str();
     sub->add_option("--csv", a->csv, "Also write the sweep as CSV");
     add_host_options(sub, a->request.host);

@@ -66,7 +66,7 @@ void register_experiment(CLI::App& app, int& exit_code) {
     sub->add_option("--size", args->request.size, "Image size WxH, overriding the scenes'");
     sub->add_option("--repeat", args->request.repeat,
                     "Interleaved timing rounds per method (median)")
-        ->check(CLI::Range(1, 1000))
+        ->check(cli_check(limits::kRepeat))
         ->capture_default_str();
     sub->add_option("--profile", args->request.profile, profile_option_help())
         ->capture_default_str();
@@ -86,11 +86,11 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "radiosity, ff-error, radiosity-error: patches asked per room (0: what "
                     "gives the paper's 832 and 1,348 on the two rooms; 250 for the error "
                     "experiments)")
-        ->check(CLI::Range(0, 100000));
+        ->check(cli_check(limits::kPatches));
     sub->add_option("--reference-rays", args->request.reference_rays,
                     "ff-error, radiosity-error: the reference's points per patch side (n^4 "
                     "rays per pair)")
-        ->check(CLI::Range(2, 16))
+        ->check(cli_check(limits::kReferenceRays))
         ->capture_default_str();
     add_host_options(sub, args->request.host);
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");

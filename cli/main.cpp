@@ -17,7 +17,7 @@
 
 namespace {
 
-// "--repeat: '1.5' is not an integer" for the first integer option whose given value is not
+// "--repeat: 1.5 is not an integer" for the first integer option whose given value is not
 // one, else nothing. (CLI11 keeps what was given as text, checked or not.)
 std::optional<std::string> not_an_integer(const CLI::App& command) {
     for (const CLI::Option* o : command.get_options()) {
@@ -31,7 +31,7 @@ std::optional<std::string> not_an_integer(const CLI::App& command) {
                 digits = 0;
             }
             if (given.empty() || digits != given.size())
-                return o->get_name() + ": '" + given + "' is not an integer";
+                return o->get_name() + ": " + given + " is not an integer";
         }
     }
     return std::nullopt;

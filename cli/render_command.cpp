@@ -20,10 +20,10 @@
 #include "experiments/id_view.h"
 #include "experiments/period_runs.h"
 #include "experiments/progress.h"
-#include "experiments/timeline.h"
 #include "frontend/calibration.h"
 #include "frontend/data_dir.h"
 #include "frontend/period_host.h"
+#include "frontend/pipelines.h"
 #include "host/methods.h"
 #include "host/raster/scene_measures.h"
 #include "host/raster/screen_setup.h"
@@ -316,21 +316,9 @@ int run_render(const RenderArgs& args) {
         write_id_buffer(args, result.scene, *run.renderer);
     if (!args.stream.empty()) write_stream(args, result);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, result, ctl));
-    if (!args.timeline.empty() && run.send_us.empty())
-        throw std::runtime_error(
-            "--timeline: the frame has no send times (a 1989 host's counts from before send "
-            "marks were counted, or a frame rendered untimed)");
-    if (!args.timeline.empty()) {
-        experiments::TimelineFrame frame;
-        frame.title =
-            fmt::format("scene {}, {} on {}, controller {}", scene_display_name(args.scene),
-                        args.method, args.host, ctl.profile().name);
-        frame.setup_end_us = run.setup_end_us;
-        frame.send_times = send_times_source(run.period.has_value());
-        frame.host_end_us = run.host_frame_ms * 1e3;
-        write_text(args.timeline, experiments::timeline_json(run.commands, run.send_us, frame,
-                                                             ctl.profile(), run.buffer_bytes));
-    }
+    if (!args.timeline.empty())
+        write_text(args.timeline, render_timeline(run, args.scene, args.method, args.host,
+                                                  ctl.profile(), "--timeline"));
 
     if (!args.quiet && !stdout_taken) {
         fmt::print("{}", threshold_line);
@@ -396,13 +384,13 @@ void register_render(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option("--reflections", args->reflections,
                     "Raytrace and beam: mirror bounces followed (0: primary visibility)")
-        ->check(CLI::Range(0, host::kMaxReflections))
+        ->check(cli_check(limits::kReflections))
         ->capture_default_str();
     sub->add_option(
            "--grid-density", args->grid_density,
            "Beam with --accel grid: top-level cells per face piece of the uniform grid the rays "
            "walk and the beam queries scan (crowded cells get a grid of their own)")
-        ->check(CLI::Range(host::kMinGridDensity, host::kMaxGridDensity))
+        ->check(cli_check(limits::kGridDensity))
         ->capture_default_str();
     sub->add_option("--accel", args->accel,
                     "Raytrace and beam: what rays find their nearest face through, and beams "
@@ -416,10 +404,10 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--approx-min", args->approx_min_side,
                     "Approximate: fill windows of at least this side with a face covering all "
                     "but --approx-eps of their pixel centres (0: exact)")
-        ->check(CLI::Range(0, 16384));
+        ->check(cli_check(limits::kApproxMin));
     sub->add_option("--approx-eps", args->approx_epsilon,
                     "Approximate: the fraction of a window's centres its face may miss")
-        ->check(CLI::Range(0.0, 0.999));
+        ->check(cli_check(limits::kApproxEps));
     sub->add_option("--size", args->size, "Image size WxH, overriding the scene's");
     sub->add_option("--png", args->png, "Write the controller's framebuffer as PNG");
     sub->add_option("--ids", args->ids,
@@ -455,10 +443,10 @@ void register_render(CLI::App& app, int& exit_code) {
     sub->add_option("--classes", args->classes,
                     "1989 host: also list the N instruction classes that take most of the "
                     "set-up and hidden-surface time")
-        ->check(CLI::Range(1, 1000));
+        ->check(cli_check(limits::kClasses));
     sub->add_option("--repeat", args->repeat,
                     "Render the frame N times; hidden-surface time is the median")
-        ->check(CLI::Range(1, 10000))
+        ->check(cli_check(limits::kRenderRepeat))
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     add_isa_option(sub);

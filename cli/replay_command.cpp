@@ -30,7 +30,7 @@
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "controller_sim/timed_pipeline.h"
-#include "experiments/timeline.h"
+#include "frontend/pipelines.h"
 #include "frontend/stream_tools.h"
 
 namespace fb89::cli {
@@ -54,42 +54,9 @@ struct ReplayRun {
     std::optional<protocol::StreamError> error;
     // --buffer / --timeline: each complete frame through the pipeline in time from the
     // stream's send times (a version-1 stream has none: every command ready at 0); with
-    // --timeline, the last one's commands, send times and host end
-    std::optional<uint64_t> buffer;
-    bool keep_frame = false;
-    std::optional<controller::TimedPipeline> pipe;
-    std::vector<controller::PipelineFigures> pipelines;
-    protocol::MemoryBuffer frame, last_frame_commands;
-    std::vector<double> frame_send_us, last_frame_send_us;
-    double last_host_end_us = 0;
+    // --timeline, the last one kept
+    std::optional<FramePipelines> pipelines;
 };
-
-// Command c, just executed, through the frame's pipeline in time at its send time, with
-// what the controller said it cost; at FRAME_END the frame's figures, the host's end its
-// HOST_END or, without one, its last send time.
-void follow_pipeline(const protocol::Command& c, int64_t send_ns,
-                     const controller::Controller::CommandCost& cost,
-                     const protocol::StreamReader& reader, ReplayRun& run) {
-    const double send_us = controller::from_ns(send_ns);
-    if (std::holds_alternative<protocol::FrameBegin>(c)) {
-        run.pipe.emplace(*run.buffer);
-        run.frame.clear();
-        run.frame_send_us.clear();
-    }
-    if (!run.pipe) return;  // commands before the first frame
-    run.pipe->push({send_us, cost.bytes, cost.bus_us, cost.exec_us});
-    if (run.keep_frame) {
-        run.frame.submit(c);
-        run.frame_send_us.push_back(send_us);
-    }
-    if (!std::holds_alternative<protocol::FrameEnd>(c)) return;
-    const double host_end_us = controller::from_ns(reader.frame_host_end_ns());
-    run.pipelines.push_back(run.pipe->finish(host_end_us));
-    run.pipe.reset();
-    std::swap(run.last_frame_commands, run.frame);
-    std::swap(run.last_frame_send_us, run.frame_send_us);
-    run.last_host_end_us = host_end_us;
-}
 
 // Commands read and executed at a time by the replay loop: enough to leave the per-batch
 // costs behind, few enough to stay in the cache (40 bytes each).
@@ -116,8 +83,8 @@ void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
     const bool keep_last = !args.png.empty() && snapshots.empty();
     std::vector<protocol::Command> batch(kBatch);
     // with the pipeline: the batch's send times, and each command's cost as executed
-    std::vector<int64_t> send_ns(run.buffer ? kBatch : 0);
-    std::vector<controller::Controller::CommandCost> costs(run.buffer ? kBatch : 0);
+    std::vector<int64_t> send_ns(run.pipelines ? kBatch : 0);
+    std::vector<controller::Controller::CommandCost> costs(run.pipelines ? kBatch : 0);
     const auto start = std::chrono::steady_clock::now();
     try {
         if (!snapshots.empty()) {
@@ -125,9 +92,10 @@ void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
         } else {
             while (const std::size_t n = reader.read_batch(batch, send_ns)) {
                 ctl.execute(std::span(batch).first(n), costs);
-                if (run.buffer)
+                if (run.pipelines)
                     for (std::size_t i = 0; i < n; ++i)
-                        follow_pipeline(batch[i], send_ns[i], costs[i], reader, run);
+                        run.pipelines->follow(batch[i], send_ns[i], costs[i],
+                                              reader.frame_host_end_ns());
                 if (keep_last && std::holds_alternative<protocol::FrameEnd>(batch[n - 1]))
                     run.last_frame = ctl.framebuffer();
             }
@@ -180,10 +148,10 @@ int run_replay(const ReplayArgs& args) {
     controller::Controller ctl(profile);
 
     ReplayRun run;
-    run.buffer = parse_buffer_option(args.buffer, args.profile);
-    if (!run.buffer && !args.timeline.empty()) run.buffer = profile.command_buffer_bytes;
-    run.keep_frame = !args.timeline.empty();
-    if (run.buffer && !snapshots.empty())
+    std::optional<uint64_t> buffer = parse_buffer_option(args.buffer, args.profile);
+    if (!buffer && !args.timeline.empty()) buffer = profile.command_buffer_bytes;
+    if (buffer) run.pipelines.emplace(*buffer, !args.timeline.empty());
+    if (buffer && !snapshots.empty())
         throw UsageError("--buffer and --timeline replay whole frames; not with --snapshot");
     replay(args, snapshots, reader, ctl, run);
     const bool write = !run.error || args.salvage;  // a failed replay leaves nothing
@@ -208,19 +176,9 @@ int run_replay(const ReplayArgs& args) {
     if (write && !snapshots.empty())
         console.note(fmt::format("{} snapshot(s) written{}", run.snapshots,
                                  run.snapshots ? ", the last " + run.last_snapshot : ""));
-    if (write && !args.timeline.empty()) {
-        if (run.pipelines.empty())
-            throw std::runtime_error(args.stream + ": no complete frame; " + args.timeline +
-                                     " not written");
-        experiments::TimelineFrame frame;
-        frame.title = fmt::format("{}, frame {}, controller {}", args.stream,
-                                  run.pipelines.size() - 1, profile.name);
-        frame.send_times = send_times_of(reader);
-        frame.host_end_us = run.last_host_end_us;
-        write_text(args.timeline,
-                   experiments::timeline_json(run.last_frame_commands, run.last_frame_send_us,
-                                              frame, profile, *run.buffer));
-    }
+    if (write && !args.timeline.empty())
+        write_text(args.timeline, run.pipelines->last_frame_timeline(
+                                      args.stream, args.timeline, send_times_of(reader), profile));
     if (write && !args.stats.empty()) write_json(args.stats, stats_json(args, reader, ctl, run));
 
     if (!args.quiet && !stdout_taken) {
@@ -230,8 +188,9 @@ int run_replay(const ReplayArgs& args) {
         const std::string sends =
             reader.timed() ? fmt::format("send times from the stream, {}", send_times_of(reader))
                            : "no send times in the stream: every command ready at 0";
-        for (std::size_t i = 0; i < run.pipelines.size(); ++i) {
-            const controller::PipelineFigures& p = run.pipelines[i];
+        const std::size_t frames = run.pipelines ? run.pipelines->frames().size() : 0;
+        for (std::size_t i = 0; i < frames; ++i) {
+            const controller::PipelineFigures& p = run.pipelines->frames()[i];
             fmt::print(
                 "pipeline, frame {} ({}; buffer {}): frame {:.3f} ms, host {:.3f} ms, {}, "
                 "controller idle {:.3f} ms, buffer high water {} bytes\n",

@@ -53,10 +53,10 @@ void register_sweep(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option("--to", a->request.to, "Largest threshold of the ramp")->capture_default_str();
     sub->add_option("--steps", a->request.steps, "Thresholds on the ramp, log-spaced")
-        ->check(CLI::Range(1, 200))
+        ->check(cli_check(limits::kSteps))
         ->capture_default_str();
     sub->add_option("--repeat", a->request.repeat, "Interleaved timing rounds (median)")
-        ->check(CLI::Range(1, 1000))
+        ->check(cli_check(limits::kRepeat))
         ->capture_default_str();
     sub->add_option("--window-test", a->request.window_test, "area or centres")
         ->check(CLI::IsMember({"area", "centres"}))

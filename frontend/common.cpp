@@ -14,37 +14,49 @@
 
 namespace fb89::frontend {
 
-std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::string& profile) {
+std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::string& profile,
+                                            Spelling spelling) {
     if (text.empty()) return std::nullopt;
     if (text == "unbounded") return controller::kUnboundedBuffer;
+    const std::string_view name = limits::kBufferBytes.name(spelling);
     uint64_t bytes = 0;
     const char* end = text.data() + text.size();
     const auto [at, ec] = std::from_chars(text.data(), end, bytes);
-    if (ec != std::errc() || at != end || bytes == 0 || bytes > (uint64_t{1} << 40))
-        throw UsageError("--buffer: '" + text +
-                         "': a whole number of bytes (1 to 2^40) or unbounded");
+    if (ec != std::errc() || at != end ||
+        limit_problem(limits::kBufferBytes, static_cast<double>(bytes)))
+        throw UsageError(
+            fmt::format("{}: '{}': a whole number of bytes (1 to 2^40) or unbounded", name, text));
     for (const uint32_t largest : controller::load_profile(profile).bytes)
         if (largest > bytes)
-            throw UsageError(
-                fmt::format("--buffer: {} bytes cannot hold a command of {} ({} bytes)", bytes,
-                            profile, largest));
+            throw UsageError(fmt::format("{}: {} bytes cannot hold a command of {} ({} bytes)",
+                                         name, bytes, profile, largest));
     return bytes;
 }
 
-ImageSize parse_size(const std::string& text) {
+controller::CostProfile profile_option(const std::string& name, std::string_view option) {
+    try {
+        return controller::load_profile(name);
+    } catch (const std::runtime_error& e) {
+        throw UsageError(fmt::format("{}: {}", option, e.what()));
+    }
+}
+
+ImageSize parse_size(const std::string& text, Spelling spelling) {
     static const std::regex pattern(R"((\d+)x(\d+))");
+    const OptionLimit& side_limit = limits::kImageSide;
+    const std::string_view name = side_limit.name(spelling);
     std::smatch m;
     if (!std::regex_match(text, m, pattern))
         throw UsageError(fmt::format(
-            "--size: expected WxH such as 1024x780, width and height in [1, 16384], got '{}'",
+            "{}: expected WxH such as 1024x780, width and height in [1, 16384], got '{}'", name,
             text));
     auto side = [](const std::string& digits) {  // more digits than an int holds: too large
         return digits.size() > 6 ? 1 << 30 : std::stoi(digits);
     };
     ImageSize s{side(m[1]), side(m[2])};
-    if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
+    if (limit_problem(side_limit, s.width) || limit_problem(side_limit, s.height))
         throw UsageError(
-            fmt::format("--size: width and height must be in [1, 16384], got '{}'", text));
+            fmt::format("{}: width and height must be in [1, 16384], got '{}'", name, text));
     return s;
 }
 

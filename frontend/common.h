@@ -14,7 +14,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "controller_sim/profile.h"
 #include "experiments/settings.h"
+#include "frontend/option_limits.h"
 #include "protocol/output_file.h"
 
 namespace fb89::frontend {
@@ -29,13 +31,19 @@ class UsageError : public std::runtime_error {
 };
 
 using experiments::ImageSize;
-// "WxH", e.g. "1024x780"; throws UsageError.
-ImageSize parse_size(const std::string& text);
+// "WxH", e.g. "1024x780", each side within limits::kImageSide; throws UsageError naming the
+// option as `spelling` says (--size, or Python's size=).
+ImageSize parse_size(const std::string& text, Spelling spelling = Spelling::Option);
 
 // --buffer BYTES|unbounded for the controller profile `profile`: none when "" (the profile's
-// own). Throws UsageError for anything else, and for a buffer smaller than the profile's
-// largest command.
-std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::string& profile);
+// own). Throws UsageError for anything else (BYTES within limits::kBufferBytes), and for a
+// buffer smaller than the profile's largest command, naming the option as `spelling` says.
+std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::string& profile,
+                                            Spelling spelling = Spelling::Option);
+
+// The controller cost profile `name` (a built-in one or a .json file), for the option
+// `option` ("--profile", or Python's "controller"): a UsageError naming it when there is none.
+controller::CostProfile profile_option(const std::string& name, std::string_view option);
 
 // Writes JSON (indented) to an output: "-" is stdout, a regular file is written whole or not
 // at all, a device or pipe in place (protocol/output_file.h). Throws std::runtime_error

@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-
+#include <map>
+#include <mutex>
 #include <vector>
 
 #include "host/scene/scene_error.h"
@@ -91,7 +92,30 @@ std::string resolve_scene(const std::string& argument) {
         (names.empty() ? "" : "; the bundled scenes are " + names + " (fb89 list scenes)"));
 }
 
+namespace {
+std::mutex g_names_mutex;
+std::map<std::string, std::string>& scene_names() {
+    static std::map<std::string, std::string> names;
+    return names;
+}
+}  // namespace
+
+void name_scene_file(const std::string& path, const std::string& name) {
+    std::lock_guard lock(g_names_mutex);
+    scene_names()[path] = name;
+}
+
+void forget_scene_file(const std::string& path) {
+    std::lock_guard lock(g_names_mutex);
+    scene_names().erase(path);
+}
+
 std::string scene_display_name(const std::string& path) {
+    {
+        std::lock_guard lock(g_names_mutex);
+        if (const auto named = scene_names().find(path); named != scene_names().end())
+            return named->second;
+    }
     std::error_code ec;
     const fs::path dir = scenes_dir();
     const fs::path file = fs::canonical(path, ec);

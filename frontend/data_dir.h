@@ -24,9 +24,14 @@ std::string bundled_scene(const std::string& name);
 // name ("demo", "G", "garish_room.json"), from data_dir()/scenes. Throws
 // host::SceneError naming every place it looked when there is none.
 std::string resolve_scene(const std::string& argument);
-// How tables and reports show a scene file: a bundled scene by its name ("G"), any other
-// file as it was given.
+// How tables and reports show a scene file: a bundled scene by its name ("G"), a file named
+// by name_scene_file by that name, any other file as it was given.
 std::string scene_display_name(const std::string& path);
+// A scene file that stands for a scene given otherwise (the Python module's private file for
+// a scene given as a dict): scene_display_name shows `name` for `path`, as given, until
+// forget_scene_file.
+void name_scene_file(const std::string& path, const std::string& name);
+void forget_scene_file(const std::string& path);
 
 // Points the emulator at an installed guest and plugin when fb89 runs from its install
 // prefix (and the caller set neither $FB89_GUEST nor $FB89_COUNT_PLUGIN).

@@ -14,6 +14,7 @@
 #include "experiments/measure.h"
 #include "experiments/period_runs.h"
 #include "frontend/common.h"
+#include "frontend/option_limits.h"
 #include "period/emulator.h"
 #include "protocol/stream_reader.h"
 
@@ -195,7 +196,7 @@ void add_host_options(CLI::App* sub, HostArgs& a) {
                         "modelled")
         ->capture_default_str();
     sub->add_option("--jobs,-j", a.jobs, "1989 host: emulated runs at once on this machine")
-        ->check(CLI::Range(1, 256))
+        ->check(cli_check(limits::kJobs))
         ->capture_default_str();
     sub->add_option("--results", a.results,
                     "1989 host: a folder keeping each run's counts; runs found there are not "

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "experiments/catalog.h"
+#include "experiments/compare.h"
 #include "experiments/experiments.h"
 #include "experiments/period_runs.h"
 #include "frontend/calibration.h"
@@ -20,22 +21,30 @@ using namespace experiments;
 
 namespace {
 
-// A number outside [lo, hi], named as the command line's option: a UsageError.
-template <class T>
-void check_range(const char* option, T value, T lo, T hi) {
-    if (value < lo || value > hi)
-        throw UsageError(fmt::format("{}: {} is not in [{} - {}]", option, value, lo, hi));
+// An option's name as the request's caller spells it (the command line's, or Python's).
+std::string named(const RunRequest& r, std::string_view option, std::string_view keyword) {
+    return std::string(r.spelling == Spelling::Option ? option : keyword);
+}
+
+// A ramp's ends: 0 < from < to (Python's start and stop).
+template <class Request>
+void check_ramp(const Request& r) {
+    if (!(r.from > 0 && r.to > r.from))
+        throw UsageError(r.spelling == Spelling::Option ? "--from and --to: need 0 < from < to"
+                                                        : "start and stop: need 0 < start < stop");
 }
 
 ExperimentSettings settings_of(const RunRequest& r, std::vector<std::string> default_scenes) {
-    check_range("--repeat", r.repeat, 1, 1000);
-    check_range("--jobs", r.host.jobs, 1, 256);
+    check_limit(limits::kRepeat, r.repeat, r.spelling);
+    check_limit(limits::kJobs, r.host.jobs, r.spelling);
     ExperimentSettings s;
     s.scenes = r.scenes.empty() ? std::move(default_scenes) : r.scenes;
     s.repeat = r.repeat;
     s.profile = r.profile;
     s.progress = r.progress;
-    if (!r.size.empty()) s.size = parse_size(r.size);
+    profile_option(r.profile,
+                   named(r, "--profile", "controller"));  // one there is, before any work
+    if (!r.size.empty()) s.size = parse_size(r.size, r.spelling);
     s.period = make_period_runs(r.host);
     return s;
 }
@@ -75,20 +84,20 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
                                      r.name, nearest_hint(r.name, experiment_names()),
                                      known_experiments()));
     if (r.accel != "bvh" && r.accel != "grid")
-        throw UsageError("--accel: '" + r.accel + "': bvh or grid");
-    check_range("--patches", r.patches, 0, 100000);
-    check_range("--reference-rays", r.reference_rays, 2, 16);
+        throw UsageError(named(r, "--accel", "accel") + ": '" + r.accel + "': bvh or grid");
+    check_limit(limits::kPatches, r.patches, r.spelling);
+    check_limit(limits::kReferenceRays, r.reference_rays, r.spelling);
     RunOutcome out;
     ExperimentSettings& s = out.settings;
     s = settings_of(r, experiment_scenes(r.name));
     s.accel = host::parse_accel(r.accel);
     if (!r.methods.empty() && r.name != "split")
-        throw UsageError("--methods: only with the split experiment");
+        throw UsageError(named(r, "--methods", "methods") + ": only with the split experiment");
     for (const std::string& m : r.methods) {
         try {
             s.methods.push_back(host::method_named(m));
         } catch (const std::invalid_argument& e) {
-            throw UsageError(std::string("--methods: ") + e.what());
+            throw UsageError(named(r, "--methods", "methods") + ": " + e.what());
         }
     }
     if (s.period) s.repeat = 1;  // a 1989 host's counts are exact: one run each
@@ -112,7 +121,7 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
     else if (name == "fig4.8" || name == "fig4.11" || name == "fig4.12") {
         std::vector<ImageSize> sizes;
         for (const auto& text : r.sizes)
-            sizes.push_back(parse_size(text));
+            sizes.push_back(parse_size(text, r.spelling));
         if (sizes.empty()) sizes = {{256, 195}, {512, 390}, {1024, 780}, {2048, 1560}};
         table = experiment_beam_resolution(s, sizes, beam_threshold());
     } else if (name == "fig4.7")
@@ -133,13 +142,15 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
 }
 
 RunOutcome run_threshold_sweep(const SweepRequest& r) {
-    if (!(r.from > 0 && r.to > r.from)) throw UsageError("--from and --to: need 0 < from < to");
+    check_ramp(r);
     if (r.window_test != "area" && r.window_test != "centres")
-        throw UsageError("--window-test: '" + r.window_test + "': area or centres");
+        throw UsageError(named(r, "--window-test", "window_test") + ": '" + r.window_test +
+                         "': area or centres");
     if (r.depth_estimate != "window" && r.depth_estimate != "scene")
-        throw UsageError("--depth-estimate: '" + r.depth_estimate + "': window or scene");
+        throw UsageError(named(r, "--depth-estimate", "depth_estimate") + ": '" + r.depth_estimate +
+                         "': window or scene");
     if (r.scenes.empty()) throw UsageError("sweep: give the scenes to sweep on");
-    check_range("--steps", r.steps, 1, 200);
+    check_limit(limits::kSteps, r.steps, r.spelling);
     RunOutcome out;
     out.settings = settings_of(r, {});
     std::vector<double> thresholds{0.0};
@@ -153,6 +164,69 @@ RunOutcome run_threshold_sweep(const SweepRequest& r) {
         r.depth_estimate == "scene" ? host::DepthEstimate::Scene : host::DepthEstimate::Window;
     out.table = sweep_threshold(out.settings, thresholds, base);
     out.table.map_column("scene", scene_display_name);
+    return out;
+}
+
+namespace {
+
+// Every method with its defaults, the thresholds by render's rule (calibrated if saved,
+// else the paper's / the built-in one); `said` gets the line that says which.
+std::vector<host::MethodOptions> compare_settings(const CompareRequest& r, std::string& said) {
+    std::string hybrid_source, beam_source;
+    const double hybrid = resolve_threshold(r.threshold, &hybrid_source, r.host.host);
+    const double beam = resolve_beam_threshold(r.beam_threshold, &beam_source, r.host.host);
+    said = fmt::format("hybrid threshold {:.6g} ({}), beam threshold {:.6g} ({})\n", hybrid,
+                       hybrid_source, beam, beam_source);
+    std::vector<host::MethodOptions> settings = every_method();
+    for (host::MethodOptions& o : settings) {
+        o.hybrid.threshold = hybrid;
+        o.beam.threshold = beam;
+        try {
+            host::validate(o);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+        }
+    }
+    return settings;
+}
+
+nlohmann::json compare_rows_json(const Comparison& c) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const CompareRow& r : c.rows) {
+        rows.push_back({{"scene", c.name},
+                        {"method", r.method},
+                        {"host", c.host},
+                        {"host_ms", r.host_ms},
+                        {"commands", r.controller.commands},
+                        {"fills", r.controller.fills},
+                        {"spans", r.controller.spans},
+                        {"controller_ms", r.controller.frame_ms},
+                        {"frame_ms", r.frame_ms},
+                        {"bound_by", r.host_bound ? "host" : "controller"},
+                        {"pixels_differing", r.ids.total()},
+                        {"px_coverage", r.ids.coverage},
+                        {"px_other_face", r.ids.other_face}});
+        if (r.pipeline)
+            rows.back()["pipeline"] =
+                pipeline_json(*r.pipeline, send_times_source(c.host != "native"));
+    }
+    return rows;
+}
+
+}  // namespace
+
+CompareOutcome run_compare(const CompareRequest& r) {
+    if (r.scenes.size() != 1) throw UsageError("compare: give the one scene to compare on");
+    CompareOutcome out;
+    const std::vector<host::MethodOptions> methods = compare_settings(r, out.thresholds);
+    out.settings = settings_of(r, {});
+    // named as the console names it: a bundled scene by its name, a file as it was given
+    const std::string shown = scene_display_name(r.scenes.front());
+    out.comparison = compare_methods(r.scenes.front(), methods, out.settings,
+                                     shown != r.scenes.front() || r.given.empty() ? shown : r.given);
+    if (jobs_emitted(out.settings, r.host)) return out;
+    out.table = comparison_table(out.comparison);
+    out.rows = compare_rows_json(out.comparison);
     return out;
 }
 
@@ -180,9 +254,9 @@ void calibrate_beam(const CalibrateRequest& r, CalibrationOutcome& out) {
 }
 
 void calibrate_hybrid(const CalibrateRequest& r, CalibrationOutcome& out) {
-    if (!(r.from > 0 && r.to > r.from)) throw UsageError("--from and --to: need 0 < from < to");
-    check_range("--steps", r.steps, 1, 200);
-    check_range("--tolerance", r.tolerance, 0.0, 100.0);
+    check_ramp(r);
+    check_limit(limits::kSteps, r.steps, r.spelling);
+    check_limit(limits::kTolerance, r.tolerance, r.spelling);
     const ExperimentSettings& s = out.settings;
     const auto ramp = threshold_ramp(r.from, r.to, r.steps);
     const Calibration& c = out.calibration =
@@ -229,7 +303,7 @@ void calibrate_hybrid(const CalibrateRequest& r, CalibrationOutcome& out) {
 
 CalibrationOutcome run_calibration(const CalibrateRequest& r) {
     if (r.method != "hybrid" && r.method != "beam")
-        throw UsageError("--method: '" + r.method + "': hybrid or beam");
+        throw UsageError(named(r, "--method", "method") + ": '" + r.method + "': hybrid or beam");
     CalibrationOutcome out;
     std::vector<std::string> defaults;
     if (r.method == "beam")

@@ -1,4 +1,4 @@
-// The long-running commands -- experiment, sweep threshold, calibrate -- as requests that
+// The long-running commands -- experiment, sweep threshold, compare, calibrate -- as requests that
 // return their tables: the option rules (defaults, which threshold a name means, which
 // options go together) live here once, for the command line and the Python module alike.
 // The commands print and write what comes back; the Python module hands it over as tables.
@@ -10,8 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/calibration.h"
+#include "experiments/compare.h"
 #include "experiments/settings.h"
 #include "experiments/table.h"
+#include "frontend/option_limits.h"
 #include "frontend/period_host.h"
 
 namespace fb89::frontend {
@@ -19,6 +21,8 @@ namespace fb89::frontend {
 // What the three requests share: the scenes (resolved, see resolve_scene; empty: each one's
 // default set), an image size "WxH" ("": the scenes' own), timing rounds, the controller
 // profile, the host (and its --jobs/--results/--emit-jobs) and whether a progress line shows.
+// Every value is checked here (numbers against frontend/option_limits.h), and a UsageError
+// names the option as `spelling` says: the command line's "--repeat", Python's "repeat".
 struct RunRequest {
     std::vector<std::string> scenes;
     std::string size;
@@ -26,6 +30,7 @@ struct RunRequest {
     std::string profile = "tms34010-50mhz";
     HostArgs host;
     bool progress = false;
+    Spelling spelling = Spelling::Option;
 };
 
 // A request's settings and the table it made. With --emit-jobs the table is incomplete
@@ -58,6 +63,23 @@ struct SweepRequest : RunRequest {
     std::string depth_estimate = "window";  // or scene
 };
 RunOutcome run_threshold_sweep(const SweepRequest& request);
+
+// `fb89 compare SCENE` (experiments/compare.h): every method with its defaults on one scene
+// (scenes holds that one), the hybrids' thresholds by render's rule.
+struct CompareRequest : RunRequest {
+    CompareRequest() { repeat = 3; }
+    std::string threshold = "calibrated", beam_threshold = "calibrated";
+    std::string given;  // the scene as the user named it, for a file's name in the outputs
+};
+struct CompareOutcome {
+    experiments::ExperimentSettings settings;
+    experiments::Comparison comparison;
+    // With --emit-jobs (report_emitted()) the two are empty and the commands write nothing.
+    experiments::Table table;  // --csv: the scene column as scene_display_name() shows it
+    nlohmann::json rows;       // --json: one object a method
+    std::string thresholds;    // "hybrid threshold 0.04 (paper), beam threshold ...\n"
+};
+CompareOutcome run_compare(const CompareRequest& request);
 
 // `fb89 calibrate`: the hybrid's Expr. 3.1 threshold (method "hybrid", on A-F by default) or
 // the beam-ray hybrid's Expr. 2.7 threshold ("beam", on G, H, I and cornell_mirror), chosen

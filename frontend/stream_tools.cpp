@@ -91,8 +91,11 @@ std::string header_line(const protocol::StreamReader& reader) {
 }
 
 std::string send_times_of(const protocol::StreamReader& reader) {
-    if (!reader.timed()) return "";
-    const auto& p = reader.properties();
+    return send_times_of(reader.properties(), reader.timed());
+}
+
+std::string send_times_of(const protocol::Properties& p, bool timed) {
+    if (!timed) return "";
     const auto source = p.find(protocol::kPropertySendTimes);
     const auto host = p.find(protocol::kPropertyHost);
     return fmt::format("{} on {}", source == p.end() ? "of unstated source" : source->second,

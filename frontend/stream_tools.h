@@ -52,6 +52,8 @@ std::string header_line(const protocol::StreamReader& reader);
 // A timed stream's send times as its header names them: "measured on native", "counted on
 // sun4-260"; "" for a stream without times.
 std::string send_times_of(const protocol::StreamReader& reader);
+// The same from a stream's header properties and whether it has send times.
+std::string send_times_of(const protocol::Properties& properties, bool timed);
 
 // A frame table for humans: frame, commands, pixels, cycles, modelled ms, bus ms, frame
 // ms and checksum, one row per closed frame plus the open one (if any) marked "open".

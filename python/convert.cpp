@@ -83,39 +83,71 @@ void CommandRows::add(std::span<const protocol::Command> commands) {
     }
 }
 
+namespace {
+
+// Row `i` as its command (a MARKER with `text`); std::invalid_argument naming the row for one
+// that is no command the stream format can carry (protocol::check_command's rules).
+protocol::Command row_command(const CommandRow& row, std::size_t i, std::string text) {
+    const protocol::Rgb colour{row.r, row.g, row.b};
+    protocol::Command c;
+    switch (row.opcode) {
+        case 1:
+            c = protocol::FrameBegin{row.frame, row.w, row.h, colour};
+            break;
+        case 2:
+            c = protocol::FillRect{row.x, row.y, row.w, row.h, colour};
+            break;
+        case 3:
+            if (row.w == 0) {
+                throw std::invalid_argument(
+                    "commands: row " + std::to_string(i) +
+                    ": DRAW_SPAN of width 0 (w is x1 - x0 + 1, at least 1)");
+            }
+            c = protocol::DrawSpan{row.y, row.x,
+                                   static_cast<int32_t>(static_cast<uint32_t>(row.x) + row.w - 1u),
+                                   colour};
+            break;
+        case 4:
+            c = protocol::Marker{std::move(text)};
+            break;
+        case 5:
+            c = protocol::FrameEnd{};
+            break;
+        default:
+            throw std::invalid_argument(
+                "commands: row " + std::to_string(i) + ": opcode " + std::to_string(row.opcode) +
+                " is none of 1 (FRAME_BEGIN) to 5 (FRAME_END) (docs/PROTOCOL.md)");
+    }
+    if (const auto problem = protocol::check_command(c))
+        throw std::invalid_argument("commands: row " + std::to_string(i) + " (" +
+                                    protocol::to_string(protocol::opcode_of(c)) + "): " + *problem);
+    return c;
+}
+
+}  // namespace
+
 void CommandRows::replay_into(protocol::CommandSink& sink) const {
     auto marker = markers.begin();
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        const CommandRow& row = rows[i];
-        const protocol::Rgb colour{row.r, row.g, row.b};
-        switch (row.opcode) {
-            case 1:
-                sink.frame_begin(protocol::FrameBegin{row.frame, row.w, row.h, colour});
-                break;
-            case 2:
-                sink.fill_rect(protocol::FillRect{row.x, row.y, row.w, row.h, colour});
-                break;
-            case 3:
-                sink.draw_span(protocol::DrawSpan{
-                    row.y, row.x, static_cast<int32_t>(static_cast<uint32_t>(row.x) + row.w - 1u),
-                    colour});
-                break;
-            case 4: {
-                while (marker != markers.end() && marker->first < i)
-                    ++marker;
-                std::string text;
-                if (marker != markers.end() && marker->first == i) text = marker->second;
-                sink.marker(protocol::Marker{std::move(text)});
-                break;
-            }
-            case 5:
-                sink.frame_end(protocol::FrameEnd{});
-                break;
-            default:
-                throw std::invalid_argument("command " + std::to_string(i) + ": opcode " +
-                                            std::to_string(row.opcode) +
-                                            " is none of 1 to 5 (docs/PROTOCOL.md)");
+        std::string text;
+        if (rows[i].opcode == 4) {
+            while (marker != markers.end() && marker->first < i)
+                ++marker;
+            if (marker != markers.end() && marker->first == i) text = marker->second;
         }
+        sink.submit(row_command(rows[i], i, std::move(text)));
+    }
+}
+
+void CommandRows::check() const {
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        row_command(rows[i], i, {});
+    for (const auto& [row, text] : markers) {
+        if (row >= rows.size() || rows[row].opcode != 4)
+            throw std::invalid_argument("markers: row " + std::to_string(row) + " is not a MARKER");
+        if (text.size() > protocol::kMaxMarkerLength)
+            throw std::invalid_argument("markers: row " + std::to_string(row) + ": longer than " +
+                                        std::to_string(protocol::kMaxMarkerLength) + " bytes");
     }
 }
 

@@ -60,9 +60,14 @@ struct CommandRows final : protocol::CommandSink {
     void draw_span(const protocol::DrawSpan& c) override { add(c); }
     void marker(const protocol::Marker& c) override { add(c); }
     void frame_end(const protocol::FrameEnd& c) override { add(c); }
-    // Sends every row as its command, in order. Throws std::invalid_argument naming the row of
-    // an opcode that is none.
+    // Sends every row as its command, in order. Throws std::invalid_argument naming the row
+    // ("commands: row 3: opcode 9 is none of ...") of one the stream format cannot carry: an
+    // opcode that is none, a span of width 0, a frame of size 0 or over 16384 (what
+    // protocol::check_command refuses).
     void replay_into(protocol::CommandSink& sink) const;
+    // Checks every row as replay_into() would, and the markers (each on a MARKER row, no
+    // longer than the format allows), throwing the same errors; sends nothing.
+    void check() const;
 };
 
 // A view of an RGB framebuffer, H x W x 3 uint8, that keeps `owner` (what holds the

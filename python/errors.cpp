@@ -1,6 +1,8 @@
 // fb89's errors as Python exceptions carrying the command line's messages: fb89.Error, and
 // subclasses that are also ValueError (a bad scene or option), OSError (a file: missing,
-// unreadable, or a corrupt stream) and RuntimeError (an emulated 1989 host failed).
+// unreadable, unwritable, or a corrupt stream) and RuntimeError (an emulated 1989 host
+// failed). A value of the wrong type is Python's own TypeError naming the keyword
+// (python/options.h).
 #include <pybind11/pybind11.h>
 
 #include <filesystem>
@@ -71,6 +73,8 @@ void register_errors(py::module_& m) {
         } catch (const std::filesystem::filesystem_error& e) {
             PyErr_SetString(file_error.ptr(), e.what());
         } catch (const std::runtime_error& e) {
+            PyErr_SetString(error.ptr(), e.what());
+        } catch (const std::logic_error& e) {
             PyErr_SetString(error.ptr(), e.what());
         }
     });

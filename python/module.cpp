@@ -9,6 +9,8 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +28,7 @@
 #include "frontend/common.h"
 #include "frontend/data_dir.h"
 #include "frontend/period_host.h"
+#include "frontend/pipelines.h"
 #include "host/methods.h"
 #include "host/scene/scene_error.h"
 #include "host/scene/scene_loader.h"
@@ -33,6 +36,8 @@
 #include "period/host_profile.h"
 #include "protocol/stream_format.h"
 #include "python/convert.h"
+#include "python/options.h"
+#include "python/outputs.h"
 #include "python/stream_file.h"
 #include "python/work.h"
 
@@ -45,6 +50,7 @@ namespace {
 // One render, kept whole: the numpy arrays handed out are views of its buffers.
 struct RenderOutcome {
     std::string scene, method, host, controller;
+    controller::CostProfile profile;
     experiments::RenderResult result;
     controller::Framebuffer image, ids;
     std::vector<int32_t> face_ids;       // ids as face ids, -1 for the background
@@ -74,57 +80,87 @@ void check_applies(const host::MethodInfo& info, host::OptionGroup group, const 
                                " method does not use it (only " + users + " do)");
 }
 
-std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::string& method,
-                                      const std::string& size, const std::string& host,
-                                      const std::string& controller_profile, int repeat,
-                                      const std::optional<std::string>& threshold,
-                                      const std::optional<std::string>& beam_threshold,
-                                      const std::optional<int>& reflections) {
+// What render() takes, as the Python keywords gave it (python/options.h checked each).
+struct RenderArgs {
+    std::string scene, method = "zbuffer", size, host = "native";
+    std::string controller = std::string(controller::kDefaultProfile);
+    int repeat = 1;
+    std::optional<std::string> threshold, beam_threshold;
+    std::optional<int> reflections;
+    std::string buffer;  // "": the profile's command buffer
+};
+
+RenderArgs render_args(const std::string& scene, const py::object& method, const py::object& size,
+                       const py::object& host, const py::object& controller,
+                       const py::object& repeat, const py::object& threshold,
+                       const py::object& beam_threshold, const py::object& reflections,
+                       const py::object& buffer) {
+    RenderArgs a;
+    a.scene = scene;
+    a.method = text(method, "method");
+    a.size = size_text(size);
+    a.host = text(host, "host");
+    a.controller = text(controller, "controller");
+    a.repeat = static_cast<int>(whole_number(repeat, frontend::limits::kRenderRepeat));
+    a.threshold = threshold_text(threshold, "threshold");
+    a.beam_threshold = threshold_text(beam_threshold, "beam_threshold");
+    if (!reflections.is_none())
+        a.reflections = static_cast<int>(whole_number(reflections, frontend::limits::kReflections));
+    a.buffer = buffer_text(buffer);
+    return a;
+}
+
+std::shared_ptr<RenderOutcome> render(const RenderArgs& a) {
     auto out = std::make_shared<RenderOutcome>();
-    out->scene = frontend::resolve_scene(scene);
-    out->method = method;
-    out->host = host;
-    out->controller = controller_profile;
-    host::MethodOptions options(host::method_named(method));
+    out->scene = frontend::resolve_scene(a.scene);
+    out->method = a.method;
+    out->host = a.host;
+    out->controller = a.controller;
+    host::MethodOptions options;
+    try {
+        options.method = host::method_named(a.method);
+    } catch (const std::invalid_argument& e) {
+        throw frontend::UsageError(std::string("method: ") + e.what());
+    }
     const host::MethodInfo& info = host::method_info(options.method);
-    check_applies(info, host::kHybridOptions, "threshold", threshold.has_value());
-    check_applies(info, host::kBeamOptions, "beam_threshold", beam_threshold.has_value());
-    check_applies(info, host::kTraceOptions, "reflections", reflections.has_value());
+    check_applies(info, host::kHybridOptions, "threshold", a.threshold.has_value());
+    check_applies(info, host::kBeamOptions, "beam_threshold", a.beam_threshold.has_value());
+    check_applies(info, host::kTraceOptions, "reflections", a.reflections.has_value());
     options.hybrid.threshold =
-        frontend::resolve_threshold(threshold.value_or("calibrated"), nullptr, host);
+        frontend::resolve_threshold(a.threshold.value_or("calibrated"), nullptr, a.host);
     options.beam.threshold =
-        frontend::resolve_beam_threshold(beam_threshold.value_or("calibrated"), nullptr, host);
-    if (reflections) options.trace.max_reflections = *reflections;
+        frontend::resolve_beam_threshold(a.beam_threshold.value_or("calibrated"), nullptr, a.host);
+    if (a.reflections) options.trace.max_reflections = *a.reflections;
     host::validate(options);
 
     // a profile or host that is not one is a usage mistake, as on the command line
-    const auto named = [](const char* what, const auto& load) {
-        try {
-            return load();
-        } catch (const period::EmulatorError&) {
-            throw;
-        } catch (const std::runtime_error& e) {
-            throw frontend::UsageError(std::string(what) + ": " + e.what());
-        }
-    };
-    const controller::CostProfile cost =
-        named("controller", [&] { return controller::load_profile(controller_profile); });
-
+    out->profile = frontend::profile_option(a.controller, "controller");
+    const std::string& controller_profile = a.controller;
+    const std::string& host = a.host;
+    const std::string& method = a.method;
     experiments::RenderJob job;
     job.scene = out->scene;
     job.methods = {options};
-    if (!size.empty()) job.size = frontend::parse_size(size);
-    job.repeat = repeat;
+    if (!a.size.empty()) job.size = frontend::parse_size(a.size, frontend::Spelling::Keyword);
+    job.repeat = a.repeat;
     job.controller = controller_profile;
-    if (host != "native")
-        job.period = named(
-            "host", [&] { return std::make_shared<experiments::PeriodRuns>(host, 1, "", "", ""); });
+    job.buffer_bytes =
+        frontend::parse_buffer_option(a.buffer, controller_profile, frontend::Spelling::Keyword);
+    if (host != "native") {
+        try {
+            job.period = std::make_shared<experiments::PeriodRuns>(host, 1, "", "", "");
+        } catch (const period::EmulatorError&) {
+            throw;
+        } catch (const std::runtime_error& e) {
+            throw frontend::UsageError(std::string("host: ") + e.what());
+        }
+    }
     job.check_frames = host != "native";
     out->result = experiments::run_render_job(job);
     const experiments::MethodRun& run = out->result.runs.front();
 
     // the controller tiles what the host decided: its framebuffer is the image
-    controller::Controller ctl(cost);
+    controller::Controller ctl(out->profile);
     run.commands.replay_into(ctl);
     out->image = ctl.framebuffer();
     out->ids = experiments::id_framebuffer(out->result.scene, *run.renderer);
@@ -161,9 +197,21 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     return out;
 }
 
+// The render's frame as render --timeline writes it; a UsageError naming `what` when the
+// frame has no send times.
+std::string timeline_of(const RenderOutcome& r, const std::string& what) {
+    try {
+        return frontend::render_timeline(r.result.runs.front(), r.scene, r.method, r.host,
+                                         r.profile, what);
+    } catch (const std::runtime_error& e) {
+        throw frontend::UsageError(e.what());
+    }
+}
+
 }  // namespace
 
 void register_errors(py::module_& m);
+void register_stream_calls(py::module_& m);
 void register_streams(py::module_& m);
 void register_runs(py::module_& m);
 
@@ -276,6 +324,31 @@ PYBIND11_MODULE(_fb89, m) {
             },
             "The frame's commands as a structured array (fb89.COMMAND_DTYPE), one row a "
             "command: render.stream.commands.")
+        .def(
+            "timeline",
+            [](const RenderOutcome& r) {
+                std::string json;
+                {
+                    py::gil_scoped_release unlocked;
+                    json = timeline_of(r, "timeline");
+                }
+                return py::module_::import("json").attr("loads")(json);
+            },
+            "The frame through the pipeline in time as Chrome trace-event JSON (a dict; "
+            "Perfetto and chrome://tracing open it), what render --timeline writes: host, bus "
+            "and controller lanes, host stalls, the buffer's fill. Raises fb89.OptionError "
+            "for a frame without send times.")
+        .def(
+            "save_timeline",
+            [](const RenderOutcome& r, const py::object& path) {
+                const std::string file = path_text(path, "path");
+                py::gil_scoped_release unlocked;
+                const std::string json = timeline_of(r, "save_timeline");
+                with_outputs([&] { file_work([&] { frontend::write_text(file, json); }); });
+            },
+            py::arg("path"),
+            "Writes timeline() to a file, byte for byte as render --timeline writes it (whole "
+            "or not at all, its folder made).")
         .def("__repr__", [](const RenderOutcome& r) {
             return "<fb89.Render " + frontend::scene_display_name(r.scene) + " " + r.method + " " +
                    std::to_string(r.result.screen.width) + "x" +
@@ -283,16 +356,14 @@ PYBIND11_MODULE(_fb89, m) {
         });
 
     m.def("_render",
-          [](const std::string& scene, const std::string& method, const std::string& size,
-             const std::string& host, const std::string& controller, int repeat,
-             const std::optional<std::string>& threshold,
-             const std::optional<std::string>& beam_threshold,
-             const std::optional<int>& reflections) {
+          [](const std::string& scene, const py::object& method, const py::object& size,
+             const py::object& host, const py::object& controller, const py::object& repeat,
+             const py::object& threshold, const py::object& beam_threshold,
+             const py::object& reflections, const py::object& buffer) {
+              const RenderArgs args = render_args(scene, method, size, host, controller, repeat,
+                                                  threshold, beam_threshold, reflections, buffer);
               std::shared_ptr<RenderOutcome> out;
-              run_work(py::bool_(false), [&](bool) {
-                  out = render(scene, method, size, host, controller, repeat, threshold,
-                               beam_threshold, reflections);
-              });
+              run_work(py::bool_(false), [&](bool) { out = render(args); });
               return out;
           });
     // For bench/python_overhead.py: the same render done from C++, `rounds` times, each timed
@@ -302,8 +373,10 @@ PYBIND11_MODULE(_fb89, m) {
         py::gil_scoped_release unlocked;
         for (int i = 0; i < rounds; ++i) {
             const auto start = std::chrono::steady_clock::now();
-            render(scene, method, "", "native", std::string(controller::kDefaultProfile), 1,
-                   std::nullopt, std::nullopt, std::nullopt);  // made and freed, as in Python
+            RenderArgs args;
+            args.scene = scene;
+            args.method = method;
+            render(args);  // made and freed, as in Python
             seconds.push_back(
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         }
@@ -317,13 +390,24 @@ PYBIND11_MODULE(_fb89, m) {
         },
         "Called by the installed package (fb89/_install.py): the prefix it is installed in, where "
         "the bundled data and the 1989 hosts' parts are, as for the installed fb89 command.");
-    m.def("_scene_info", [](const std::string& argument) {
-        const std::string file = frontend::resolve_scene(argument);
+    // A scene's facts; `name` (a scene given as a dict, in its private file `argument`):
+    // read under that name, which its errors and every table, header and repr then show.
+    m.def("_scene_info", [](const std::string& argument, const std::string& name) {
+        const std::string file = name.empty() ? frontend::resolve_scene(argument) : argument;
         host::Scene scene;
         {
             py::gil_scoped_release unlocked;
-            scene = host::load_scene(file);
+            if (name.empty()) {
+                scene = host::load_scene(file);
+            } else {
+                std::ifstream in(file, std::ios::binary);
+                const std::string json((std::istreambuf_iterator<char>(in)),
+                                       std::istreambuf_iterator<char>());
+                scene =
+                    host::parse_scene_json(json, name, std::filesystem::path(file).parent_path());
+            }
         }
+        if (!name.empty()) frontend::name_scene_file(file, name);
         py::dict d;
         d["path"] = file;
         d["name"] = frontend::scene_display_name(file);
@@ -334,8 +418,14 @@ PYBIND11_MODULE(_fb89, m) {
         d["notes"] = scene.notes;
         return d;
     });
+    m.def("_forget_scene_file", [](const std::string& file) {
+        frontend::forget_scene_file(file);
+        std::error_code ec;
+        std::filesystem::remove(file, ec);
+    });
 
     register_streams(m);
+    register_stream_calls(m);
     register_runs(m);
 }
 

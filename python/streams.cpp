@@ -21,6 +21,8 @@
 #include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
 #include "python/convert.h"
+#include "python/options.h"
+#include "python/outputs.h"
 #include "python/stream_file.h"
 
 namespace py = pybind11;
@@ -82,30 +84,70 @@ std::shared_ptr<StreamFile> open_stream(const std::string& path,
     return out;
 }
 
-// Rows from a structured array of fb89.COMMAND_DTYPE (or one that casts to it by field).
-std::shared_ptr<StreamFile> stream_from(
-    const py::array& commands, const protocol::Properties& header,
-    const std::vector<std::pair<std::size_t, std::string>>& markers) {
+// Rows from a structured array of fb89.COMMAND_DTYPE (or what numpy reads as one, field by
+// field), checked as the stream format checks commands: a row it cannot carry is an
+// fb89.OptionError naming the row, here rather than when the stream is saved.
+py::array rows_of(const py::handle& commands) {
     const py::dtype want = command_dtype();
-    py::array rows = commands;
-    if (!rows.dtype().equal(want)) rows = commands.attr("astype")(want);
+    py::array rows;
+    try {
+        const py::module_ numpy = py::module_::import("numpy");
+        if (py::isinstance<py::array>(commands)) {
+            rows = py::reinterpret_borrow<py::array>(commands);
+            if (!rows.dtype().equal(want)) rows = rows.attr("astype")(want);
+        } else {
+            rows = numpy.attr("asarray")(commands, want);
+        }
+    } catch (const py::error_already_set& e) {
+        throw py::type_error(std::string("commands: not rows of fb89.COMMAND_DTYPE (") + e.what() +
+                             ")");
+    }
     if (rows.ndim() != 1)
-        throw py::value_error("commands: a 1-D structured array of fb89.COMMAND_DTYPE");
-    rows = py::array::ensure(rows, py::array::c_style);
+        throw py::type_error("commands: a 1-D structured array of fb89.COMMAND_DTYPE");
+    return py::array::ensure(rows, py::array::c_style);
+}
+
+protocol::Properties header_of(const py::handle& header) {
+    protocol::Properties out;
+    if (header.is_none()) return out;
+    if (!py::isinstance<py::dict>(header)) throw py::type_error("header: expected a dict of str");
+    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(header)) {
+        const std::string k = text(key, "header");
+        out[k] = text(value, "header['" + k + "']");
+    }
+    if (const auto problem = protocol::check_properties(out))
+        throw std::invalid_argument("header: " + *problem);
+    return out;
+}
+
+std::vector<std::pair<std::size_t, std::string>> markers_of(const py::handle& markers) {
+    std::vector<std::pair<std::size_t, std::string>> out;
+    if (markers.is_none()) return out;
+    if (!py::isinstance<py::list>(markers) && !py::isinstance<py::tuple>(markers))
+        throw py::type_error("markers: expected a list of (row, text) pairs");
+    static constexpr frontend::OptionLimit kRow{"", "markers: row", 0, 1e15};
+    for (const py::handle pair : markers) {
+        if (!py::isinstance<py::tuple>(pair) && !py::isinstance<py::list>(pair))
+            throw py::type_error("markers: expected (row, text) pairs");
+        const py::sequence p = py::reinterpret_borrow<py::sequence>(pair);
+        if (p.size() != 2) throw py::type_error("markers: expected (row, text) pairs");
+        out.emplace_back(static_cast<std::size_t>(whole_number(p[0], kRow)),
+                         text(p[1], "markers: text"));
+    }
+    std::sort(out.begin(), out.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+}
+
+std::shared_ptr<StreamFile> stream_from(const py::handle& commands, const py::handle& header,
+                                        const py::handle& markers) {
+    const py::array rows = rows_of(commands);
     auto out = std::make_shared<StreamFile>();
-    out->header = header;
+    out->header = header_of(header);
     const auto* first = static_cast<const CommandRow*>(rows.data());
     out->commands.rows.assign(first, first + rows.shape(0));
-    out->commands.markers = markers;
-    std::sort(out->commands.markers.begin(), out->commands.markers.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& [row, text] : out->commands.markers) {
-        if (row >= out->commands.rows.size() || out->commands.rows[row].opcode != 4)
-            throw frontend::UsageError("markers: row " + std::to_string(row) + " is not a MARKER");
-        if (text.size() > protocol::kMaxMarkerLength)
-            throw frontend::UsageError("markers: row " + std::to_string(row) + ": longer than " +
-                                       std::to_string(protocol::kMaxMarkerLength) + " bytes");
-    }
+    out->commands.markers = markers_of(markers);
+    out->commands.check();
     return out;
 }
 
@@ -160,28 +202,35 @@ class TimedRows final : public protocol::CommandSink {
 
 }  // namespace
 
-void save_rows(const StreamFile& s, const std::string& path) {
+std::vector<uint8_t> encode_rows(const StreamFile& s) {
     if (!s.send_ns.empty() && s.send_ns.size() != s.commands.rows.size())
         throw std::invalid_argument("send times: " + std::to_string(s.send_ns.size()) + " for " +
                                     std::to_string(s.commands.rows.size()) + " commands");
-    try {
-        const bool timed = !s.send_ns.empty();
-        protocol::StreamWriter writer(path, s.header,
-                                      timed ? protocol::Timing::Timed : protocol::Timing::Untimed);
-        if (timed) {
-            TimedRows rows(s, writer);
-            s.commands.replay_into(rows);
-        } else {
-            s.commands.replay_into(writer);
-        }
-        writer.close();
-    } catch (const std::invalid_argument&) {
-        throw;
-    } catch (const protocol::StreamError&) {
-        throw;
-    } catch (const std::runtime_error& e) {
-        throw FileProblem(e.what());
+    if (const auto problem = protocol::check_properties(s.header))
+        throw std::invalid_argument("header: " + *problem);
+    s.commands.check();  // the rows may have changed since: they are a writable view
+    const bool timed = !s.send_ns.empty();
+    protocol::StreamWriter writer(s.header,
+                                  timed ? protocol::Timing::Timed : protocol::Timing::Untimed);
+    if (timed) {
+        TimedRows rows(s, writer);
+        s.commands.replay_into(rows);
+    } else {
+        s.commands.replay_into(writer);
     }
+    writer.close();
+    return writer.take_bytes();
+}
+
+void save_rows(const StreamFile& s, const std::string& path) {
+    const std::vector<uint8_t> bytes = encode_rows(s);  // every check before any file
+    with_outputs([&] {
+        file_work([&] {
+            frontend::make_parent_dirs(path);
+            protocol::write_output(
+                path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        });
+    });
 }
 
 void register_streams(py::module_& m) {
@@ -194,22 +243,21 @@ array of fb89.COMMAND_DTYPE, one row a command, with the markers' text beside th
 
 Stream.open(path) reads a file; Stream(commands, header=None, markers=None) makes one from an
 array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.stream.)")
-        .def(
-            py::init(
-                [](const py::array& commands, const std::optional<protocol::Properties>& header,
-                   const std::optional<std::vector<std::pair<std::size_t, std::string>>>& markers) {
-                    return stream_from(
-                        commands, header.value_or(protocol::Properties{}),
-                        markers.value_or(std::vector<std::pair<std::size_t, std::string>>{}));
-                }),
-            py::arg("commands"), py::arg("header") = py::none(), py::arg("markers") = py::none(),
-            "A stream of these commands (copied), its header properties, and the MARKER rows' "
-            "text as (row, text) pairs.")
+        .def(py::init(
+                 [](const py::object& commands, const py::object& header,
+                    const py::object& markers) { return stream_from(commands, header, markers); }),
+             py::arg("commands"), py::arg("header") = py::none(), py::arg("markers") = py::none(),
+             "A stream of these commands (copied), its header properties, and the MARKER rows' "
+             "text as (row, text) pairs. Every row is checked as the stream format checks "
+             "commands: an opcode that is none, a span of width 0 or a frame of size 0 is an "
+             "fb89.OptionError naming the row.")
         .def_static(
             "open",
-            [](const std::string& path, const std::optional<std::string>& calls) {
+            [](const py::object& path, const py::object& calls) {
+                const std::string file = path_text(path, "path");
+                const std::optional<std::string> selection = optional_text(calls, "calls");
                 py::gil_scoped_release unlocked;
-                return open_stream(path, calls);
+                return open_stream(file, selection);
             },
             py::arg("path"), py::arg("calls") = py::none(),
             "Reads a stream file, or with `calls` (a call set as dump --calls takes it, e.g. "
@@ -262,13 +310,16 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
         .def("__len__", [](const StreamFile& s) { return s.commands.rows.size(); })
         .def(
             "save",
-            [](const StreamFile& s, const std::string& path) {
+            [](const StreamFile& s, const py::object& path) {
+                const std::string file = path_text(path, "path");
                 py::gil_scoped_release unlocked;
-                save_rows(s, path);
+                save_rows(s, file);
             },
             py::arg("path"),
             "Writes the stream, header and all: format version 2 with its send times when it "
-            "has them, else version 1.")
+            "has them, else version 1. The rows are checked first (fb89.OptionError naming the "
+            "row); the file is written whole or not at all (an old one is left as it was on "
+            "any failure) and its folder made, as the command line writes its outputs.")
         .def("__repr__", [](const StreamFile& s) {
             return "<fb89.Stream " + (s.path.empty() ? std::string("(in memory)") : s.path) + ": " +
                    std::to_string(s.commands.rows.size()) + " commands>";
@@ -287,80 +338,6 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
         return std::make_pair(
             commands,
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    });
-
-    m.def(
-        "_replay",
-        [](const StreamFile& s, const std::string& profile) {
-            auto ctl = std::make_unique<controller::Controller>(controller::load_profile(profile));
-            {
-                py::gil_scoped_release unlocked;
-                s.commands.replay_into(*ctl);
-            }
-            auto* frame = new controller::Framebuffer(ctl->framebuffer());
-            py::capsule owner(frame,
-                              [](void* p) { delete static_cast<controller::Framebuffer*>(p); });
-            py::dict out;
-            out["image"] = rgb_view(*frame, owner);
-            out["checksum"] = frame->checksum();
-            out["stats"] = to_python(ctl->stats().to_json());
-            return out;
-        },
-        py::arg("stream"), py::arg("profile"));
-
-    m.def("_trim", [](const std::string& input, const std::string& output, const std::string& calls,
-                      const std::string& frames, bool salvage) {
-        frontend::TrimRequest r{input, output, calls, frames, salvage};
-        frontend::TrimOutcome out;
-        {
-            py::gil_scoped_release unlocked;
-            out = frontend::trim_stream(r);
-        }
-        using Result = frontend::TrimOutcome::Result;
-        const std::string said = out.error ? std::string("; ") + out.error->what() : "";
-        if (out.result == Result::NothingMatched)
-            throw frontend::UsageError("trim: the selection matched no command of " + input + "; " +
-                                       out.output + " not written" + said);
-        if (out.result == Result::Damaged)
-            throw protocol::StreamError(std::string(out.error->what()) + "; " + out.output +
-                                            " not written (salvage=True keeps what was read "
-                                            "before the error)",
-                                        out.error->offset(), out.error->command());
-        py::dict d;
-        d["path"] = out.output;
-        d["commands"] = out.commands_kept;
-        d["frames"] = out.frames_kept;
-        d["salvaged"] = out.error ? py::object(py::str(out.error->what())) : py::object(py::none());
-        return d;
-    });
-
-    m.def("_diff", [](const std::string& a, const std::string& b, const std::string& image) {
-        frontend::DiffOutcome out;
-        {
-            py::gil_scoped_release unlocked;
-            out = frontend::diff_streams(a, b, image);
-        }
-        if (out.error)
-            throw protocol::StreamError(std::string(out.error->what()) + "; compared " +
-                                            std::to_string(out.frames.size()) +
-                                            " frame(s) before the error",
-                                        out.error->offset(), out.error->command());
-        py::list frames;
-        for (const frontend::FrameDiff& f : out.frames) {
-            py::dict d;
-            d["frame"] = f.frame;
-            d["size_a"] = f.size_a.empty() ? py::object(py::none()) : py::str(f.size_a);
-            d["size_b"] = f.size_b.empty() ? py::object(py::none()) : py::str(f.size_b);
-            d["differing"] = f.differing;
-            d["compared"] = f.compared;
-            frames.append(d);
-        }
-        py::dict d;
-        d["frames"] = frames;
-        d["differing_frames"] = out.differing_frames;
-        d["image_frame"] =
-            out.image_frame ? py::object(py::int_(*out.image_frame)) : py::object(py::none());
-        return d;
     });
 }
 

@@ -8,9 +8,12 @@ experiments.
     fb89.experiment("fig3.1", ["A"], repeat=3).to_numpy()
 
 The module is a thin layer over the libraries the fb89 command line uses: every call reads
-its arguments and does its work as the matching command does, and raises fb89.Error (or one
-of its subclasses) with the command's message. Long calls run without the GIL, take a
-progress= callback, and stop on Ctrl-C. docs/PYTHON.md is the tour.
+its arguments and does its work as the matching command does, checks every keyword as the
+command checks its option (the same limits, from the same code), and raises fb89.Error (or
+one of its subclasses) with the command's message, naming the keyword; a value of the wrong
+type is a TypeError naming it. A call that writes files writes them whole or not at all, as
+the command does: on any failure every old file is left as it was. Long calls run without
+the GIL, take a progress= callback, and stop on Ctrl-C. docs/PYTHON.md is the tour.
 """
 import json as _json
 import os as _os
@@ -42,10 +45,10 @@ except ImportError:  # the build tree's package: the source tree's data, the bui
     pass
 
 __all__ = [
-    "COMMAND_DTYPE", "Calibration", "Diff", "EmulatorError", "Error", "FileError", "OptionError",
-    "Render", "Replay", "Scene", "SceneError", "Stream", "Table", "calibrate", "diff",
-    "experiment", "experiments", "hosts", "load_scene", "methods", "profiles", "render",
-    "replay", "scenes", "sweep", "trim",
+    "COMMAND_DTYPE", "Calibration", "Comparison", "Diff", "EmulatorError", "Error", "FileError",
+    "OptionError", "Render", "Replay", "Scene", "SceneError", "Stream", "Table", "calibrate",
+    "compare", "diff", "experiment", "experiments", "hosts", "load_scene", "methods",
+    "profiles", "render", "replay", "scenes", "sweep", "trim",
 ]
 
 # Opcodes of COMMAND_DTYPE's "opcode" field (docs/PROTOCOL.md).
@@ -56,29 +59,7 @@ DEFAULT_CONTROLLER = "tms34010-50mhz"
 
 # ---- arguments as the commands take them ----
 
-def _size(size):
-    """None, "WxH" or (W, H) -> "WxH" ("" for the scene's own)."""
-    if size is None:
-        return ""
-    if isinstance(size, str):
-        return size
-    try:
-        w, h = size
-    except (TypeError, ValueError):
-        raise OptionError(f"size: {size!r}: give \"WxH\" or (width, height)") from None
-    return f"{int(w)}x{int(h)}"
-
-
-def _threshold(value):
-    """A threshold as --threshold takes it: a number, "inf", "paper" or "calibrated"."""
-    if value is None or isinstance(value, str):
-        return value
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise OptionError(f"threshold: {value!r}: a number, 'inf', 'paper' or 'calibrated'")
-    return repr(float(value))
-
-
-def _scene_arg(scene):
+def _scene_arg(scene, what="scene"):
     """A Scene, a bundled scene's name, a file, or a dict in the scene format -> a path."""
     if isinstance(scene, Scene):
         return scene.path
@@ -88,7 +69,8 @@ def _scene_arg(scene):
         return _os.fspath(scene)
     if isinstance(scene, str):
         return scene
-    raise SceneError(f"scene: {scene!r}: give a name, a file, a dict or an fb89.Scene")
+    raise TypeError(f"{what}: expected a scene name, a file, a dict or an fb89.Scene, "
+                    f"got {type(scene).__name__} {scene!r:.40}")
 
 
 def _scene_list(scenes_given):
@@ -109,7 +91,7 @@ def _path(p, what):
         return p.path
     if isinstance(p, (str, _os.PathLike)):
         return _os.fspath(p)
-    raise OptionError(f"{what}: {p!r}: give a path or an fb89.Stream")
+    raise TypeError(f"{what}: expected a path or an fb89.Stream, got {type(p).__name__} {p!r:.40}")
 
 
 # ---- scenes ----
@@ -132,54 +114,63 @@ class Scene:
         self.faces = info["faces"]
         self.face_ids = info["face_ids"]
         self.notes = list(info["notes"])
-        if owned_file is not None:
-            self._finalizer = _weakref.finalize(self, _os.remove, owned_file)
+        if owned_file is not None:  # the file and the name it goes by go with the Scene
+            self._finalizer = _weakref.finalize(self, _fb89._forget_scene_file, owned_file)
 
     def __repr__(self):
         return f"<fb89.Scene {self.name}: {self.faces} faces, {self.width}x{self.height}>"
 
 
-def load_scene(scene):
+def load_scene(scene, *, name="<dict scene>"):
     """Reads a scene: a bundled scene by name ("demo", "G"), a scene file (.json or .tri), or a
     dict in the scene format (so that a script can make scenes). Returns an fb89.Scene, which
     render(), experiment() and the rest take wherever they take a scene name. Raises
-    fb89.SceneError naming the file and the field of anything wrong."""
+    fb89.SceneError naming the file and the field of anything wrong. A dict is kept in a
+    private file while its Scene lives, and goes by `name` in errors, tables, stream headers
+    and reprs."""
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, dict):
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"name: expected a non-empty str, got {name!r}")
         fd, path = _tempfile.mkstemp(prefix="fb89_scene_", suffix=".json")
         try:
             with _os.fdopen(fd, "w") as f:
                 _json.dump(scene, f)
-            return Scene(_fb89._scene_info(path), owned_file=path)
+            return Scene(_fb89._scene_info(path, name), owned_file=path)
         except BaseException:
-            _os.remove(path)
+            _fb89._forget_scene_file(path)
             raise
-    return Scene(_fb89._scene_info(_scene_arg(scene)))
+    return Scene(_fb89._scene_info(_scene_arg(scene), ""))
 
 
 # ---- renders ----
 
 def render(scene, *, method="zbuffer", size=None, host="native", controller=DEFAULT_CONTROLLER,
-           repeat=1, threshold=None, beam_threshold=None, reflections=None):
+           repeat=1, threshold=None, beam_threshold=None, reflections=None, buffer=None):
     """Renders a scene with one method, as `fb89 render` does, and returns an fb89.Render:
     .image (H x W x 3 uint8, the controller's framebuffer), .ids (H x W int32 face ids, -1 for
-    the background), .times, .counters, .controller_figures, .split, .period, .stream.
+    the background), .times, .counters, .controller_figures, .split, .pipeline, .period,
+    .stream, and .timeline() (the frame through the pipeline as trace-event JSON).
 
     scene: a bundled scene's name ("demo", "G"), a file, a dict, or an fb89.Scene.
     method: zbuffer, scanline, warnock, hybrid, raytrace or beam (fb89.methods()).
-    size: "WxH" or (W, H); None for the scene's own.
+    size: "WxH" or (W, H) (integers, 1 to 16384 each); None for the scene's own.
     host: "native" (timed here, in `repeat` interleaved rounds) or a 1989 host (fb89.hosts():
         the method's host code emulated once and priced; Ctrl-C stops it).
     controller: the controller's cost profile (fb89.profiles()).
+    repeat: frames rendered, 1 to 10000 (the hidden-surface time is their median).
     threshold, beam_threshold: the hybrids' thresholds: a number, "inf", "paper" or
         "calibrated" (the default: the one saved for this host by calibrate(save=True) or
         `fb89 calibrate`, else the paper's); refused for a method that does not read them.
-    reflections: mirror bounces for raytrace and beam.
-    Raises fb89.SceneError, fb89.OptionError, fb89.EmulatorError."""
+    reflections: mirror bounces for raytrace and beam, 0 to 16.
+    buffer: the controller's command buffer for the pipeline in time, in bytes, or
+        "unbounded" (render --buffer); None for the profile's.
+    Raises fb89.SceneError, fb89.OptionError (naming the keyword), fb89.EmulatorError, and
+    TypeError for a value of the wrong type."""
     keep = load_scene(scene) if isinstance(scene, dict) else scene
-    return _fb89._render(_scene_arg(keep), method, _size(size), host, controller, repeat,
-                         _threshold(threshold), _threshold(beam_threshold), reflections)
+    return _fb89._render(_scene_arg(keep), method, size, host, controller, repeat, threshold,
+                         beam_threshold, reflections, buffer)
 
 
 # ---- the experiments ----
@@ -193,20 +184,23 @@ def experiment(name, scenes=None, *, size=None, repeat=7, controller=DEFAULT_CON
 
     scenes: scenes as render() takes them; None for the experiment's own.
     size: "WxH" or (W, H) for every scene; sizes: the fig4.* experiments' sizes.
-    repeat: interleaved timing rounds (medians); one run each on a 1989 host.
-    threshold, beam_threshold: as render() takes them; out_dir: where fig4.7's masks go;
-    accel: "bvh" or "grid" for the rays and the beams' queries; patches, reference_rays: the radiosity experiments'.
+    repeat: interleaved timing rounds (medians), 1 to 1000; one run each on a 1989 host.
+    threshold, beam_threshold: as render() takes them; out_dir: where fig4.7's masks go
+        (written whole or not at all: a failed experiment leaves the old ones);
+    accel: "bvh" or "grid" for the rays and the beams' queries; patches (0 to 100000),
+        reference_rays (2 to 16): the radiosity experiments'.
     methods: split's methods by name (None: every one).
-    host, jobs, results: a 1989 host, emulated runs at once, and a folder keeping each run.
+    host, jobs, results: a 1989 host, emulated runs at once (1 to 256), and a folder keeping
+        each run.
     progress: None (a line on stderr when it is a terminal), True, False, or a callable
         progress(what, done, total, unit). Ctrl-C, or a callable that raises, stops the
         experiment between rounds (an emulated run within 50 ms) and is raised."""
     paths, _keep = _scene_list(scenes)
     parts = _fb89._experiment(
-        name, paths, _size(size), repeat, controller, _threshold(threshold),
-        _threshold(beam_threshold), [_size(s) for s in (sizes or [])], _os.fspath(out_dir),
-        accel, patches, reference_rays, list(methods or []), host, jobs,
-        _os.fspath(results or ""), progress)
+        name, paths, size=size, repeat=repeat, controller=controller, threshold=threshold,
+        beam_threshold=beam_threshold, sizes=sizes, out_dir=out_dir, accel=accel,
+        patches=patches, reference_rays=reference_rays, methods=methods, host=host, jobs=jobs,
+        results=results, progress=progress)
     return Table(**parts)
 
 
@@ -214,16 +208,54 @@ def sweep(what, scenes, *, start=0.001, stop=1.0, steps=13, window_test="area",
           depth_estimate="window", size=None, repeat=7, controller=DEFAULT_CONTROLLER,
           host="native", jobs=1, results=None, progress=None):
     """Sweeps the hybrid's Expr. 3.1 threshold (what="threshold"), as `fb89 sweep threshold`
-    does: 0 (the pure Z-buffer), `steps` thresholds from `start` to `stop` on a log scale, and
-    inf (pure Warnock), on each scene. Returns an fb89.Table. window_test: "area" or "centres";
-    depth_estimate: "window" or "scene"; the rest as experiment() takes them."""
+    does: 0 (the pure Z-buffer), `steps` thresholds (1 to 200) from `start` to `stop` on a log
+    scale, and inf (pure Warnock), on each scene. Returns an fb89.Table. window_test: "area"
+    or "centres"; depth_estimate: "window" or "scene"; the rest as experiment() takes them."""
     if what != "threshold":
         raise OptionError(f"unknown sweep '{what}' (known: threshold)")
     paths, _keep = _scene_list(scenes)
-    parts = _fb89._sweep(paths, float(start), float(stop), steps, window_test, depth_estimate,
-                         _size(size), repeat, controller, host, jobs,
-                         _os.fspath(results or ""), progress)
+    parts = _fb89._sweep(paths, start=start, stop=stop, steps=steps, window_test=window_test,
+                         depth_estimate=depth_estimate, size=size, repeat=repeat,
+                         controller=controller, host=host, jobs=jobs, results=results,
+                         progress=progress)
     return Table(**parts)
+
+
+class Comparison:
+    """What compare() found: table (an fb89.Table, the CSV `fb89 compare --csv` writes: one
+    row a method), rows (the JSON --json writes), sheet (the contact sheet, H x W x 3 uint8),
+    frames (each method's frame by name), thresholds (the line saying which thresholds ran)."""
+
+    def __init__(self, parts):
+        self.table = Table(columns=parts["columns"], rows=parts["rows"], text=parts["text"],
+                           csv=parts["csv"])
+        self.rows = list(parts["rows_json"])
+        self.sheet = parts["sheet"]
+        self.frames = dict(parts["frames"])
+        self.thresholds = parts["thresholds"].strip()
+
+    def __repr__(self):
+        return f"<fb89.Comparison {len(self.rows)} methods: {', '.join(self.frames)}>"
+
+
+def compare(scene, *, size=None, repeat=3, controller=DEFAULT_CONTROLLER, threshold="calibrated",
+            beam_threshold="calibrated", host="native", jobs=1, results=None, sheet=None,
+            csv=None, json=None, progress=None):
+    """Every method on one scene, speed against accuracy, as `fb89 compare SCENE` does: each
+    timed as the experiments time them (here, or on a 1989 host), its commands costed by the
+    controller and its face ids counted against the Z-buffer's. Returns an fb89.Comparison.
+
+    sheet, csv, json: files to write the contact sheet (PNG), the table (CSV) and the rows
+    (JSON) to, as --sheet, --csv and --json do (None: not written; the command's default
+    sheet is out/compare.png). They are written together or not at all: a failure in any
+    leaves every old file as it was. The rest as experiment() takes them."""
+    paths, _keep = _scene_list(scene)
+    if len(paths) != 1:
+        raise OptionError("scene: compare takes one scene")
+    return Comparison(_fb89._compare(
+        paths, size=size, repeat=repeat, controller=controller, threshold=threshold,
+        beam_threshold=beam_threshold, host=host, jobs=jobs, results=results, sheet=sheet,
+        csv=csv, json=json, progress=progress))
 
 
 class Calibration:
@@ -255,38 +287,48 @@ def calibrate(method="hybrid", scenes=None, *, start=0.0005, stop=2.0, steps=12,
               tolerance=0.03, host="native", jobs=1, results=None, save=False, progress=None):
     """The paper's calibration (§3), as `fb89 calibrate` does: the hybrid's Expr. 3.1 threshold
     (method="hybrid", on A-F by default; start, stop, steps: the ramp; tolerance: how much
-    slower than the pure Z-buffer any scene may be) or the beam-ray hybrid's Expr. 2.7
-    threshold (method="beam", on G, H, I and cornell_mirror). Returns an fb89.Calibration.
+    slower than the pure Z-buffer any scene may be, 0 to 100) or the beam-ray hybrid's Expr.
+    2.7 threshold (method="beam", on G, H, I and cornell_mirror). Returns an fb89.Calibration.
     With save=True the choice is saved where threshold="calibrated" finds it (as the command
     does; it leaves the saved one alone by default). The rest as experiment() takes them."""
     paths, _keep = _scene_list(scenes)
-    return Calibration(_fb89._calibrate(method, paths, float(start), float(stop), steps, repeat,
-                                        float(tolerance), host, jobs,
-                                        _os.fspath(results or ""), bool(save), progress))
+    return Calibration(_fb89._calibrate(
+        paths, method=method, start=start, stop=stop, steps=steps, repeat=repeat,
+        tolerance=tolerance, host=host, jobs=jobs, results=results, save=save,
+        progress=progress))
 
 
 # ---- streams ----
 
 class Replay:
     """What replay() gives: image (H x W x 3 uint8, the controller's framebuffer after the
-    stream), checksum (the last frame's XXH64, as `fb89 replay` prints it) and stats (the
-    controller's figures per opcode and per frame)."""
+    stream), checksum (the last frame's XXH64, as `fb89 replay` prints it), stats (the
+    controller's figures per opcode and per frame) and, with buffer= or timeline=, pipelines:
+    each complete frame through the pipeline in time (frame_ms, host_ms, host_stalled_ms,
+    controller_idle_ms, buffer_high_water_bytes ...), else None."""
 
     def __init__(self, parts):
         self.image = parts["image"]
         self.checksum = parts["checksum"]
         self.stats = parts["stats"]
+        self.pipelines = parts["pipelines"]
 
     def __repr__(self):
         return f"<fb89.Replay {self.image.shape[1]}x{self.image.shape[0]} {self.checksum:016x}>"
 
 
-def replay(stream, *, controller=DEFAULT_CONTROLLER):
+def replay(stream, *, controller=DEFAULT_CONTROLLER, buffer=None, timeline=None):
     """Replays a stream (an fb89.Stream or a stream file) into a controller with the given cost
-    profile, as `fb89 replay` does. Returns an fb89.Replay."""
+    profile, as `fb89 replay` does. Returns an fb89.Replay.
+
+    buffer: as replay --buffer: each complete frame also through the pipeline in time with a
+        command buffer of this many bytes, or "unbounded", from the stream's send times (a
+        stream without them: every command ready at 0); in Replay.pipelines.
+    timeline: as replay --timeline: a file to write the last complete frame through that
+        pipeline to, as Chrome trace-event JSON (the profile's buffer unless buffer= says)."""
     if not isinstance(stream, Stream):
         stream = Stream.open(_path(stream, "stream"))
-    return Replay(_fb89._replay(stream, controller))
+    return Replay(_fb89._replay(stream, controller, buffer, timeline))
 
 
 def trim(stream, output, *, calls=None, frames=None, salvage=False):
@@ -294,12 +336,11 @@ def trim(stream, output, *, calls=None, frames=None, salvage=False):
     `frames` (e.g. "0-3,7") of a stream file into `output`, a stream that still replays, as
     `fb89 trim` does. Returns {'path', 'commands', 'frames', 'salvaged'} (salvaged: the
     error a damaged input ended with, kept up to it with salvage=True, else None). Raises
-    fb89.OptionError when nothing matches and fb89.FileError for a damaged input (nothing is
-    written then)."""
+    fb89.OptionError when nothing matches and fb89.FileError for a damaged input or a file
+    that cannot be read or written; then `output` is left as it was."""
     if calls is None and frames is None:
         raise OptionError("trim: give calls= and/or frames= to say what to keep")
-    return _fb89._trim(_path(stream, "stream"), _path(output, "output"), calls or "",
-                       frames or "", bool(salvage))
+    return _fb89._trim(_path(stream, "stream"), _path(output, "output"), calls, frames, salvage)
 
 
 class Diff:
@@ -321,5 +362,6 @@ class Diff:
 def diff(a, b, *, image=None):
     """Compares the frames two stream files produce, pixel by pixel, as `fb89 diff` does;
     with `image`, writes the first differing frame's diff image (differing pixels red over A
-    dimmed). Returns an fb89.Diff. Raises fb89.FileError for a damaged stream."""
-    return Diff(_fb89._diff(_path(a, "a"), _path(b, "b"), _os.fspath(image or "")))
+    dimmed). Returns an fb89.Diff. Raises fb89.FileError for a damaged or missing stream
+    (the image is not written then)."""
+    return Diff(_fb89._diff(_path(a, "a"), _path(b, "b"), image))
