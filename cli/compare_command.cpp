@@ -125,9 +125,7 @@ void register_compare(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<CompareArgs>();
     CLI::App* sub = app.add_subcommand(
         "compare", "Every method on one scene: speed against accuracy, and a contact sheet PNG");
-    sub->add_option("scene", a->scene,
-                    "Scene: a file, or a bundled scene by name (fb89 list scenes)")
-        ->required();
+    sub->add_option("scene", a->scene, scene_argument_help("Scene: a file"))->required();
     sub->add_option("--sheet", a->sheet, "Write the contact sheet of every method's frame (PNG)")
         ->capture_default_str();
     sub->add_option("--csv", a->csv, "Write the table as CSV ('-' for stdout)");
@@ -136,7 +134,9 @@ void register_compare(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     sub->add_option("--size", a->size, "Image size WxH, overriding the scene's");
-    sub->add_option("--profile", a->profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", a->profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     sub->add_option("--threshold", a->threshold,
                     "Hybrid: Expr. 3.1 threshold: a number, inf, paper (0.04) or calibrated "
                     "(this machine's, else the paper's)")

@@ -12,6 +12,7 @@
 #include "frontend/calibration.h"
 #include "frontend/common.h"
 #include "frontend/data_dir.h"
+#include "frontend/names.h"
 #include "host/raster/hybrid.h"
 
 namespace fb89::frontend {
@@ -86,8 +87,8 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
         throw UsageError("--methods: only with the split experiment");
     for (const std::string& m : r.methods) {
         try {
-            s.methods.push_back(host::method_named(m));
-        } catch (const std::invalid_argument& e) {
+            s.methods.push_back(find_method(m));
+        } catch (const UsageError& e) {
             throw UsageError(std::string("--methods: ") + e.what());
         }
     }
