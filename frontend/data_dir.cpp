@@ -76,7 +76,7 @@ std::string resolve_scene(const std::string& argument) {
         const std::string stem = fs::path(argument).stem().string();
         const bool named = std::find(bundled.begin(), bundled.end(), stem) != bundled.end();
         throw host::SceneError(
-            argument + ": no such scene file" +
+            argument + ": cannot open the scene file: no such file" +
             (fs::path(argument).is_relative()
                  ? " (a relative path is read from the current folder, " +
                        fs::current_path(ec).string() + ")"
@@ -91,7 +91,9 @@ std::string resolve_scene(const std::string& argument) {
             if (fs::is_regular_file(dir / (argument + extension), ec))
                 return (dir / (argument + extension)).string();
     throw host::SceneError(
-        argument + ": no bundled scene of that name, nor a file in the current folder" +
+        argument +
+        ": cannot open the scene file: no bundled scene of that name, nor a file in the current "
+        "folder" +
         nearest_hint(argument, bundled) + " (the bundled scenes: " +
         (bundled.empty() ? "none in " + (data_dir() / "scenes").string() : name_list(bundled)) +
         "; fb89 list scenes)");

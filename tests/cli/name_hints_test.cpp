@@ -45,7 +45,7 @@ TEST(NameHints, EveryCommandAnswersANearMissWithTheNearestName) {
          "unknown host profile 'sun4-26'; did you mean "
          "'sun4-260'?"},
         {"render demoo --png " + out,
-         "demoo: no bundled scene of that name, nor a file in the "
+         "demoo: cannot open the scene file: no bundled scene of that name, nor a file in the "
          "current folder; did you mean 'demo'?"},
         {"compare demoo", "did you mean 'demo'?"},
         {"radiosity garish_rom", "did you mean 'garish_room'?"},

@@ -52,7 +52,8 @@ TEST_F(DataDir, ARelativePathIsReadFromTheCurrentFolderOnly) {
     // scenes/demo.json is in the source tree, not here
     const std::string here = fs::current_path().string();
     EXPECT_EQ(error_of("scenes/demo.json"),
-              "scenes/demo.json: no such scene file (a relative path is read from the current "
+              "scenes/demo.json: cannot open the scene file: no such file (a relative path is read "
+              "from the current "
               "folder, " +
                   here + "); demo is a bundled scene: give its name alone, demo");
     // a bundled scene's file name is a path too
@@ -60,7 +61,8 @@ TEST_F(DataDir, ARelativePathIsReadFromTheCurrentFolderOnly) {
               std::string::npos);
     // a path that is no bundled scene's gets no such note
     const std::string attic = error_of("rooms/attic.obj");
-    EXPECT_EQ(attic.rfind("rooms/attic.obj: no such scene file (", 0), 0u) << attic;
+    EXPECT_EQ(attic.rfind("rooms/attic.obj: cannot open the scene file: no such file (", 0), 0u)
+        << attic;
     EXPECT_EQ(attic.find("bundled"), std::string::npos) << attic;
     // a file that is here is read from here, as given
     fs::create_directories("scenes");
@@ -72,12 +74,13 @@ TEST_F(DataDir, AnAbsolutePathIsReadAsGiven) {
     const std::string demo = (fs::path(FB89_SCENES_DIR) / "demo.json").string();
     EXPECT_EQ(resolve_scene(demo), demo);
     const std::string missing = (fs::current_path() / "none.json").string();
-    EXPECT_EQ(error_of(missing), missing + ": no such scene file");
+    EXPECT_EQ(error_of(missing), missing + ": cannot open the scene file: no such file");
 }
 
 TEST_F(DataDir, AnUnknownNameGetsTheNearestBundledScene) {
     const std::string near = error_of("demoo");
-    EXPECT_EQ(near.rfind("demoo: no bundled scene of that name, nor a file in the current folder; "
+    EXPECT_EQ(near.rfind("demoo: cannot open the scene file: no bundled scene of that name, nor a "
+                         "file in the current folder; "
                          "did you mean 'demo'? (the bundled scenes: A, B, C",
                          0),
               0u)
