@@ -25,6 +25,7 @@
 #include "frontend/calibration.h"
 #include "frontend/common.h"
 #include "frontend/data_dir.h"
+#include "frontend/names.h"
 #include "frontend/period_host.h"
 #include "host/methods.h"
 #include "host/scene/scene_error.h"
@@ -85,7 +86,26 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     out->method = method;
     out->host = host;
     out->controller = controller_profile;
-    host::MethodOptions options(host::method_named(method));
+    // a method, profile or host that is not one is a usage mistake, as on the command line,
+    // answered with the nearest known name (frontend/names.h)
+    const auto named = [](const char* what, const auto& load) {
+        try {
+            return load();
+        } catch (const period::EmulatorError&) {
+            throw;
+        } catch (const std::runtime_error& e) {
+            throw frontend::UsageError(std::string(what) + ": " + e.what());
+        }
+    };
+    host::MethodOptions options(named("method", [&] { return frontend::find_method(method); }));
+    named("host", [&] {
+        frontend::check_host_name(host);
+        return 0;
+    });
+    named("controller", [&] {
+        frontend::check_profile_name(controller_profile);
+        return 0;
+    });
     const host::MethodInfo& info = host::method_info(options.method);
     check_applies(info, host::kHybridOptions, "threshold", threshold.has_value());
     check_applies(info, host::kBeamOptions, "beam_threshold", beam_threshold.has_value());
@@ -97,16 +117,6 @@ std::shared_ptr<RenderOutcome> render(const std::string& scene, const std::strin
     if (reflections) options.trace.max_reflections = *reflections;
     host::validate(options);
 
-    // a profile or host that is not one is a usage mistake, as on the command line
-    const auto named = [](const char* what, const auto& load) {
-        try {
-            return load();
-        } catch (const period::EmulatorError&) {
-            throw;
-        } catch (const std::runtime_error& e) {
-            throw frontend::UsageError(std::string(what) + ": " + e.what());
-        }
-    };
     const controller::CostProfile cost =
         named("controller", [&] { return controller::load_profile(controller_profile); });
 
