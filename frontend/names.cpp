@@ -162,10 +162,9 @@ std::string profile_option_help(const std::string& what) {
 }
 
 std::string host_option_help(const std::string& what) {
-    std::vector<std::string> names = host_profile_names();
-    names.emplace_back("a .json host profile");
-    return what + ": native (this machine) or a 1989 host, " + name_list(names) +
-           " (fb89 list hosts); a 1989 host runs fb89's host code on its emulated CPU (" +
+    return what + ": native (this machine), a 1989 host (" + name_list(host_profile_names()) +
+           ") or a .json host profile (fb89 list hosts); a 1989 host runs fb89's host code on its "
+           "emulated CPU (" +
            name_list(instruction_set_names()) + ") and models its time";
 }
 
