@@ -125,12 +125,11 @@ void register_calibrate(CLI::App& app, int& exit_code) {
     sub->add_option("--method", a->request.method,
                     "hybrid (Warnock/Z-buffer, §3) or beam (beam-ray, §4; ramp 0, 0.01 ... "
                     "1000, inf; --from/--to/--steps/--tolerance do not apply)")
-        ->check(CLI::IsMember({"hybrid", "beam"}))
+        ->check(one_of_validator("method", {"hybrid", "beam"}))
         ->capture_default_str();
-    sub->add_option(
-        "scenes", a->request.scenes,
-        "Scenes to calibrate on, files or bundled scenes by name (default: A to F; with --method "
-        "beam, G, H, I and cornell_mirror)");
+    sub->add_option("scenes", a->request.scenes,
+                    scene_argument_help("Scenes to calibrate on: files") +
+                        "; default A to F, with --method beam G, H, I and cornell_mirror");
     sub->add_option("--from", a->request.from, "Smallest threshold of the ramp (> 0)")
         ->capture_default_str();
     sub->add_option("--to", a->request.to, "Largest threshold of the ramp")->capture_default_str();

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "frontend/common.h"
+#include "frontend/names.h"
 
 namespace fb89::cli {
 
@@ -27,5 +28,6 @@ void register_radiosity(CLI::App& app, int& exit_code);
 void register_host_run(CLI::App& app, int& exit_code);
 void register_list(CLI::App& app, int& exit_code);
 void register_host_validate(CLI::App& app, int& exit_code);
+void register_help(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

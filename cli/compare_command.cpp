@@ -70,8 +70,7 @@ void register_compare(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<CompareArgs>();
     CLI::App* sub = app.add_subcommand(
         "compare", "Every method on one scene: speed against accuracy, and a contact sheet PNG");
-    sub->add_option("scene", a->request.scenes,
-                    "Scene: a file, or a bundled scene by name (fb89 list scenes)")
+    sub->add_option("scene", a->request.scenes, scene_argument_help("Scene: a file"))
         ->expected(1)
         ->required();
     sub->add_option("--sheet", a->sheet, "Write the contact sheet of every method's frame (PNG)")
@@ -82,7 +81,9 @@ void register_compare(CLI::App& app, int& exit_code) {
         ->check(cli_check(limits::kRepeat))
         ->capture_default_str();
     sub->add_option("--size", a->request.size, "Image size WxH, overriding the scene's");
-    sub->add_option("--profile", a->request.profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", a->request.profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     sub->add_option("--threshold", a->request.threshold,
                     "Hybrid: Expr. 3.1 threshold: a number, inf, paper (0.04) or calibrated "
                     "(this machine's, else the paper's)")

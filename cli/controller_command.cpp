@@ -354,7 +354,9 @@ void register_controller(CLI::App& app, int& exit_code) {
         "controller", "Run the frame-buffer controller as its own process on a Unix socket");
     sub->add_option("--listen", args->listen, "Socket path to create and serve hosts on")
         ->required();
-    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     sub->add_option("--png", args->png,
                     "Write the last complete frame as PNG (at most once a second, and at exit)");
     sub->add_option("--stats", args->stats,

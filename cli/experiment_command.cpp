@@ -61,7 +61,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
     }
     sub->add_option("name", args->request.name, "The experiment:" + described)->required();
     sub->add_option("scenes", args->request.scenes,
-                    "Scenes (default: the experiment's bundled scenes; fb89 list experiments)");
+                    scene_argument_help("Scenes (default: the experiment's own; fb89 list "
+                                        "experiments): files"));
     sub->add_option("--csv", args->csv, "Write the results as CSV ('-' for stdout)");
     sub->add_option("--size", args->request.size, "Image size WxH, overriding the scenes'");
     sub->add_option("--repeat", args->request.repeat,
@@ -69,6 +70,7 @@ void register_experiment(CLI::App& app, int& exit_code) {
         ->check(cli_check(limits::kRepeat))
         ->capture_default_str();
     sub->add_option("--profile", args->request.profile, profile_option_help())
+        ->check(profile_validator())
         ->capture_default_str();
     sub->add_option("--threshold", args->request.threshold,
                     "fig3.1 and accuracy: the hybrid's threshold (number, paper or calibrated)")
@@ -100,7 +102,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"bvh", "grid"}))
         ->capture_default_str();
     sub->add_option("--methods", args->request.methods,
-                    "split: only these methods (default every one; fb89 list methods)");
+                    method_option_help("split: only these methods (default every one)"))
+        ->check(method_validator());
     add_isa_option(sub);
     sub->callback([args, &exit_code] {
         for (std::string& scene : args->request.scenes)

@@ -36,7 +36,7 @@ void register_host_run(CLI::App& app, int& exit_code) {
         "host-run",
         "Run one emulated 1989-host job (as written by --emit-jobs) into --results, unless it is "
         "there already; SIGTERM or SIGINT ends it writing nothing (exit 143 or 130)");
-    sub->add_option("scene", a->scene, "Scene: a file, or a bundled scene by name")->required();
+    sub->add_option("scene", a->scene, scene_argument_help("Scene: a file"))->required();
     sub->add_option("options", a->options, "The guest's options, after --");
     sub->add_option("--results", a->results, "Folder the counts go to")->required();
     std::vector<std::string> isas;

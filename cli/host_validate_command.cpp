@@ -302,12 +302,15 @@ int run_host_validate(const HostValidateArgs& a) {
 void register_host_validate(CLI::App& app, int& exit_code) {
     auto a = std::make_shared<HostValidateArgs>();
     CLI::App* sub = app.add_subcommand("host-validate",
-                                       "Set the modelled 1989 hosts (kernels on the emulated "
-                                       "MC68020 + MC68881 or SPARC, priced by host "
-                                       "profiles) beside published figures of the period");
+                                       "Set the modelled 1989 hosts (kernels on the emulated " +
+                                           name_list(instruction_set_names()) +
+                                           ", priced by host profiles) beside published "
+                                           "figures of the period");
     sub->add_option("--profile", a->profiles,
-                    "Host profile (a built-in name or a .json file); default: every profile a "
-                    "figure names");
+                    "Host profile: " + name_list(host_profile_names()) +
+                        ", or a .json file "
+                        "(fb89 list hosts); default: every profile a figure names")
+        ->check(host_profile_validator());
     sub->add_option("--csv", a->csv, "Write the comparison as CSV ('-' for stdout)");
     sub->add_option("--classes", a->classes,
                     "Also list the N instruction classes that take most of each kernel's "

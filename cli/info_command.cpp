@@ -216,7 +216,10 @@ void register_info(CLI::App& app, int& exit_code) {
         "info", "Describe a stream: header, and per frame commands by opcode, pixels, bytes");
     sub->add_option("stream", args->stream, "Stream file ('-' for stdin)")->required();
     sub->add_flag("--json", args->json, "Print JSON instead of text");
-    sub->add_option("--profile", args->profile, "Profile whose modelled bus bytes are reported")
+    sub->add_option(
+           "--profile", args->profile,
+           profile_option_help("The controller profile whose modelled bus bytes are reported"))
+        ->check(profile_validator())
         ->capture_default_str();
     sub->callback([args, &exit_code] { exit_code = run_info(*args); });
 }

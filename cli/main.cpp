@@ -69,12 +69,14 @@ int main(int argc, char** argv) {
     register_host_run(app, exit_code);
     register_host_validate(app, exit_code);
     register_list(app, exit_code);
+    register_help(app, exit_code);
+    app.footer(names_summary());
     use_installed_period_parts();
 
     // no command at all: say how to start
     if (argc == 1) {
         std::cerr << "fb89: usage: fb89 COMMAND [OPTIONS], e.g. `fb89 render demo`; "
-                     "`fb89 --help` lists the commands, `fb89 COMMAND --help` a command's "
+                     "`fb89 --help` lists the commands, `fb89 help COMMAND` a command's "
                      "options, `fb89 list` the methods, hosts, scenes and experiments\n";
         return kBadInput;
     }

@@ -312,8 +312,7 @@ void register_radiosity(CLI::App& app, int& exit_code) {
         "Radiosity (the paper's §5): patches, intervisibility, form factors, solve, "
         "and the result through the Z-buffer and controller");
     sub->add_option("scene", args->scene,
-                    "Scene with at least one emitting face: a .json file, or a bundled scene by "
-                    "name (fb89 list scenes)")
+                    scene_argument_help("Scene with at least one emitting face: a .json file"))
         ->required();
     sub->add_option("--ff", args->ff,
                     "Form factors: flux (flux-traced δ, centre point form), hybrid (δ by the "
@@ -366,7 +365,9 @@ void register_radiosity(CLI::App& app, int& exit_code) {
     sub->add_option("--stream", args->stream, "Record the command stream ('-' for stdout)");
     sub->add_option("--stats", args->stats,
                     "Write host and controller figures as JSON ('-' for stdout)");
-    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, res, adaptive, passes, &exit_code] {
         if (res->count() > 0 && args->ff != "hemicube")

@@ -81,13 +81,7 @@ void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& m
         {"--grid-density", host::kBeamOptions, "beam"},
         {"--beam-threshold", host::kBeamOptions, "beam"},
     };
-    host::Method m;
-    try {
-        m = host::method_named(method);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    const host::MethodInfo& info = host::method_info(m);
+    const host::MethodInfo& info = host::method_info(find_method(method));
     for (const Group& g : kGroups)
         if (sub.get_option(g.option)->count() > 0 && !info.uses(g.group))
             throw UsageError(fmt::format("{}: the {} method does not use it (only {} do)", g.option,
@@ -255,7 +249,7 @@ int run_render(const RenderArgs& args) {
     host::MethodOptions options;
     std::string threshold_source, beam_source;
     try {
-        options.method = host::method_named(args.method);
+        options.method = find_method(args.method);
         options.warnock.window_test = window_test_named(args.window_test);
         options.warnock.approx = {args.approx_min_side, args.approx_epsilon};
         options.hybrid.threshold = resolve_threshold(args.threshold, &threshold_source, args.host);
@@ -354,15 +348,12 @@ int run_render(const RenderArgs& args) {
 void register_render(CLI::App& app, int& exit_code) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* sub = app.add_subcommand("render", "Render a scene with one hidden-surface method");
-    sub->add_option("scene", args->scene,
-                    "Scene: a file (.json, or .tri screen-space triangles), or a bundled scene by "
-                    "name (fb89 list scenes)")
+    sub->add_option(
+           "scene", args->scene,
+           scene_argument_help("Scene: a .json file or a .tri file of screen-space triangles"))
         ->required();
-    std::string methods;
-    for (const host::MethodInfo& m : host::methods())
-        methods += (methods.empty() ? "" : ", ") + std::string(m.name);
-    sub->add_option("--method,-m", args->method,
-                    "Hidden-surface method: " + methods + " (fb89 list methods)")
+    sub->add_option("--method,-m", args->method, method_option_help("Hidden-surface method"))
+        ->check(method_validator())
         ->capture_default_str();
     sub->add_option("--window-test", args->window_test,
                     "Warnock's window test: area (the paper's) or centres (sampling-aware)")
@@ -427,7 +418,9 @@ void register_render(CLI::App& app, int& exit_code) {
                     "Also stream the commands to `fb89 controller --listen PATH` on this socket");
     sub->add_option("--stats", args->stats,
                     "Write host and controller figures as JSON ('-' for stdout)");
-    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     sub->add_option("--buffer", args->buffer,
                     "The controller's command buffer in bytes, or unbounded, for the pipeline in "
                     "time (default: the profile's; docs/COST_MODEL.md)");
@@ -436,9 +429,8 @@ void register_render(CLI::App& app, int& exit_code) {
                     "(Perfetto, chrome://tracing): host, bus and controller lanes, host stalls, "
                     "the buffer's fill ('-' for stdout)");
     sub->add_option("--host", args->host,
-                    "Host the frame is timed on: native (this machine), sun3-60, sun3-260 or a "
-                    ".json host profile; a 1989 host runs fb89's host code on an emulated "
-                    "MC68020 + MC68881 and models its time (docs/HOST_COST_MODEL.md)")
+                    host_option_help("Host the frame is timed on") + " (docs/HOST_COST_MODEL.md)")
+        ->check(host_validator())
         ->capture_default_str();
     sub->add_option("--classes", args->classes,
                     "1989 host: also list the N instruction classes that take most of the "

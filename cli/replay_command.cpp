@@ -235,7 +235,9 @@ void register_replay(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand(
         "replay", "Replay a recorded stream into the controller under a cost profile");
     sub->add_option("stream", args->stream, "Stream file ('-' for stdin)")->required();
-    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     sub->add_option("--png", args->png,
                     "Write the last complete frame as PNG (with --snapshot: the snapshots)");
     sub->add_option("--snapshot", args->snapshot,

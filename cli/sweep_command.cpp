@@ -46,9 +46,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
     sub->add_option("what", a->what, "What to sweep: threshold (the hybrid's Expr. 3.1)")
         ->check(CLI::IsMember({"threshold"}))
         ->required();
-    sub->add_option("scenes", a->request.scenes,
-                    "Scenes: files, or bundled scenes by name (fb89 list scenes)")
-        ->required();
+    sub->add_option("scenes", a->request.scenes, scene_argument_help("Scenes: files"))->required();
     sub->add_option("--from", a->request.from, "Smallest threshold of the ramp (> 0)")
         ->capture_default_str();
     sub->add_option("--to", a->request.to, "Largest threshold of the ramp")->capture_default_str();
@@ -66,7 +64,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option("--csv", a->csv, "Write the results as CSV ('-' for stdout)");
     sub->add_option("--size", a->request.size, "Image size WxH, overriding the scenes'");
-    sub->add_option("--profile", a->request.profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", a->request.profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     add_host_options(sub, a->request.host);
     sub->add_flag("--quiet,-q", a->quiet, "Print nothing but errors");
     add_isa_option(sub);

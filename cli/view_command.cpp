@@ -294,7 +294,9 @@ void register_view(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand(
         "view", "Play a command stream in a window at the modelled controller speed");
     sub->add_option("stream", args->stream, "Stream file ('-' for stdin)")->required();
-    sub->add_option("--profile", args->profile, profile_option_help())->capture_default_str();
+    sub->add_option("--profile", args->profile, profile_option_help())
+        ->check(profile_validator())
+        ->capture_default_str();
     auto* speed =
         sub->add_option("--speed", args->speed, "Modelled time per wall time; 1 = real 1989 time")
             ->check(CLI::Validator(

@@ -153,11 +153,4 @@ void add_isa_option(CLI::App* sub) {
             levels + "; default the last, or $FB89_ISA)");
 }
 
-std::string profile_option_help() {
-    std::string names;
-    for (const std::string& n : controller::list_profiles())
-        names += n + ", ";
-    return "Controller cost profile: " + names + "or a .json file (fb89 list profiles)";
-}
-
 }  // namespace fb89::frontend

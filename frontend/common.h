@@ -65,9 +65,6 @@ bool claims_stdout(std::initializer_list<std::pair<std::string_view, std::string
 // "; did you mean 'render'?" when a known name is near `word` (edit distance), else "".
 std::string nearest_hint(const std::string& word, const std::vector<std::string>& known);
 
-// The help of every --profile option: the built-in controller profiles by name.
-std::string profile_option_help();
-
 // --isa baseline|v3|v4: the instruction set the tracing kernels run with, for comparison
 // (host/trace/kernel_level.h; default the best this CPU runs, or $FB89_ISA).
 void add_isa_option(CLI::App* sub);

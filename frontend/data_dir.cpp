@@ -8,6 +8,8 @@
 #include <mutex>
 #include <vector>
 
+#include "frontend/common.h"
+#include "frontend/names.h"
 #include "host/scene/scene_error.h"
 #include "period/isa.h"
 
@@ -59,42 +61,48 @@ fs::path scenes_dir() {
 
 }  // namespace
 
+bool is_scene_path(const std::string& argument) {
+    const std::string extension = fs::path(argument).extension().string();
+    return argument.find('/') != std::string::npos || extension == ".json" || extension == ".obj" ||
+           extension == ".tri";
+}
+
 std::string resolve_scene(const std::string& argument) {
     std::error_code ec;
-    if (argument.empty() || fs::exists(argument, ec)) return argument;
-    const fs::path dir = scenes_dir();
-    std::vector<fs::path> candidates;
-    // a path relative to the data folder ("scenes/demo.json" from any folder)
-    if (fs::path(argument).is_relative()) candidates.push_back(data_dir() / argument);
-    // a bare name: the bundled scene, with or without its extension
-    if (!dir.empty() && fs::path(argument).filename() == argument) {
-        candidates.push_back(dir / argument);
-        if (fs::path(argument).extension().empty()) {
-            candidates.push_back(dir / (argument + ".json"));
-            candidates.push_back(dir / (argument + ".tri"));
-        }
+    if (argument.empty()) return argument;
+    const std::vector<std::string> bundled = scene_names();
+    // a path: from the current folder only
+    if (is_scene_path(argument)) {
+        if (fs::exists(argument, ec)) return argument;
+        const std::string stem = fs::path(argument).stem().string();
+        const bool named = std::find(bundled.begin(), bundled.end(), stem) != bundled.end();
+        throw host::SceneError(
+            argument + ": cannot open the scene file: no such file" +
+            (fs::path(argument).is_relative()
+                 ? " (a relative path is read from the current folder, " +
+                       fs::current_path(ec).string() + ")"
+                 : std::string()) +
+            (named ? "; " + stem + " is a bundled scene: give its name alone, " + stem : ""));
     }
-    for (const fs::path& c : candidates)
-        if (fs::is_regular_file(c, ec)) return c.string();
-    std::string looked = "\"" + argument + "\"";
-    for (const fs::path& c : candidates)
-        looked += ", " + c.string();
-    std::vector<std::string> bundled;
+    // a name: a file of that name here, else the bundled scene
+    if (fs::is_regular_file(argument, ec)) return argument;
+    const fs::path dir = scenes_dir();
     if (!dir.empty())
-        for (const auto& e : fs::directory_iterator(dir, ec))
-            if (e.path().extension() == ".json") bundled.push_back(e.path().stem().string());
-    std::sort(bundled.begin(), bundled.end());
-    std::string names;
-    for (const std::string& n : bundled)
-        names += (names.empty() ? "" : " ") + n;
+        for (const char* extension : {".json", ".tri"})
+            if (fs::is_regular_file(dir / (argument + extension), ec))
+                return (dir / (argument + extension)).string();
     throw host::SceneError(
-        argument + ": cannot open the scene file (looked for " + looked + ")" +
-        (names.empty() ? "" : "; the bundled scenes are " + names + " (fb89 list scenes)"));
+        argument +
+        ": cannot open the scene file: no bundled scene of that name, nor a file in the current "
+        "folder" +
+        nearest_hint(argument, bundled) + " (the bundled scenes: " +
+        (bundled.empty() ? "none in " + (data_dir() / "scenes").string() : name_list(bundled)) +
+        "; fb89 list scenes)");
 }
 
 namespace {
 std::mutex g_names_mutex;
-std::map<std::string, std::string>& scene_names() {
+std::map<std::string, std::string>& given_scene_names() {
     static std::map<std::string, std::string> names;
     return names;
 }
@@ -102,18 +110,18 @@ std::map<std::string, std::string>& scene_names() {
 
 void name_scene_file(const std::string& path, const std::string& name) {
     std::lock_guard lock(g_names_mutex);
-    scene_names()[path] = name;
+    given_scene_names()[path] = name;
 }
 
 void forget_scene_file(const std::string& path) {
     std::lock_guard lock(g_names_mutex);
-    scene_names().erase(path);
+    given_scene_names().erase(path);
 }
 
 std::string scene_display_name(const std::string& path) {
     {
         std::lock_guard lock(g_names_mutex);
-        if (const auto named = scene_names().find(path); named != scene_names().end())
+        if (const auto named = given_scene_names().find(path); named != given_scene_names().end())
             return named->second;
     }
     std::error_code ec;

@@ -20,9 +20,14 @@ std::filesystem::path data_dir();
 // data_dir()/scenes/NAME (e.g. "A.json").
 std::string bundled_scene(const std::string& name);
 
-// The scene file an argument names: the path itself when it exists; else a bundled scene by
-// name ("demo", "G", "garish_room.json"), from data_dir()/scenes. Throws
-// host::SceneError naming every place it looked when there is none.
+// Whether a scene argument is a path rather than a name: it holds a '/' or ends in .json,
+// .obj or .tri.
+bool is_scene_path(const std::string& argument);
+// The scene file an argument names. A path (is_scene_path) is read as given: a relative one
+// from the current folder only. A name is a file of that name in the current folder, else
+// the bundled scene (data_dir()/scenes/NAME.json or .tri: "demo", "G"). Throws
+// host::SceneError naming the argument when there is none: for a path, saying so when a
+// bundled scene has its name; for a name, the nearest bundled one ("did you mean").
 std::string resolve_scene(const std::string& argument);
 // How tables and reports show a scene file: a bundled scene by its name ("G"), a file named
 // by name_scene_file by that name, any other file as it was given.

@@ -14,6 +14,7 @@
 #include "experiments/measure.h"
 #include "experiments/period_runs.h"
 #include "frontend/common.h"
+#include "frontend/names.h"
 #include "frontend/option_limits.h"
 #include "period/emulator.h"
 #include "protocol/stream_reader.h"
@@ -184,16 +185,10 @@ nlohmann::json pipeline_json(const experiments::FramePipeline& p, std::string_vi
 }
 
 void add_host_options(CLI::App* sub, HostArgs& a) {
-    std::string hosts;
-    for (const std::string& h : period::builtin_host_profile_names())
-        hosts += h + ", ";
     sub->add_option("--host", a.host,
-                    "Host the times are taken on: native (this machine, timed in rounds) or a "
-                    "1989 host (" +
-                        hosts +
-                        "or a .json host profile): fb89's host code on "
-                        "the emulated period host (fb89 list hosts), each run once, its time "
-                        "modelled")
+                    host_option_help("Host the times are taken on") +
+                        " (natively timed in rounds; on a 1989 host each run once)")
+        ->check(host_validator())
         ->capture_default_str();
     sub->add_option("--jobs,-j", a.jobs, "1989 host: emulated runs at once on this machine")
         ->check(cli_check(limits::kJobs))
@@ -215,6 +210,11 @@ std::shared_ptr<experiments::PeriodRuns> make_period_runs(const HostArgs& a) {
                 "--jobs, --results and --emit-jobs: only with a 1989 --host "
                 "(native times are taken in interleaved rounds, one at a time)");
         return nullptr;
+    }
+    try {
+        check_host_name(a.host);
+    } catch (const UsageError& e) {
+        throw UsageError(std::string("--host: ") + e.what());
     }
     char self[4096];
     const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);

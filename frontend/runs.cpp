@@ -13,6 +13,7 @@
 #include "frontend/calibration.h"
 #include "frontend/common.h"
 #include "frontend/data_dir.h"
+#include "frontend/names.h"
 #include "host/raster/hybrid.h"
 
 namespace fb89::frontend {
@@ -95,8 +96,8 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
         throw UsageError(named(r, "--methods", "methods") + ": only with the split experiment");
     for (const std::string& m : r.methods) {
         try {
-            s.methods.push_back(host::method_named(m));
-        } catch (const std::invalid_argument& e) {
+            s.methods.push_back(find_method(m));
+        } catch (const UsageError& e) {
             throw UsageError(named(r, "--methods", "methods") + ": " + e.what());
         }
     }
@@ -222,8 +223,9 @@ CompareOutcome run_compare(const CompareRequest& r) {
     out.settings = settings_of(r, {});
     // named as the console names it: a bundled scene by its name, a file as it was given
     const std::string shown = scene_display_name(r.scenes.front());
-    out.comparison = compare_methods(r.scenes.front(), methods, out.settings,
-                                     shown != r.scenes.front() || r.given.empty() ? shown : r.given);
+    out.comparison =
+        compare_methods(r.scenes.front(), methods, out.settings,
+                        shown != r.scenes.front() || r.given.empty() ? shown : r.given);
     if (jobs_emitted(out.settings, r.host)) return out;
     out.table = comparison_table(out.comparison);
     out.rows = compare_rows_json(out.comparison);

@@ -27,6 +27,7 @@
 #include "frontend/calibration.h"
 #include "frontend/common.h"
 #include "frontend/data_dir.h"
+#include "frontend/names.h"
 #include "frontend/period_host.h"
 #include "frontend/pipelines.h"
 #include "host/methods.h"
@@ -117,11 +118,24 @@ std::shared_ptr<RenderOutcome> render(const RenderArgs& a) {
     out->host = a.host;
     out->controller = a.controller;
     host::MethodOptions options;
-    try {
-        options.method = host::method_named(a.method);
-    } catch (const std::invalid_argument& e) {
-        throw frontend::UsageError(std::string("method: ") + e.what());
-    }
+    // a method, host or profile that is not one: the command line's check, with the nearest
+    // known name (frontend/names.h), under the keyword's name
+    const auto named = [](const char* keyword, const auto& check) {
+        try {
+            return check();
+        } catch (const frontend::UsageError& e) {
+            throw frontend::UsageError(std::string(keyword) + ": " + e.what());
+        }
+    };
+    options.method = named("method", [&] { return frontend::find_method(a.method); });
+    named("host", [&] {
+        frontend::check_host_name(a.host);
+        return 0;
+    });
+    named("controller", [&] {
+        frontend::check_profile_name(a.controller);
+        return 0;
+    });
     const host::MethodInfo& info = host::method_info(options.method);
     check_applies(info, host::kHybridOptions, "threshold", a.threshold.has_value());
     check_applies(info, host::kBeamOptions, "beam_threshold", a.beam_threshold.has_value());

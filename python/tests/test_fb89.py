@@ -489,3 +489,18 @@ def test_the_fig3_1_example_draws_its_chart(tmp_path):
                           text=True, check=False)
     assert done.returncode == 0, done.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_an_unknown_method_host_profile_or_scene_gets_the_nearest_name():
+    # the command line's check and its "did you mean" (frontend/names.h), under the keyword
+    cases = [
+        ({"method": "zbufer"}, "method: unknown method 'zbufer'; did you mean 'zbuffer'?"),
+        ({"host": "sun4-26"}, "host: unknown host 'sun4-26'; did you mean 'sun4-260'?"),
+        ({"controller": "idael"}, "controller: unknown profile 'idael'; did you mean 'ideal'?"),
+    ]
+    for kwargs, said in cases:
+        with pytest.raises(fb89.OptionError) as e:
+            fb89.render("demo", **kwargs)
+        assert said in str(e.value), str(e.value)
+    with pytest.raises(fb89.SceneError, match="did you mean 'demo'"):
+        fb89.render("demoo")

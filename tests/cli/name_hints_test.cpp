@@ -1,0 +1,65 @@
+// "did you mean" for the names a user gives: every command taking a scene, a method, a
+// controller profile or a host answers a near miss with exit 2, one line naming the option
+// and the nearest known name, and writes nothing.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "tests/cli/cli_runner.h"
+
+namespace {
+
+struct Case {
+    std::string args;  // after fb89
+    std::string says;  // part of the one line of error
+};
+
+TEST(NameHints, EveryCommandAnswersANearMissWithTheNearestName) {
+    const std::string out = (fb89::testing::test_dir() / "out.png").string();
+    const std::vector<Case> cases = {
+        {"render A --method zbufer",
+         "render: --method: unknown method 'zbufer'; did you mean "
+         "'zbuffer'?"},
+        {"experiment split A --methods scanlin",
+         "--methods: unknown method 'scanlin'; did you "
+         "mean 'scanline'?"},
+        {"calibrate --method beem", "--method: unknown method 'beem'; did you mean 'beam'?"},
+        {"render A --profile tms34010-50mz",
+         "--profile: unknown profile 'tms34010-50mz'; did "
+         "you mean 'tms34010-50mhz'?"},
+        {"replay in.fb89 --profile idael", "did you mean 'ideal'?"},
+        {"view in.fb89 --profile idael", "did you mean 'ideal'?"},
+        {"info in.fb89 --profile idael", "did you mean 'ideal'?"},
+        {"controller --listen sock --profile idael", "did you mean 'ideal'?"},
+        {"radiosity garish_room --profile idael", "did you mean 'ideal'?"},
+        {"sweep threshold A --profile idael", "did you mean 'ideal'?"},
+        {"compare A --profile idael", "did you mean 'ideal'?"},
+        {"experiment fig2.1 --profile idael", "did you mean 'ideal'?"},
+        {"render A --host sun3-6", "--host: unknown host 'sun3-6'; did you mean 'sun3-60'?"},
+        {"compare A --host sparcstation1", "did you mean 'sparcstation-1'?"},
+        {"experiment split A --host pc-386-52", "did you mean 'pc-386-25'?"},
+        {"sweep threshold A --host natve", "did you mean 'native'?"},
+        {"calibrate --host sun4260", "did you mean 'sun4-260'?"},
+        {"host-validate --profile sun4-26",
+         "unknown host profile 'sun4-26'; did you mean "
+         "'sun4-260'?"},
+        {"render demoo --png " + out,
+         "demoo: cannot open the scene file: no bundled scene of that name, nor a file in the "
+         "current folder; did you mean 'demo'?"},
+        {"compare demoo", "did you mean 'demo'?"},
+        {"radiosity garish_rom", "did you mean 'garish_room'?"},
+        {"sweep threshold A fF", "did you mean 'F'?"},
+        {"calibrate cornel_box --dry-run", "did you mean 'cornell_box'?"},
+        {"experiment fig2.1 cornell_mirorr", "did you mean 'cornell_mirror'?"},
+    };
+    for (const Case& c : cases) {
+        const fb89::testing::CliRun r = fb89::testing::run_fb89(c.args);
+        EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace

@@ -1,0 +1,96 @@
+// frontend/names.cpp: every registered name passes its check, a near miss is answered with
+// the nearest known name, a far one with none, and paths pass where the loaders read files.
+#include "frontend/names.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "frontend/common.h"
+#include "tests/cli/help_text.h"
+
+namespace {
+
+namespace fe = fb89::frontend;
+
+// What a check says of `name`: "" when it passes, else its UsageError's message.
+std::string said(const std::function<void(const std::string&)>& check, const std::string& name) {
+    try {
+        check(name);
+    } catch (const fe::UsageError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+void check_method(const std::string& name) {
+    fe::find_method(name);
+}
+
+TEST(Names, EveryRegisteredNamePassesItsCheck) {
+    for (const std::string& m : fb89::testing::registered_methods())
+        EXPECT_EQ(said(check_method, m), "") << m;
+    for (const std::string& p : fb89::testing::registered_profiles())
+        EXPECT_EQ(said(fe::check_profile_name, p), "") << p;
+    for (const std::string& h : fb89::testing::registered_hosts())
+        EXPECT_EQ(said(fe::check_host_name, h), "") << h;
+    for (const std::string& h : fb89::testing::registered_host_profiles())
+        EXPECT_EQ(said(fe::check_host_profile_name, h), "") << h;
+    EXPECT_EQ(fe::scene_names(), fb89::testing::bundled_scenes());
+}
+
+TEST(Names, ANearMissIsAnsweredWithTheNearestKnownName) {
+    EXPECT_EQ(said(check_method, "zbufer"),
+              "unknown method 'zbufer'; did you mean 'zbuffer'? (zbuffer, scanline, warnock, "
+              "hybrid, raytrace or beam; fb89 list methods)");
+    const std::string profile = said(fe::check_profile_name, "tms34020-40mz");
+    EXPECT_EQ(profile.rfind("unknown profile 'tms34020-40mz'; did you mean 'tms34020-40mhz'? (", 0),
+              0u)
+        << profile;
+    EXPECT_NE(profile.find("or a .json profile; fb89 list profiles)"), std::string::npos);
+    const std::string host = said(fe::check_host_name, "sun4-26");
+    EXPECT_EQ(host.rfind("unknown host 'sun4-26'; did you mean 'sun4-260'? (native, ", 0), 0u)
+        << host;
+    EXPECT_NE(host.find("or a .json host profile; fb89 list hosts)"), std::string::npos) << host;
+    const std::string period = said(fe::check_host_profile_name, "pc-386-2");
+    EXPECT_EQ(period.rfind("unknown host profile 'pc-386-2'; did you mean 'pc-386-25'? (", 0), 0u)
+        << period;
+    EXPECT_EQ(period.find("native"), std::string::npos) << "host-validate has no native";
+}
+
+TEST(Names, AFarNameGetsNoGuessButTheWholeList) {
+    const std::string far = said(check_method, "painter");
+    EXPECT_EQ(far.find("did you mean"), std::string::npos) << far;
+    for (const std::string& m : fb89::testing::registered_methods())
+        EXPECT_TRUE(fb89::testing::names(far, m)) << m << ": " << far;
+    EXPECT_EQ(said(fe::check_host_name, "vax-11-780").find("did you mean"), std::string::npos);
+}
+
+TEST(Names, PathsPassWhereTheLoadersReadFiles) {
+    EXPECT_EQ(said(fe::check_profile_name, "boards/mine.json"), "");
+    EXPECT_EQ(said(fe::check_profile_name, "mine.json"), "");
+    EXPECT_EQ(said(fe::check_host_name, "hosts/mine.json"), "");
+    EXPECT_EQ(said(fe::check_host_profile_name, "mine.json"), "");
+    // the host loader reads only .json files; "native" is no host profile
+    EXPECT_NE(said(fe::check_host_name, "hosts/mine"), "");
+    EXPECT_NE(said(fe::check_host_profile_name, "native"), "");
+}
+
+TEST(Names, ValidatorsGiveTheChecksMessage) {
+    std::string good = "beam", bad = "bem";
+    EXPECT_EQ(fe::method_validator()(good), "");
+    EXPECT_NE(fe::method_validator()(bad).find("did you mean 'beam'?"), std::string::npos);
+    std::string calibrated = "hybird";
+    EXPECT_EQ(fe::one_of_validator("method", {"hybrid", "beam"})(calibrated),
+              "unknown method 'hybird'; did you mean 'hybrid'? (hybrid or beam)");
+}
+
+TEST(Names, NameListJoinsTheLastTwoWithTheWordGiven) {
+    EXPECT_EQ(fe::name_list({"a", "b", "c"}), "a, b or c");
+    EXPECT_EQ(fe::name_list({"a", "b"}, "and"), "a and b");
+    EXPECT_EQ(fe::name_list({"a"}), "a");
+    EXPECT_EQ(fe::name_list({}), "");
+}
+
+}  // namespace
