@@ -122,25 +122,27 @@ std::string timeline_json(const protocol::MemoryBuffer& commands,
         counter(ts);
     }
 
-    nlohmann::json other = {
-        {"title", frame.title},
-        {"send_times",
-         frame.send_times.empty() ? "none: every command ready at 0" : frame.send_times},
-        {"buffer_bytes", controller::command_buffer_json(buffer_bytes)},
-        {"commands", all.size()},
-        // the same names and units as the pipeline's figures in --stats and Python
-        // (frontend::pipeline_json)
-        {"frame_ms", f.frame_us / 1e3},
-        {"host_ms", f.host_us / 1e3},
-        {"host_stalled_ms", f.host_stalled_us / 1e3},
-        {"host_stalls", f.stalls},
-        {"bus_busy_ms", f.bus_busy_us / 1e3},
-        {"controller_busy_ms", f.controller_busy_us / 1e3},
-        {"controller_idle_ms", f.controller_idle_us / 1e3},
-        {"buffer_high_water_bytes", f.high_water_bytes},
-        {"host_utilization", f.host_utilization()},
-        {"controller_utilization", f.controller_utilization()}};
+    nlohmann::json other = pipeline_figures_json(f);
+    other.update({{"title", frame.title},
+                  {"send_times",
+                   frame.send_times.empty() ? "none: every command ready at 0" : frame.send_times},
+                  {"buffer_bytes", controller::command_buffer_json(buffer_bytes)},
+                  {"commands", all.size()}});
     return w.finish(other);
+}
+
+nlohmann::json pipeline_figures_json(const controller::PipelineFigures& p) {
+    return {{"frame_ms", p.frame_us / 1e3},
+            {"host_ms", p.host_us / 1e3},
+            {"host_stalled_ms", p.host_stalled_us / 1e3},
+            {"host_stalls", p.stalls},
+            {"bus_busy_ms", p.bus_busy_us / 1e3},
+            {"controller_busy_ms", p.controller_busy_us / 1e3},
+            {"controller_idle_ms", p.controller_idle_us / 1e3},
+            {"buffer_high_water_bytes", p.high_water_bytes},
+            {"buffer_bytes", controller::command_buffer_json(p.buffer_bytes)},
+            {"host_utilization", p.host_utilization()},
+            {"controller_utilization", p.controller_utilization()}};
 }
 
 }  // namespace fb89::experiments

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "controller_sim/profile.h"
 #include "controller_sim/timed_pipeline.h"
 #include "protocol/memory_buffer.h"
@@ -36,6 +38,12 @@ struct TimelineFrame {
 // with a buffer of `buffer_bytes`, as trace-event JSON text; its figures in `figures` when
 // given. Throws std::invalid_argument as TimedPipeline does (a send time that goes back, a
 // command too large for the buffer).
+// A frame's figures through the pipeline as JSON, in the names and units every output uses
+// (--stats' "pipeline", the timeline's summary, Python): frame_ms, host_ms, host_stalled_ms,
+// host_stalls, bus_busy_ms, controller_busy_ms, controller_idle_ms, buffer_high_water_bytes,
+// buffer_bytes, host_utilization, controller_utilization.
+nlohmann::json pipeline_figures_json(const controller::PipelineFigures& p);
+
 std::string timeline_json(const protocol::MemoryBuffer& commands,
                           const std::vector<double>& send_us, const TimelineFrame& frame,
                           const controller::CostProfile& profile, uint64_t buffer_bytes,

@@ -13,6 +13,7 @@
 #include "controller_sim/controller.h"
 #include "experiments/measure.h"
 #include "experiments/period_runs.h"
+#include "experiments/timeline.h"
 #include "frontend/common.h"
 #include "frontend/names.h"
 #include "frontend/option_limits.h"
@@ -166,22 +167,13 @@ std::string pipeline_line(const experiments::FramePipeline& p, double controller
 }
 
 nlohmann::json pipeline_json(const experiments::FramePipeline& p, std::string_view sends) {
-    return {{"send_times", sends},
-            {"buffer_bytes", controller::command_buffer_json(p.buffer_bytes)},
-            {"frame_ms", p.frame_us / 1e3},
-            {"max_ms", p.max_us() / 1e3},
-            {"sum_ms", p.sum_us() / 1e3},
-            {"overlap", p.overlap()},
-            {"host_ms", p.host_us / 1e3},
-            {"host_stalled_ms", p.host_stalled_us / 1e3},
-            {"host_stalls", p.stalls},
-            {"bus_busy_ms", p.bus_busy_us / 1e3},
-            {"controller_busy_ms", p.controller_busy_us / 1e3},
-            {"controller_idle_ms", p.controller_idle_us / 1e3},
-            {"controller_alone_ms", p.controller_alone_us / 1e3},
-            {"buffer_high_water_bytes", p.high_water_bytes},
-            {"host_utilization", p.host_utilization()},
-            {"controller_utilization", p.controller_utilization()}};
+    nlohmann::json j = experiments::pipeline_figures_json(p);
+    j.update({{"send_times", sends},
+              {"max_ms", p.max_us() / 1e3},
+              {"sum_ms", p.sum_us() / 1e3},
+              {"overlap", p.overlap()},
+              {"controller_alone_ms", p.controller_alone_us / 1e3}});
+    return j;
 }
 
 void add_host_options(CLI::App* sub, HostArgs& a) {

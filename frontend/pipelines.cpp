@@ -25,20 +25,6 @@ std::string render_timeline(const experiments::MethodRun& run, const std::string
     return experiments::timeline_json(run.commands, run.send_us, frame, profile, run.buffer_bytes);
 }
 
-nlohmann::json pipeline_figures_json(const controller::PipelineFigures& p) {
-    return {{"frame_ms", p.frame_us / 1e3},
-            {"host_ms", p.host_us / 1e3},
-            {"host_stalled_ms", p.host_stalled_us / 1e3},
-            {"host_stalls", p.stalls},
-            {"bus_busy_ms", p.bus_busy_us / 1e3},
-            {"controller_busy_ms", p.controller_busy_us / 1e3},
-            {"controller_idle_ms", p.controller_idle_us / 1e3},
-            {"buffer_high_water_bytes", p.high_water_bytes},
-            {"buffer_bytes", controller::command_buffer_json(p.buffer_bytes)},
-            {"host_utilization", p.host_utilization()},
-            {"controller_utilization", p.controller_utilization()}};
-}
-
 FramePipelines::FramePipelines(uint64_t buffer_bytes, bool keep_last_frame)
     : m_buffer(buffer_bytes), m_keep(keep_last_frame) {}
 

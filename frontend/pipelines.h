@@ -15,6 +15,7 @@
 #include "controller_sim/controller.h"
 #include "controller_sim/timed_pipeline.h"
 #include "experiments/render_job.h"
+#include "experiments/timeline.h"
 #include "protocol/command.h"
 #include "protocol/memory_buffer.h"
 
@@ -27,11 +28,8 @@ std::string render_timeline(const experiments::MethodRun& run, const std::string
                             const std::string& method, const std::string& host,
                             const controller::CostProfile& profile, const std::string& option);
 
-// One replayed frame's figures as JSON, in the key names of --stats' "pipeline"
-// (period_host.h's pipeline_json): frame_ms, host_ms, host_stalled_ms, host_stalls,
-// bus_busy_ms, controller_busy_ms, controller_idle_ms, buffer_high_water_bytes,
-// host_utilization, controller_utilization, and buffer_bytes (as --stats gives it).
-nlohmann::json pipeline_figures_json(const controller::PipelineFigures& p);
+// One replayed frame's figures as JSON: experiments::pipeline_figures_json (timeline.h).
+using experiments::pipeline_figures_json;
 
 // Each complete frame of a stream through the pipeline with a command buffer of
 // `buffer_bytes`, from the send times the stream carries (none: every command ready at 0).
