@@ -54,15 +54,8 @@ TEST(HelpCommand, EveryRegisteredNameIsInTheHelpOfEachOptionTakingIt) {
     for (const std::string& command : fb89::testing::listed_commands()) {
         const auto paragraphs =
             fb89::testing::option_paragraphs(run_fb89(command + " --help").out, false);
-        for (const auto& [key, paragraph] : paragraphs) {
-            const std::vector<std::string> taken = fb89::testing::names_taken(command, key);
-            if (taken.empty()) continue;
-            checked.insert(command + " " + key);
-            for (const std::string& name : taken)
-                EXPECT_TRUE(names(paragraph, name))
-                    << "fb89 " << command << " --help: " << key << " does not name " << name << "\n"
-                    << paragraph;
-        }
+        checked.merge(fb89::testing::expect_every_name_in(command, paragraphs,
+                                                          "fb89 " + command + " --help"));
     }
     // the commands that take these names offer them (a renamed option would skip its check)
     for (const char* expected :

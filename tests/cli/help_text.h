@@ -9,6 +9,7 @@
 #include <cctype>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -141,6 +142,25 @@ inline std::vector<std::string> names_taken(const std::string& command, const st
     if (key == "--host") return registered_hosts();
     if (key == "scene" || key == "scenes") return bundled_scenes();
     return {};
+}
+
+// Checks that each option paragraph of `command`'s text (its --help, or its man page) names
+// every name the option takes; `where` says which text in messages. Returns the
+// "command key" pairs it checked.
+inline std::set<std::string> expect_every_name_in(
+    const std::string& command, const std::map<std::string, std::string>& paragraphs,
+    const std::string& where) {
+    std::set<std::string> checked;
+    for (const auto& [key, paragraph] : paragraphs) {
+        const std::vector<std::string> taken = names_taken(command, key);
+        if (taken.empty()) continue;
+        checked.insert(command + " " + key);
+        for (const std::string& name : taken)
+            EXPECT_TRUE(names(paragraph, name))
+                << where << ": " << key << " does not name " << name << "\n"
+                << paragraph;
+    }
+    return checked;
 }
 
 }  // namespace fb89::testing

@@ -42,15 +42,8 @@ TEST(ManPages, EveryRegisteredNameIsInTheOptionsTakingIt) {
         const std::string page = page_of(command);
         ASSERT_FALSE(page.empty()) << command;
         const auto paragraphs = fb89::testing::option_paragraphs(page, true);
-        for (const auto& [key, paragraph] : paragraphs) {
-            const std::vector<std::string> taken = fb89::testing::names_taken(command, key);
-            if (taken.empty()) continue;
-            checked.insert(command + " " + key);
-            for (const std::string& name : taken)
-                EXPECT_TRUE(names(paragraph, name))
-                    << "fb89-" << command << "(1): " << key << " does not name " << name << "\n"
-                    << paragraph;
-        }
+        checked.merge(
+            fb89::testing::expect_every_name_in(command, paragraphs, "fb89-" + command + "(1)"));
     }
     for (const char* expected : {"render --method", "render --host", "render --profile",
                                  "render scene", "experiment --host", "host-validate --profile"})
