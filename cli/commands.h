@@ -28,6 +28,7 @@ void register_radiosity(CLI::App& app, int& exit_code);
 void register_host_run(CLI::App& app, int& exit_code);
 void register_list(CLI::App& app, int& exit_code);
 void register_host_validate(CLI::App& app, int& exit_code);
+void register_controller_validate(CLI::App& app, int& exit_code);
 void register_help(CLI::App& app, int& exit_code);
 
 }  // namespace fb89::cli

@@ -37,14 +37,6 @@ struct Row {
     uint64_t unpriced = 0;
 };
 
-std::string csv_field(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string out = "\"";
-    for (char c : s)
-        out += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return out + "\"";
-}
-
 std::string number(double v) {
     return fmt::format("{:.4g}", v);
 }

@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
     register_radiosity(app, exit_code);
     register_host_run(app, exit_code);
     register_host_validate(app, exit_code);
+    register_controller_validate(app, exit_code);
     register_list(app, exit_code);
     register_help(app, exit_code);
     app.footer(names_summary());

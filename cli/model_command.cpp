@@ -147,14 +147,6 @@ void print_human(const Table& t) {
         print_line([&](size_t i) { return cell_text(row[i], true); });
 }
 
-std::string csv_field(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string quoted = "\"";
-    for (char ch : s)
-        quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-    return quoted + "\"";
-}
-
 std::string csv_text(const Table& t) {
     std::string out;
     std::vector<size_t> keyed;

@@ -10,20 +10,23 @@
 //    profile's bpp (P = 16/bpp pixels per 16-bit word), as if the colour were an index.
 //  - Back-pressure. The queue between bus and controller is unbounded: the host never
 //    waits for the controller (protocol version 1 has no flow control).
-//  - The host port register protocol (HSTADRL/H, HSTDATA auto-increment, HSTCTL) and the
-//    command ring buffer in GSP memory: a command costs its modelled bytes / B_bus plus one
-//    t_handshake, and C_cmd cycles to fetch and decode.
+//  - The host port's register protocol step by step: a command costs its modelled bytes over
+//    the slower of the host's bus and the chip's port plus one t_handshake, and each of its
+//    16-bit words one memory cycle of the GSP's bus, charged to its own execution.
 //  - Window-checking cycles (MAME's apply_window adds 3-11 when clipping): clipping is free,
 //    a clipped command costs its set-up plus the pixels left.
-//  - Screen refresh, VRAM shift-register transfers, DRAM refresh, host interrupts, the
-//    instruction cache: none of them steal cycles here.
+//  - Refresh as events: DRAM refresh and the display's VRAM transfers take their share of
+//    the bus as a stretch of every GSP state (CostProfile::stolen_share), not at the moments
+//    they fall; host interrupts and instruction-cache misses (the listing fits the cache)
+//    take nothing.
 //  - Pixel processing other than replace (boolean, arithmetic, transparency, plane masks).
 //  - Time between frames: each frame's clock starts at 0 with its FRAME_BEGIN, bus and
 //    controller idle.
 //
 // Commands outside a frame (before the first FRAME_BEGIN, or after a FRAME_END and before
 // the next FRAME_BEGIN) find no framebuffer to draw in: they write nothing, are counted
-// as outside in ControllerStats::unframed and cost C_cmd plus their bus time. A
+// as outside in ControllerStats::unframed and cost what a wholly clipped command costs
+// (cost_model.h, outside_cycles) plus their bus time. A
 // FRAME_BEGIN arriving inside an open frame first closes that frame as incomplete.
 #include "controller_sim/controller.h"
 
@@ -80,7 +83,7 @@ std::array<Controller::OpcodeEntry, protocol::kOpcodeCount> Controller::make_opc
 Controller::Controller(CostProfile profile)
     : m_opcodes(make_opcode_table(profile)),
       m_costs(profile),
-      m_us_per_cycle(1e6 / profile.f_cyc_hz) {
+      m_us_per_cycle(us_per_cycle(profile)) {
     m_stats.profile = std::move(profile);
 }
 
@@ -192,7 +195,7 @@ Controller::Executed Controller::exec_frame_begin(const FrameBegin& f) {
 // inlined into execute_drawing's loop, too, where the calls would cost a tenth of a span.)
 [[gnu::always_inline]] inline Controller::Executed Controller::exec_fill_rect(const FillRect& f) {
     const auto clip = m_in_frame ? clip_fill_rect(f, m_fb.width(), m_fb.height()) : std::nullopt;
-    if (!clip) return Executed{m_costs.command_only(), 0, false, true};
+    if (!clip) return Executed{m_costs.fill_outside(), 0, false, true};
     m_fb.fill_rect(clip->rect, f.color);
     return Executed{m_costs.fill_rect(clip->rect), clip->rect.pixels(), clip->clipped, false};
 }
@@ -200,7 +203,7 @@ Controller::Executed Controller::exec_frame_begin(const FrameBegin& f) {
 // DRAW_SPAN: clip to the framebuffer, draw what is left as a line or a one-row fill.
 [[gnu::always_inline]] inline Controller::Executed Controller::exec_draw_span(const DrawSpan& s) {
     const auto clip = m_in_frame ? clip_span(s, m_fb.width(), m_fb.height()) : std::nullopt;
-    if (!clip) return Executed{m_costs.command_only(), 0, false, true};
+    if (!clip) return Executed{m_costs.span_outside(), 0, false, true};
     const PixelRect& r = clip->rect;
     m_fb.draw_span(r.y, r.x, r.w, s.color);
     return Executed{m_costs.draw_span(r.x, r.w), r.w, clip->clipped, false};
@@ -211,9 +214,10 @@ Controller::Executed Controller::exec_marker(const Marker&) {
     return Executed{};
 }
 
-// FRAME_END: fetch and decode; step() then closes the frame and takes its checksum.
+// FRAME_END: fetch, decode and tell the host; step() then closes the frame and takes its
+// checksum.
 Controller::Executed Controller::exec_frame_end(const FrameEnd&) {
-    return Executed{m_costs.command_only(), 0, false, !m_in_frame};
+    return Executed{m_costs.frame_end(), 0, false, !m_in_frame};
 }
 
 // --- accounting ------------------------------------------------------------------------

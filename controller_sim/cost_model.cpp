@@ -1,9 +1,8 @@
 // Cycle counts per command (see cost_model.h and docs/COST_MODEL.md).
 //
-// Differences from MAME's fill(): window clipping is always on and free (MAME adds 3-11
-// cycles in apply_window when clipping changes the rectangle; we charge only the set-up
-// and the pixels left, as the design fixes), and the per-command fetch/decode C_cmd, which
-// MAME leaves to the GSP program, is charged here.
+// Window clipping is always on and free (MAME adds 3-11 cycles in apply_window when
+// clipping changes the rectangle; we charge only the set-up and the pixels left, as the
+// design fixes).
 #include "controller_sim/cost_model.h"
 
 #include <bit>
@@ -17,42 +16,96 @@ uint64_t words(uint64_t x, uint64_t w, uint32_t pixels_per_word) {
     return (x + w - 1) / pixels_per_word - x / pixels_per_word + 1;
 }
 
+uint64_t partial_words(uint64_t x, uint64_t w, uint32_t pixels_per_word) {
+    const bool left = x % pixels_per_word != 0, right = (x + w) % pixels_per_word != 0;
+    if (words(x, w, pixels_per_word) == 1) return left || right ? 1 : 0;
+    return uint64_t{left} + right;
+}
+
+namespace {
+
+uint64_t row_cycles(const CostProfile& p, uint64_t x, uint64_t w) {
+    const uint32_t ppw = p.pixels_per_word();
+    const uint64_t partial = partial_words(x, w, ppw);
+    return p.c_row + uint64_t{p.c_op} * (words(x, w, ppw) - partial) +
+           uint64_t{p.c_op_partial} * partial;
+}
+
+uint32_t setup_of(const CostProfile& p, protocol::Opcode op) {
+    switch (op) {
+        case protocol::Opcode::FrameBegin:
+            return p.c_frame_begin_setup;
+        case protocol::Opcode::FillRect:
+            return p.c_setup;
+        case protocol::Opcode::DrawSpan:
+            return p.span_as == SpanAs::Fill ? p.c_span_fill_setup : p.c_line_setup;
+        case protocol::Opcode::FrameEnd:
+            return p.c_frame_end_setup;
+        case protocol::Opcode::Marker:
+            return 0;
+    }
+    return 0;
+}
+
+}  // namespace
+
 uint64_t fill_rect_cycles(const CostProfile& p, const PixelRect& r) {
-    const uint64_t per_row = p.c_row + uint64_t{p.c_op} * words(r.x, r.w, p.pixels_per_word());
-    return uint64_t{p.c_cmd} + p.c_setup + uint64_t{r.h} * per_row;
+    return uint64_t{p.c_cmd} + p.c_setup + host_word_cycles(p, protocol::Opcode::FillRect) +
+           uint64_t{r.h} * row_cycles(p, r.x, r.w);
 }
 
 uint64_t draw_span_cycles(const CostProfile& p, uint32_t x, uint32_t n) {
-    if (p.span_as == SpanAs::Fill) return fill_rect_cycles(p, PixelRect{x, 0, n, 1});
-    return uint64_t{p.c_cmd} + p.c_line_setup + uint64_t{p.c_line_pix} * n;
+    const uint64_t host = host_word_cycles(p, protocol::Opcode::DrawSpan);
+    if (p.span_as == SpanAs::Fill)
+        return uint64_t{p.c_cmd} + p.c_span_fill_setup + host + row_cycles(p, x, n);
+    return uint64_t{p.c_cmd} + p.c_line_setup + host + uint64_t{p.c_line_pix} * n;
 }
 
 uint64_t frame_begin_cycles(const CostProfile& p, uint32_t width, uint32_t height) {
-    if (width == 0 || height == 0) return command_only_cycles(p);
-    return fill_rect_cycles(p, PixelRect{0, 0, width, height});
+    if (width == 0 || height == 0) return outside_cycles(p, protocol::Opcode::FrameBegin);
+    return uint64_t{p.c_cmd} + p.c_frame_begin_setup +
+           host_word_cycles(p, protocol::Opcode::FrameBegin) +
+           uint64_t{height} * row_cycles(p, 0, width);
+}
+
+uint64_t frame_end_cycles(const CostProfile& p) {
+    return uint64_t{p.c_cmd} + p.c_frame_end_setup +
+           host_word_cycles(p, protocol::Opcode::FrameEnd);
+}
+
+uint64_t outside_cycles(const CostProfile& p, protocol::Opcode op) {
+    return uint64_t{p.c_cmd} + (p.outside_pays_setup ? setup_of(p, op) : 0) +
+           host_word_cycles(p, op);
 }
 
 CycleCosts::CycleCosts(const CostProfile& p)
-    : m_cmd(p.c_cmd),
-      m_fill_base(uint64_t{p.c_cmd} + p.c_setup),
+    : m_fill_base(uint64_t{p.c_cmd} + p.c_setup + host_word_cycles(p, protocol::Opcode::FillRect)),
+      m_span_fill_base(uint64_t{p.c_cmd} + p.c_span_fill_setup +
+                       host_word_cycles(p, protocol::Opcode::DrawSpan)),
+      m_line_base(uint64_t{p.c_cmd} + p.c_line_setup +
+                  host_word_cycles(p, protocol::Opcode::DrawSpan)),
+      m_fill_outside(outside_cycles(p, protocol::Opcode::FillRect)),
+      m_span_outside(outside_cycles(p, protocol::Opcode::DrawSpan)),
+      m_frame_end(frame_end_cycles(p)),
       m_row(p.c_row),
       m_op(p.c_op),
-      m_line_base(uint64_t{p.c_cmd} + p.c_line_setup),
+      m_op_partial(p.c_op_partial),
       m_line_pix(p.c_line_pix),
       m_span_as_fill(p.span_as == SpanAs::Fill) {
-    if (p.bpp == 0 || 16 % p.bpp != 0 || !std::has_single_bit(p.bpp))
+    if (p.bpp == 0 || p.bus_bits % p.bpp != 0 || !std::has_single_bit(p.bpp))
         throw std::invalid_argument(
             fmt::format("profile {}: bpp must be 1, 2, 4, 8 or 16, got {}", p.name, p.bpp));
     m_word_shift = static_cast<uint32_t>(std::countr_zero(p.pixels_per_word()));
+    m_word_mask = p.pixels_per_word() - 1;
 }
 
 double bus_seconds(const CostProfile& p, uint32_t bytes) {
     if (bytes == 0) return 0;
-    return static_cast<double>(bytes) / p.b_bus_bytes_per_s + p.t_handshake_s;
+    return static_cast<double>(bytes) / p.bus_bytes_per_s() + p.t_handshake_s;
 }
 
 double cycles_to_seconds(const CostProfile& p, uint64_t cycles) {
-    return static_cast<double>(cycles) / p.f_cyc_hz;
+    return static_cast<double>(cycles) / (p.f_cyc_hz * (1 - p.stolen_share));
 }
 
 }  // namespace fb89::controller

@@ -1,9 +1,11 @@
 // The controller's cost model: cycles per command and the bus/controller pipeline.
 //
-// Pure functions of a CostProfile and of the clipped geometry. The formulas follow MAME's
-// TMS34010 fill() (34010gfx.hxx): a set-up charge, then per row the 16-bit words touched
-// (full words plus partial end words) times the cost of one word. docs/COST_MODEL.md gives
-// every parameter, its source and the check values the tests verify.
+// Pure functions of a CostProfile and of the clipped geometry. A command costs the GSP's
+// command loop and its set-up (counted from the listing, gsp_listing.h), the memory cycles
+// of the host's words, and its pixels as memory cycles: per row of FILL the bus words
+// touched, a whole word one write cycle, a partial word a read and a write; per pixel of
+// LINE a read and a write unless a pixel is a whole word. docs/COST_MODEL.md gives every
+// parameter, its source and the check values the tests verify.
 #pragma once
 
 #include <cstdint>
@@ -13,54 +15,79 @@
 
 namespace fb89::controller {
 
-// 16-bit words touched by pixels x .. x+w-1 at P pixels per word (w >= 1):
+// Words of the local bus touched by pixels x .. x+w-1 at P pixels per word (w >= 1):
 // floor((x+w-1)/P) - floor(x/P) + 1.
 uint64_t words(uint64_t x, uint64_t w, uint32_t pixels_per_word);
+// Of those, the partial ones (some of their pixels outside the run): 0, 1 or 2.
+uint64_t partial_words(uint64_t x, uint64_t w, uint32_t pixels_per_word);
 
-// FILL_RECT of the clipped rectangle r: C_cmd + C_setup + h * (C_row + C_op * words(x, w)).
+// FILL_RECT of the clipped rectangle r: C_cmd + C_setup + the host's words +
+// h * (C_row + C_op * full words + C_op_partial * partial words).
 uint64_t fill_rect_cycles(const CostProfile& p, const PixelRect& r);
 // DRAW_SPAN of n pixels starting at x (clipped, n >= 1): as a line,
-// C_cmd + C_line_setup + C_line_pix * n; as a fill, FILL_RECT with h = 1.
+// C_cmd + C_line_setup + the host's words + C_line_pix * n; as a fill, one row of FILL after
+// the span's own set-up.
 uint64_t draw_span_cycles(const CostProfile& p, uint32_t x, uint32_t n);
-// FRAME_BEGIN: the clear, charged as one full-screen FILL_RECT; C_cmd alone for a 0-pixel frame.
+// FRAME_BEGIN: its set-up and the clear, a full-screen fill; no pixels for a 0-pixel frame.
 uint64_t frame_begin_cycles(const CostProfile& p, uint32_t width, uint32_t height);
-// A drawing command with nothing inside the framebuffer, and FRAME_END: fetch and decode only.
-inline uint64_t command_only_cycles(const CostProfile& p) {
-    return p.c_cmd;
+// FRAME_END: C_cmd, its set-up and its host word.
+uint64_t frame_end_cycles(const CostProfile& p);
+// A drawing command with nothing inside the framebuffer: C_cmd, the host's words and (with
+// a listing) the set-up that loads and runs FILL or LINE, which then draw nothing.
+uint64_t outside_cycles(const CostProfile& p, protocol::Opcode op);
+// The host's words of a command as the controller's bus pays for them.
+inline uint64_t host_word_cycles(const CostProfile& p, protocol::Opcode op) {
+    return uint64_t{p.host_words_of(op)} * p.c_host_word;
 }
 
 // The formulas above, for the controller's per-command path: the profile's figures widened
-// to 64 bits once, FILL_RECT's constant part summed, and the division by P a shift (bpp is
-// a power of two, so P is). Same results as fill_rect_cycles / draw_span_cycles /
-// command_only_cycles for every input.
+// to 64 bits once, each command's constant part summed, and the division by P a shift (P is
+// a power of two). Same results as fill_rect_cycles / draw_span_cycles / outside_cycles /
+// frame_end_cycles for every input.
 class CycleCosts {
   public:
     // Throws std::invalid_argument unless bpp is 1, 2, 4, 8 or 16 (as load_profile checks).
     explicit CycleCosts(const CostProfile& p);
 
     uint64_t fill_rect(const PixelRect& r) const {
-        return m_fill_base + uint64_t{r.h} * (m_row + m_op * words(r.x, r.w));
+        return m_fill_base + uint64_t{r.h} * row(r.x, r.w);
     }
     uint64_t draw_span(uint32_t x, uint32_t n) const {
-        if (m_span_as_fill) return m_fill_base + m_row + m_op * words(x, n);
+        if (m_span_as_fill) return m_span_fill_base + row(x, n);
         return m_line_base + m_line_pix * n;
     }
-    uint64_t command_only() const { return m_cmd; }
+    uint64_t fill_outside() const { return m_fill_outside; }
+    uint64_t span_outside() const { return m_span_outside; }
+    uint64_t frame_end() const { return m_frame_end; }
 
   private:
-    uint64_t words(uint64_t x, uint64_t w) const {
-        return ((x + w - 1) >> m_word_shift) - (x >> m_word_shift) + 1;
+    // One row of FILL: C_row, the whole words, the partial ones.
+    uint64_t row(uint64_t x, uint64_t w) const {
+        const uint64_t first = x >> m_word_shift, last = (x + w - 1) >> m_word_shift;
+        const bool left = (x & m_word_mask) != 0, right = ((x + w) & m_word_mask) != 0;
+        const uint64_t n = last - first + 1;
+        const uint64_t partial = n == 1 ? ((left || right) ? 1 : 0) : uint64_t{left} + right;
+        return m_row + m_op * (n - partial) + m_op_partial * partial;
     }
 
-    uint64_t m_cmd, m_fill_base, m_row, m_op, m_line_base, m_line_pix;
+    uint64_t m_fill_base, m_span_fill_base, m_line_base, m_fill_outside, m_span_outside,
+        m_frame_end, m_row, m_op, m_op_partial, m_line_pix;
     uint32_t m_word_shift = 0;  // log2 P
+    uint64_t m_word_mask = 0;   // P - 1
     bool m_span_as_fill;
 };
 
-// Seconds a command of `bytes` modelled bytes occupies the bus: bytes / B_bus + t_handshake.
-// A command of 0 modelled bytes (MARKER) is not sent: 0.
+// Seconds a command of `bytes` modelled bytes occupies the bus: bytes / the bus's rate (the
+// host's side or the chip's port, the slower) + t_handshake. A command of 0 modelled bytes
+// (MARKER) is not sent: 0.
 double bus_seconds(const CostProfile& p, uint32_t bytes);
+// Seconds the GSP takes for `cycles` of its own states, with the share of the bus that
+// refresh takes from it: cycles / (f_cyc * (1 - stolen_share)).
 double cycles_to_seconds(const CostProfile& p, uint64_t cycles);
+// Microseconds per GSP state, refresh's share included.
+inline double us_per_cycle(const CostProfile& p) {
+    return 1e6 / (p.f_cyc_hz * (1 - p.stolen_share));
+}
 
 // The two-stage pipeline of one frame, in microseconds from the moment its first command
 // starts to cross the bus. The bus carries commands one after another; the controller

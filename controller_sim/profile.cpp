@@ -5,6 +5,8 @@
 // default. Errors name the file and the field.
 #include "controller_sim/profile.h"
 
+#include "controller_sim/gsp_listing.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -34,12 +36,37 @@ constexpr const char* kUnlimited = "unlimited";
 // The value of command_buffer_bytes for a buffer without a bound.
 constexpr const char* kUnbounded = "unbounded";
 
-constexpr std::array<std::string_view, 17> kKnownKeys = {
-    "name",          "description",  "f_cyc_hz",   "bpp",
-    "C_cmd",         "C_setup",      "C_op",       "C_row",
-    "span_as",       "C_line_setup", "C_line_pix", "B_bus_bytes_per_s",
-    "t_handshake_s", "bytes",        "sources",    "command_buffer_bytes",
-    "bands"};
+constexpr std::array<std::string_view, 25> kKnownKeys = {"name",
+                                                         "description",
+                                                         "f_cyc_hz",
+                                                         "bpp",
+                                                         "C_cmd",
+                                                         "C_setup",
+                                                         "C_op",
+                                                         "C_row",
+                                                         "span_as",
+                                                         "C_line_setup",
+                                                         "C_line_pix",
+                                                         "B_bus_bytes_per_s",
+                                                         "t_handshake_s",
+                                                         "bytes",
+                                                         "sources",
+                                                         "command_buffer_bytes",
+                                                         "bands",
+                                                         "bus_bits",
+                                                         "gsp",
+                                                         "memory_cycle_states",
+                                                         "wait_states",
+                                                         "refresh_every_states",
+                                                         "screen_transfers_per_s",
+                                                         "C_line_extra",
+                                                         "derived"};
+
+// A profile's cycle figures given directly (no "gsp"), and derived from the listing (with it).
+constexpr std::array<std::string_view, 5> kGivenCycles = {"C_cmd", "C_setup", "C_op",
+                                                          "C_line_setup", "C_line_pix"};
+constexpr std::array<std::string_view, 4> kMemoryModel = {
+    "memory_cycle_states", "wait_states", "refresh_every_states", "screen_transfers_per_s"};
 
 // The figures a band may be given for: a cycle count, a real number, or (neither) the
 // command buffer; and whether more of it makes the controller dearer.
@@ -49,7 +76,12 @@ struct Bandable {
     double CostProfile::*real;
     bool more_is_dear;
 };
-constexpr std::array<Bandable, 9> kBandable = {{
+constexpr std::array<Bandable, 14> kBandable = {{
+    {"gsp", nullptr, nullptr, true},
+    {"wait_states", &CostProfile::wait_states, nullptr, true},
+    {"refresh_every_states", &CostProfile::refresh_every_states, nullptr, false},
+    {"screen_transfers_per_s", nullptr, &CostProfile::screen_transfers_per_s, true},
+    {"C_line_extra", &CostProfile::c_line_extra, nullptr, true},
     {"C_cmd", &CostProfile::c_cmd, nullptr, true},
     {"C_setup", &CostProfile::c_setup, nullptr, true},
     {"C_op", &CostProfile::c_op, nullptr, true},
@@ -172,6 +204,7 @@ void read_sources(const FieldReader& r, const json& j, CostProfile& p) {
 
 // A banded figure's value in `p`.
 double band_value(const CostProfile& p, const Bandable& figure) {
+    if (figure.name == "gsp") return 0;
     if (figure.cycles) return p.*figure.cycles;
     if (figure.real) return p.*figure.real;
     return static_cast<double>(p.command_buffer_bytes);
@@ -186,8 +219,30 @@ void read_bands(const FieldReader& r, const json& j, CostProfile& p) {
         const Bandable* figure = bandable(key);
         if (!figure)
             r.fail(field,
-                   "names no figure that can have a band (C_*, B_bus_bytes_per_s, "
-                   "t_handshake_s, command_buffer_bytes)");
+                   "names no figure that can have a band (C_*, wait_states, "
+                   "refresh_every_states, screen_transfers_per_s, B_bus_bytes_per_s, "
+                   "t_handshake_s, command_buffer_bytes, gsp)");
+        const bool derived =
+            std::find(kGivenCycles.begin(), kGivenCycles.end(), key) != kGivenCycles.end();
+        if (!p.gsp.empty() && derived)
+            r.fail(field,
+                   "a figure derived from the listing has no band of its own: the "
+                   "listing's estimates have theirs (a band for \"gsp\")");
+        if (p.gsp.empty() &&
+            (key == "gsp" || key == "C_line_extra" ||
+             std::find(kMemoryModel.begin(), kMemoryModel.end(), key) != kMemoryModel.end()))
+            r.fail(field, "only a profile with \"gsp\" has this figure");
+        if (key == "gsp") {
+            if (!band.is_object()) r.fail(field, "expected {\"why\": ...}");
+            for (const auto& [k, v] : band.items())
+                if (k != "why")
+                    r.fail(field + "." + k, "unknown (the listing's band has why only)");
+            auto why = band.find("why");
+            if (why == band.end() || !why->is_string() || why->get<std::string>().empty())
+                r.fail(field + ".why", "missing: a band says why it is that wide");
+            p.bands[key] = CostProfile::Band{0, 0, why->get<std::string>()};
+            continue;
+        }
         if (!band.is_object())
             r.fail(field, "expected {\"low\": ..., \"high\": ..., \"why\": ...}");
         const bool buffer = key == "command_buffer_bytes";
@@ -270,9 +325,52 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     p.bpp = r.count(r.require("bpp"), "bpp", 16);
     if (p.bpp == 0 || 16 % p.bpp != 0 || (p.bpp & (p.bpp - 1)) != 0)
         r.fail("bpp", fmt::format("must be 1, 2, 4, 8 or 16, got {}", p.bpp));
-    p.c_cmd = r.cycles("C_cmd");
-    p.c_setup = r.cycles("C_setup");
-    p.c_op = r.cycles("C_op");
+    if (auto it = j.find("bus_bits"); it != j.end()) {
+        p.bus_bits = r.count(*it, "bus_bits", 32);
+        if (p.bus_bits != 16 && p.bus_bits != 32)
+            r.fail("bus_bits", fmt::format("must be 16 or 32, got {}", p.bus_bits));
+    }
+    if (p.bpp > p.bus_bits)
+        r.fail("bpp",
+               fmt::format("a pixel of {} bits does not fit a {}-bit bus word", p.bpp, p.bus_bits));
+    if (auto it = j.find("gsp"); it != j.end()) {
+        if (!it->is_string() || it->get<std::string>().empty())
+            r.fail("gsp", fmt::format("expected the name of a listing, got {}", it->dump()));
+        p.gsp = it->get<std::string>();
+        for (std::string_view given : kGivenCycles)
+            if (j.contains(given))
+                r.fail(given,
+                       "derived from the listing (\"gsp\") and the memory model: a "
+                       "profile with \"gsp\" does not give it");
+        p.memory_cycle_states =
+            r.count(r.require("memory_cycle_states"), "memory_cycle_states", 64);
+        if (p.memory_cycle_states == 0) r.fail("memory_cycle_states", "must be at least 1");
+        p.wait_states = r.count(r.require("wait_states"), "wait_states", 64);
+        p.refresh_every_states =
+            r.count(r.require("refresh_every_states"), "refresh_every_states", 1'000'000);
+        if (p.refresh_every_states != 0 &&
+            p.refresh_every_states < 4 * (p.memory_cycle_states + p.wait_states))
+            r.fail("refresh_every_states",
+                   "0 (no refresh) or at least four memory cycles, so that the GSP keeps the bus");
+        p.screen_transfers_per_s = r.number_in("screen_transfers_per_s", true, 1, kMaxRate);
+        p.c_line_extra = r.count(r.require("C_line_extra"), "C_line_extra", 64);
+    } else {
+        for (std::string_view model : kMemoryModel)
+            if (j.contains(model))
+                r.fail(model, "only a profile with \"gsp\" (a listing) has a memory model");
+        if (j.contains("C_line_extra"))
+            r.fail("C_line_extra", "only a profile with \"gsp\" (a listing) has it");
+        p.c_cmd = r.cycles("C_cmd");
+        p.c_setup = r.cycles("C_setup");
+        p.c_op = r.cycles("C_op");
+        p.c_line_setup = r.cycles("C_line_setup");
+        p.c_line_pix = r.cycles("C_line_pix");
+        // The first cost model's rules: a partial word costs a full one, every set-up
+        // FILL's, FRAME_END and a command outside the frame C_cmd alone.
+        p.c_op_partial = p.c_op;
+        p.c_frame_begin_setup = p.c_setup;
+        p.c_span_fill_setup = p.c_setup;
+    }
     p.c_row = r.cycles("C_row");
     const std::string span_as = r.text("span_as", "");
     if (span_as == "line")
@@ -281,8 +379,6 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         p.span_as = SpanAs::Fill;
     else
         r.fail("span_as", span_as.empty() ? "missing" : "expected \"line\" or \"fill\"");
-    p.c_line_setup = r.cycles("C_line_setup");
-    p.c_line_pix = r.cycles("C_line_pix");
     p.b_bus_bytes_per_s = r.bandwidth("B_bus_bytes_per_s");
     p.t_handshake_s = r.number_in("t_handshake_s", true, 1e-15, 1.0);
     read_bytes(r, p);
@@ -302,7 +398,61 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     }
     read_sources(r, j, p);
     read_bands(r, j, p);
+    try {
+        derive_figures(p);
+    } catch (const std::runtime_error& e) {
+        r.fail("gsp", e.what());
+    }
     return p;
+}
+
+void derive_figures(CostProfile& p) {
+    if (p.gsp.empty()) return;
+    const uint32_t m = p.memory_cycle_states + p.wait_states;  // one memory cycle, SPVS002C p. 19
+    const TimingEnd end = p.listing_dear    ? TimingEnd::High
+                          : p.listing_cheap ? TimingEnd::Low
+                                            : TimingEnd::Estimate;
+    // An I/O register's cycle ignores LRDY (p. 20): no wait states.
+    const auto paths =
+        count_paths(builtin_listing(p.gsp), MemoryTiming{m, p.memory_cycle_states}, end);
+    const auto path = [&](const char* name, const char* graphics) -> uint32_t {
+        auto it = paths.find(name);
+        if (it == paths.end())
+            throw std::runtime_error(fmt::format("listing {}.asm has no @path {}", p.gsp, name));
+        if (it->second.graphics != graphics)
+            throw std::runtime_error(fmt::format("listing {}.asm: @path {} must run {}", p.gsp,
+                                                 name, *graphics ? graphics : "no FILL or LINE"));
+        return static_cast<uint32_t>(it->second.cycles);
+    };
+    p.c_cmd = path("COMMON", "");
+    p.c_frame_begin_setup = path("FRAME_BEGIN", "FILL");
+    p.c_setup = path("FILL_RECT", "FILL");
+    p.c_line_setup = path("DRAW_SPAN:line", "LINE");
+    p.c_span_fill_setup = path("DRAW_SPAN:fill", "FILL");
+    p.c_frame_end_setup = path("FRAME_END", "");
+    // A word of the bus written whole is one write cycle; a partial word is read, modified
+    // and written (one CAS, one W, no byte strobes: the pin list); so is a pixel narrower than
+    // the bus drawn by LINE, one pixel a time.
+    p.c_op = m;
+    p.c_op_partial = 2 * m;
+    p.c_line_pix = (p.bpp < p.bus_bits ? 2 * m : m) + p.c_line_extra;
+    // Each word the host writes through HSTDATA is a memory cycle of the GSP's bus, which
+    // the host's request wins over the GSP's own (User's Guide §11.3).
+    p.c_host_word = m;
+    // DRAM refresh (a cycle every refresh_every_states, User's Guide §6) and the display's
+    // memory-to-register transfers take the bus from the GSP.
+    p.stolen_share =
+        (p.refresh_every_states ? static_cast<double>(m) / p.refresh_every_states : 0) +
+        p.screen_transfers_per_s * m / p.f_cyc_hz;
+    if (!(p.stolen_share < 0.5))
+        throw std::runtime_error(fmt::format(
+            "refresh and screen transfers would take {:.0f}% of the bus", 100 * p.stolen_share));
+    // Host strobe to next strobe at least 7 tQ + 10 ns, tQ a quarter state (SPVS002C p. 34,
+    // parameter 3); and each word waits for its memory cycle (HRDY).
+    const double state_s = 1 / p.f_cyc_hz;
+    const double word_s = std::max(7 * state_s / 4 + 10e-9, m * state_s);
+    p.host_port_bytes_per_s = 2 / word_s;
+    p.outside_pays_setup = true;
 }
 
 nlohmann::json command_buffer_json(uint64_t bytes) {
@@ -324,6 +474,11 @@ CostProfile band_end(const CostProfile& profile, bool dear) {
     p.name += dear ? " (dear end)" : " (cheap end)";
     for (const auto& [field, band] : profile.bands) {
         const Bandable& figure = *bandable(field);  // parse_profile admits no other
+        if (field == "gsp") {
+            p.listing_dear = dear;
+            p.listing_cheap = !dear;
+            continue;
+        }
         const double v = dear == figure.more_is_dear ? band.high : band.low;
         if (figure.cycles)
             p.*figure.cycles = static_cast<uint32_t>(v);  // whole, at most kMaxCycleFigure
@@ -332,47 +487,82 @@ CostProfile band_end(const CostProfile& profile, bool dear) {
         else if (dear)  // the buffer: its band's high end is the figure itself
             p.command_buffer_bytes = static_cast<uint64_t>(band.low);
     }
+    derive_figures(p);
     return p;
 }
 
 nlohmann::json CostProfile::to_json() const {
     json bands_json = json::object();
     for (const auto& [field, band] : bands) {
+        if (field == "gsp") {
+            bands_json[field] = {{"why", band.why}};
+            continue;
+        }
         bands_json[field] = {{"low", band.low}, {"why", band.why}};
         if (field != "command_buffer_bytes") bands_json[field]["high"] = band.high;
     }
     json bytes_json = json::object();
     for (int i = 0; i < protocol::kOpcodeCount; ++i)
         bytes_json[protocol::to_string(static_cast<protocol::Opcode>(i + 1))] = bytes[i];
-    return json{{"name", name},
-                {"description", description},
-                {"f_cyc_hz", f_cyc_hz},
-                {"bpp", bpp},
-                {"C_cmd", c_cmd},
-                {"C_setup", c_setup},
-                {"C_op", c_op},
-                {"C_row", c_row},
-                {"span_as", controller::to_string(span_as)},
-                {"C_line_setup", c_line_setup},
-                {"C_line_pix", c_line_pix},
-                {"B_bus_bytes_per_s",
-                 std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
-                {"t_handshake_s", t_handshake_s},
-                {"bytes", bytes_json},
-                {"command_buffer_bytes", command_buffer_json(command_buffer_bytes)},
-                {"sources", sources},
-                {"bands", bands_json}};
+    json j{{"name", name},
+           {"description", description},
+           {"f_cyc_hz", f_cyc_hz},
+           {"bpp", bpp},
+           {"bus_bits", bus_bits},
+           {"C_row", c_row},
+           {"span_as", controller::to_string(span_as)},
+           {"B_bus_bytes_per_s",
+            std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
+           {"t_handshake_s", t_handshake_s},
+           {"bytes", bytes_json},
+           {"command_buffer_bytes", command_buffer_json(command_buffer_bytes)},
+           {"sources", sources},
+           {"bands", bands_json}};
+    if (gsp.empty()) {
+        j["C_cmd"] = c_cmd;
+        j["C_setup"] = c_setup;
+        j["C_op"] = c_op;
+        j["C_line_setup"] = c_line_setup;
+        j["C_line_pix"] = c_line_pix;
+    } else {
+        j["gsp"] = gsp;
+        j["memory_cycle_states"] = memory_cycle_states;
+        j["wait_states"] = wait_states;
+        j["refresh_every_states"] = refresh_every_states;
+        j["screen_transfers_per_s"] = screen_transfers_per_s;
+        j["C_line_extra"] = c_line_extra;
+        // What the listing and the memory model come to; ignored when the file is read.
+        j["derived"] = {{"C_cmd", c_cmd},
+                        {"C_setup", c_setup},
+                        {"C_frame_begin_setup", c_frame_begin_setup},
+                        {"C_line_setup", c_line_setup},
+                        {"C_span_fill_setup", c_span_fill_setup},
+                        {"C_frame_end_setup", c_frame_end_setup},
+                        {"C_op", c_op},
+                        {"C_op_partial", c_op_partial},
+                        {"C_line_pix", c_line_pix},
+                        {"C_host_word", c_host_word},
+                        {"stolen_share", stolen_share},
+                        {"host_port_bytes_per_s", host_port_bytes_per_s}};
+    }
+    return j;
 }
 
 std::string CostProfile::to_string() const {
-    const std::string bus = std::isinf(b_bus_bytes_per_s)
-                                ? std::string("unlimited")
-                                : fmt::format("{:g} MB/s", b_bus_bytes_per_s / 1e6);
+    const double bus_rate = bus_bytes_per_s();
+    const std::string bus =
+        std::isinf(bus_rate) ? std::string("unlimited") : fmt::format("{:g} MB/s", bus_rate / 1e6);
+    const std::string model =
+        gsp.empty() ? std::string("given figures")
+                    : fmt::format("listing {}, memory cycle {}+{} states, {:.2f}% to refresh", gsp,
+                                  memory_cycle_states, wait_states, 100 * stolen_share);
     return fmt::format(
-        "{} ({:g} MHz, {} bpp, C_cmd {}, C_setup {}, C_op {}, C_row {}, spans as {}, "
-        "C_line_setup {}, C_line_pix {}, bus {} + {:g} us/command)",
-        name, f_cyc_hz / 1e6, bpp, c_cmd, c_setup, c_op, c_row, controller::to_string(span_as),
-        c_line_setup, c_line_pix, bus, t_handshake_s * 1e6);
+        "{} ({:g} MHz, {} bpp on a {}-bit bus, {}: C_cmd {}, C_setup {}, C_op {}/{} partial, "
+        "C_row {}, spans as {}, C_line_setup {}, C_line_pix {}, host word {}, bus {} + {:g} "
+        "us/command)",
+        name, f_cyc_hz / 1e6, bpp, bus_bits, model, c_cmd, c_setup, c_op, c_op_partial, c_row,
+        controller::to_string(span_as), c_line_setup, c_line_pix, c_host_word, bus,
+        t_handshake_s * 1e6);
 }
 
 std::vector<std::string> list_profiles() {

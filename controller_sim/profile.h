@@ -34,17 +34,44 @@ const char* to_string(SpanAs s);  // "line", "fill"
 struct CostProfile {
     std::string name;
     std::string description;
-    double f_cyc_hz = 0;   // machine cycles per second
-    uint32_t bpp = 8;      // bits per pixel the cost is modelled at (1, 2, 4, 8 or 16)
-    uint32_t c_cmd = 0;    // per command: fetch and decode from the command ring
-    uint32_t c_setup = 0;  // FILL set-up
-    uint32_t c_op = 0;     // per 16-bit word written by FILL
-    uint32_t c_row = 0;    // per FILL row
+    double f_cyc_hz = 0;     // machine states per second (a state is one local clock)
+    uint32_t bpp = 8;        // bits per pixel the cost is modelled at (1, 2, 4, 8 or 16)
+    uint32_t bus_bits = 16;  // the local bus's width: a word, what one memory cycle moves
+
+    // The memory-cycle model, when "gsp" names a listing (docs/COST_MODEL.md, "The tiling as
+    // memory cycles"): the per-command figures below are derived from these and the listing.
+    // A profile without "gsp" gives the derived figures itself (C_cmd, C_setup, C_op, C_row,
+    // C_line_setup, C_line_pix: the figures of the first cost model, MAME's).
+    std::string gsp;                    // the command executive, controller_sim/gsp/NAME.asm
+    uint32_t memory_cycle_states = 2;   // one local-memory cycle without wait states
+    uint32_t wait_states = 0;           // LRDY's, per memory cycle
+    uint32_t refresh_every_states = 0;  // a DRAM refresh cycle every N states (0: none)
+    double screen_transfers_per_s = 0;  // VRAM memory-to-register cycles for the display
+    uint32_t c_line_extra = 0;          // LINE's step beyond its pixel's memory cycles
+    // Which end of the listing's estimated timings the figures were counted at (band_end).
+    bool listing_dear = false, listing_cheap = false;
+
+    // The figures the cost model charges (derived, or given by a profile without "gsp").
+    uint32_t c_cmd = 0;                // per command: the loop's fetch and dispatch
+    uint32_t c_setup = 0;              // FILL_RECT's set-up, FILL's own included
+    uint32_t c_frame_begin_setup = 0;  // FRAME_BEGIN's, before its clear's pixels
+    uint32_t c_span_fill_setup = 0;    // DRAW_SPAN's as a one-row fill
+    uint32_t c_frame_end_setup = 0;    // FRAME_END's
+    uint32_t c_op = 0;                 // per aligned word FILL writes
+    uint32_t c_op_partial = 0;         // per partial word (read, modify, write)
+    uint32_t c_row = 0;                // per FILL row
     SpanAs span_as = SpanAs::Line;
-    uint32_t c_line_setup = 0;     // LINE set-up
-    uint32_t c_line_pix = 0;       // per LINE pixel
-    double b_bus_bytes_per_s = 0;  // host-to-controller bandwidth; +inf: "unlimited"
-    double t_handshake_s = 0;      // per command sent
+    uint32_t c_line_setup = 0;        // DRAW_SPAN's as a line, LINE's own included
+    uint32_t c_line_pix = 0;          // per LINE pixel
+    uint32_t c_host_word = 0;         // per 16-bit host word: its memory cycle in the GSP's memory
+    double stolen_share = 0;          // the share of the bus refresh takes from the GSP
+    bool outside_pays_setup = false;  // a command outside the frame still loads and runs FILL
+
+    double b_bus_bytes_per_s = 0;  // the host side's bandwidth; +inf: "unlimited"
+    // The chip's host port: no faster than its strobe spacing and the memory cycle each word
+    // takes (+inf for a profile without "gsp").
+    double host_port_bytes_per_s = std::numeric_limits<double>::infinity();
+    double t_handshake_s = 0;  // per command sent
     // Bytes a command occupies on the modelled bus, by protocol::opcode_index. Fixed per
     // opcode whatever the file encoding; 0 means the command is not sent at all.
     std::array<uint32_t, protocol::kOpcodeCount> bytes{};
@@ -52,20 +79,30 @@ struct CostProfile {
     // "command_buffer_bytes", a number at least the largest command's bytes, or "unbounded"
     // (also when the field is absent).
     uint64_t command_buffer_bytes = kUnboundedBuffer;
-    // Where each figure comes from: field name -> "[EMU] ..." or "[EST] ...".
+    // Where each figure comes from: field name -> "[DS] ...", "[UG] ...", "[EMU] ..." or
+    // "[EST] ...".
     std::map<std::string, std::string> sources;
     // The range an estimated figure may lie in, and why ("bands"): field name -> band. Fields
-    // that can have one: C_cmd, C_setup, C_op, C_row, C_line_setup, C_line_pix,
-    // B_bus_bytes_per_s, t_handshake_s (low <= the figure <= high) and command_buffer_bytes
-    // (low only: the smallest buffer it may be; its high end is the figure).
+    // that can have one: the given cycle figures (C_*), wait_states, refresh_every_states,
+    // screen_transfers_per_s, B_bus_bytes_per_s, t_handshake_s (low <= the figure <= high),
+    // command_buffer_bytes (low only: the smallest buffer it may be; its high end is the
+    // figure) and "gsp" (the listing's estimated timings, whose ends the table carries: a
+    // band of {"why"} only).
     struct Band {
         double low = 0, high = 0;
         std::string why;
     };
     std::map<std::string, Band> bands;
 
-    // P: pixels per 16-bit word.
-    uint32_t pixels_per_word() const { return 16 / bpp; }
+    // P: pixels per word of the local bus.
+    uint32_t pixels_per_word() const { return bus_bits / bpp; }
+    // What crosses the bus per second: the host's side or the chip's port, the slower.
+    double bus_bytes_per_s() const {
+        return b_bus_bytes_per_s < host_port_bytes_per_s ? b_bus_bytes_per_s
+                                                         : host_port_bytes_per_s;
+    }
+    // The 16-bit host words of a command, each a memory cycle the GSP's bus gives the host.
+    uint32_t host_words_of(protocol::Opcode op) const { return (bytes_of(op) + 1) / 2; }
     uint32_t bytes_of(protocol::Opcode op) const { return bytes[protocol::opcode_index(op)]; }
 
     nlohmann::json to_json() const;  // the same fields as the profile file
@@ -73,9 +110,9 @@ struct CostProfile {
 };
 
 // The profile with every banded figure at the end of its band that makes the controller
-// dearer (`dear`: more cycles, a slower bus, a longer handshake, the smaller buffer) or
-// cheaper; figures without a band stay as they are. Its name gets " (dear end)" or
-// " (cheap end)".
+// dearer (`dear`: more cycles, a slower bus, a longer handshake, the smaller buffer, more
+// refresh) or cheaper, and the derived figures counted again; figures without a band stay as
+// they are. Its name gets " (dear end)" or " (cheap end)".
 CostProfile band_end(const CostProfile& profile, bool dear);
 
 // A command buffer's size as the profile file and the JSON outputs give it: "unbounded" or
@@ -107,6 +144,10 @@ CostProfile load_profile_file(const std::filesystem::path& path);
 inline CostProfile default_profile() {
     return load_profile(kDefaultProfile);
 }
+
+// Fills a "gsp" profile's derived figures from its listing and memory model (parse_profile
+// and band_end call it); a profile without "gsp" is left as it is.
+void derive_figures(CostProfile& p);
 
 // Parses profile JSON (comments allowed); `origin` names the text in errors. A missing
 // "name" defaults to `default_name`.

@@ -107,6 +107,14 @@ void Console::note(const std::string& text) const {
     if (!quiet) std::cerr << text << '\n';
 }
 
+std::string csv_field(const std::string& s) {
+    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+    std::string out = "\"";
+    for (char c : s)
+        out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
 std::string nearest_hint(const std::string& word, const std::vector<std::string>& known) {
     // Levenshtein distance, one row at a time
     auto distance = [](const std::string& a, const std::string& b) {

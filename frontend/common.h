@@ -62,6 +62,10 @@ void make_parent_dirs(const std::string& path);
 // same file (the second would replace the first).
 bool claims_stdout(std::initializer_list<std::pair<std::string_view, std::string_view>> outputs);
 
+// A CSV field: as it is, or in double quotes (quotes doubled) when it holds a comma, a quote
+// or a line break (RFC 4180).
+std::string csv_field(const std::string& s);
+
 // "; did you mean 'render'?" when a known name is near `word` (edit distance), else "".
 std::string nearest_hint(const std::string& word, const std::vector<std::string>& known);
 

@@ -57,6 +57,7 @@ inline std::vector<OutputCase> every_output() {
     cases.push_back({"experiment --csv", "experiment fig2.1 " + a + " --csv @OUT@"});
     cases.push_back({"sweep --csv", "sweep threshold " + a + " --steps 2 --csv @OUT@"});
     cases.push_back({"model --csv", "model --es 64 --fv 16 --csv @OUT@"});
+    cases.push_back({"controller-validate --csv", "controller-validate -q --csv @OUT@"});
     cases.push_back({"calibrate --csv", "calibrate --dry-run --repeat 1 --steps 2 -q " + scenes +
                                             "/A.json --csv @OUT@"});
     cases.push_back({"compare --sheet", "compare " + demo + " --repeat 1 --sheet @OUT@"});

@@ -58,16 +58,19 @@ TEST(HelpCommand, EveryRegisteredNameIsInTheHelpOfEachOptionTakingIt) {
                                                           "fb89 " + command + " --help"));
     }
     // the commands that take these names offer them (a renamed option would skip its check)
-    for (const char* expected :
-         {"render --method",      "render --host",        "render --profile",
-          "render scene",         "experiment --methods", "experiment --host",
-          "experiment --profile", "experiment scenes",    "sweep --host",
-          "sweep --profile",      "sweep scenes",         "compare --host",
-          "compare --profile",    "compare scene",        "calibrate --host",
-          "calibrate --method",   "calibrate scenes",     "replay --profile",
-          "view --profile",       "controller --profile", "radiosity --profile",
-          "radiosity scene",      "info --profile",       "host-validate --profile",
-          "host-run scene"})
+    for (const char* expected : {"render --method",      "render --host",
+                                 "render --profile",     "render scene",
+                                 "experiment --methods", "experiment --host",
+                                 "experiment --profile", "experiment scenes",
+                                 "sweep --host",         "sweep --profile",
+                                 "sweep scenes",         "compare --host",
+                                 "compare --profile",    "compare scene",
+                                 "calibrate --host",     "calibrate --method",
+                                 "calibrate scenes",     "replay --profile",
+                                 "view --profile",       "controller --profile",
+                                 "radiosity --profile",  "radiosity scene",
+                                 "info --profile",       "host-validate --profile",
+                                 "host-run scene",       "controller-validate --profile"})
         EXPECT_EQ(checked.count(expected), 1u) << expected;
 }
 

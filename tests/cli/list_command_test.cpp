@@ -162,9 +162,10 @@ TEST(ListCommand, AnInstalledPrefixRunsOnItsOwn) {
     std::string commands = help.out.substr(help.out.find("Subcommands:"));
     commands = commands.substr(0, commands.find("\n\n") + 1);
     int pages = 0;
-    for (const char* command : {"render", "model", "experiment", "sweep", "compare", "calibrate",
-                                "replay", "dump", "info", "trim", "diff", "controller", "view",
-                                "radiosity", "host-run", "host-validate", "list", "help"}) {
+    for (const char* command :
+         {"render", "model", "experiment", "sweep", "compare", "calibrate", "replay", "dump",
+          "info", "trim", "diff", "controller", "view", "radiosity", "host-run", "host-validate",
+          "controller-validate", "list", "help"}) {
         EXPECT_NE(commands.find(std::string("\n  ") + command + " "), std::string::npos) << command;
         const std::string page =
             slurp(prefix / "share/man/man1" / (std::string("fb89-") + command + ".1"));

@@ -1,6 +1,7 @@
-// Tests of controller_sim/cost_model: the check values of docs/COST_MODEL.md, the word
-// count against MAME's left/full/right decomposition, CycleCosts against the formulas, and
-// the bus/controller pipeline.
+// Tests of controller_sim/cost_model: the check values of docs/COST_MODEL.md (the memory-cycle
+// model of tms34010-50mhz and the first model's, tms34010-mame), the word count against
+// MAME's left/full/right decomposition, CycleCosts against the formulas, and the
+// bus/controller pipeline.
 #include "controller_sim/cost_model.h"
 
 #include <gtest/gtest.h>
@@ -15,35 +16,83 @@ namespace {
 CostProfile tms34010() {
     return load_profile("tms34010-50mhz");
 }
-
-TEST(CostModel, FullScreenFillIs798753Cycles) {
-    const CostProfile p = tms34010();
-    const uint64_t cycles = fill_rect_cycles(p, PixelRect{0, 0, 1024, 780});
-    EXPECT_EQ(cycles, 33u + 780u * 512u * 2u);
-    EXPECT_EQ(cycles, 798'753u);
-    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 127.8, 0.05);  // 127.80048 ms
+// The first cost model, MAME's figures (controller_sim/profiles/tms34010-mame.json).
+CostProfile first_model() {
+    return load_profile("tms34010-mame");
 }
 
-TEST(CostModel, OnePixelFillIs35CyclesOf5Point6Microseconds) {
+// tms34010-50mhz, counted from controller_sim/gsp/tms34010.asm at 2 states a memory cycle:
+// the loop (C_cmd) 18 states; the set-ups FRAME_BEGIN 29, FILL_RECT 27, DRAW_SPAN as a line
+// 32, as a fill 34, FRAME_END 5 (GspListing.* hold these to the listing instruction by
+// instruction). Each host word 2 states; a whole word 2, a partial one 4, a LINE pixel 4.
+TEST(CostModel, FullScreenClearIs798777StatesOf134Milliseconds) {
     const CostProfile p = tms34010();
-    const uint64_t cycles = fill_rect_cycles(p, PixelRect{17, 3, 1, 1});
-    EXPECT_EQ(cycles, 35u);
-    EXPECT_DOUBLE_EQ(cycles_to_seconds(p, cycles) * 1e6, 5.6);
+    const uint64_t cycles = frame_begin_cycles(p, 1024, 780);
+    EXPECT_EQ(cycles, 18u + 29u + 5u * 2u + 780u * 512u * 2u);
+    EXPECT_EQ(cycles, 798'777u);
+    // refresh takes 2/64 of the states and the display 46,800 x 2 a second
+    EXPECT_NEAR(p.stolen_share, 2.0 / 64 + 46'800.0 * 2 / 6.25e6, 1e-15);
+    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 798'777 / 6.25e6 / (1 - p.stolen_share) * 1e3,
+                1e-9);
+    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 134.0, 0.05);
 }
 
-TEST(CostModel, HundredPixelSpanAsLineIs237Cycles) {
+TEST(CostModel, OnePixelFillIsTheLoopItsSetUpItsHostWordsAndOnePartialWord) {
+    const CostProfile p = tms34010();
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{17, 3, 1, 1}), 18u + 27u + 6u * 2u + 4u);
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{16, 3, 2, 1}), 18u + 27u + 6u * 2u + 2u);  // a word
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{17, 3, 2, 1}), 18u + 27u + 6u * 2u + 2u * 4u);
+}
+
+TEST(CostModel, HundredPixelSpanAsLineIs460States) {
     const CostProfile p = tms34010();
     ASSERT_EQ(p.span_as, SpanAs::Line);
-    EXPECT_EQ(draw_span_cycles(p, 0, 100), 25u + 12u + 200u);
-    EXPECT_EQ(draw_span_cycles(p, 1, 100), 237u);  // a line does not care about alignment
+    EXPECT_EQ(draw_span_cycles(p, 0, 100), 18u + 32u + 5u * 2u + 100u * 4u);
+    EXPECT_EQ(draw_span_cycles(p, 1, 100), 460u);  // a line does not care about alignment
 }
 
-TEST(CostModel, SpanAsFillIsAOneRowFill) {
+TEST(CostModel, ALinePixelAt16BppIsOneWriteCycle) {
+    CostProfile p = tms34010();
+    p.bpp = 16;
+    derive_figures(p);
+    EXPECT_EQ(p.c_line_pix, 2u);
+    EXPECT_EQ(draw_span_cycles(p, 0, 100), 18u + 32u + 10u + 100u * 2u);
+    // and a fill has no partial words: every pixel is a word
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{1, 0, 3, 1}), 18u + 27u + 12u + 3u * 2u);
+}
+
+TEST(CostModel, WaitStatesLengthenEveryMemoryCycleButNotAnIoRegistersCycle) {
+    CostProfile p = tms34010();
+    p.wait_states = 1;
+    derive_figures(p);
+    EXPECT_EQ(p.c_op, 3u);
+    EXPECT_EQ(p.c_op_partial, 6u);
+    EXPECT_EQ(p.c_line_pix, 6u);
+    EXPECT_EQ(p.c_host_word, 3u);
+    EXPECT_EQ(p.c_cmd, 18u + 3u);        // its two reads: one word and two
+    EXPECT_EQ(p.c_frame_end_setup, 5u);  // its one write is to HSTCTL, an I/O register
+    // and the host port waits for the longer cycle: 2 bytes per 3 x 160 ns
+    EXPECT_NEAR(p.host_port_bytes_per_s, 2 / 480e-9, 1);
+}
+
+TEST(CostModel, SpanAsFillIsAOneRowFillAfterItsOwnSetUp) {
     CostProfile p = tms34010();
     p.span_as = SpanAs::Fill;
-    EXPECT_EQ(draw_span_cycles(p, 0, 100), 25u + 8u + 2u * 50u);  // 50 aligned words
-    EXPECT_EQ(draw_span_cycles(p, 1, 100), 25u + 8u + 2u * 51u);  // partial words at both ends
-    EXPECT_EQ(draw_span_cycles(p, 5, 7), fill_rect_cycles(p, PixelRect{5, 9, 7, 1}));
+    EXPECT_EQ(draw_span_cycles(p, 0, 100), 18u + 34u + 10u + 2u * 50u);  // 50 aligned words
+    EXPECT_EQ(draw_span_cycles(p, 1, 100), 18u + 34u + 10u + 2u * 49u + 4u * 2u);
+}
+
+TEST(CostModel, FirstModelKeepsMamesFigures) {
+    const CostProfile p = first_model();
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{0, 0, 1024, 780}), 33u + 780u * 512u * 2u);
+    EXPECT_EQ(frame_begin_cycles(p, 1024, 780), 798'753u);
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{17, 3, 1, 1}), 35u);
+    EXPECT_DOUBLE_EQ(cycles_to_seconds(p, 35) * 1e6, 5.6);
+    EXPECT_EQ(draw_span_cycles(p, 1, 100), 25u + 12u + 200u);
+    EXPECT_EQ(outside_cycles(p, protocol::Opcode::FillRect), 25u);
+    EXPECT_EQ(frame_end_cycles(p), 25u);
+    EXPECT_EQ(frame_begin_cycles(p, 0, 780), 25u);
+    EXPECT_DOUBLE_EQ(bus_seconds(p, 12) * 1e6, 2.5);  // 12 bytes at 8 MB/s + 1 us
 }
 
 TEST(CostModel, WordsCountsPartialWordsAtUnalignedX) {
@@ -68,39 +117,58 @@ uint64_t mame_words(uint64_t x, uint64_t w, uint64_t ppw) {
     return full + (left ? 1 : 0) + (right ? 1 : 0);
 }
 
+// Its partial words: a left and a right one, or one when the run sits inside a word.
+uint64_t mame_partial_words(uint64_t x, uint64_t w, uint64_t ppw) {
+    const uint64_t left = (ppw - x % ppw) % ppw;
+    const uint64_t right = (x + w) % ppw;
+    if (left + right > w) return 1;
+    return (left ? 1 : 0) + (right ? 1 : 0);
+}
+
 TEST(CostModel, WordsMatchesMameLeftFullRightDecomposition) {
-    for (uint32_t ppw : {1u, 2u, 4u, 8u, 16u})
+    for (uint32_t ppw : {1u, 2u, 4u, 8u, 16u, 32u})
         for (uint64_t x = 0; x < 40; ++x)
-            for (uint64_t w = 1; w < 40; ++w)
+            for (uint64_t w = 1; w < 40; ++w) {
                 ASSERT_EQ(words(x, w, ppw), mame_words(x, w, ppw))
                     << "x=" << x << " w=" << w << " P=" << ppw;
+                ASSERT_EQ(partial_words(x, w, ppw), mame_partial_words(x, w, ppw))
+                    << "x=" << x << " w=" << w << " P=" << ppw;
+            }
 }
 
-TEST(CostModel, FrameBeginIsChargedAsOneFullScreenFill) {
+TEST(CostModel, FrameBeginIsItsSetUpAndAFullScreenClear) {
     const CostProfile p = tms34010();
-    EXPECT_EQ(frame_begin_cycles(p, 1024, 780), 798'753u);
-    EXPECT_EQ(frame_begin_cycles(p, 640, 480), fill_rect_cycles(p, PixelRect{0, 0, 640, 480}));
-    EXPECT_EQ(frame_begin_cycles(p, 0, 780), 25u);  // nothing to clear
+    EXPECT_EQ(frame_begin_cycles(p, 640, 480),
+              fill_rect_cycles(p, PixelRect{0, 0, 640, 480}) - 27u - 12u + 29u + 10u);
+    EXPECT_EQ(frame_begin_cycles(p, 0, 780), 18u + 29u + 10u);  // nothing to clear
 }
 
-TEST(CostModel, CommandWithNothingToDrawCostsCmdOnly) {
-    EXPECT_EQ(command_only_cycles(tms34010()), 25u);
-}
-
-TEST(CostModel, BusTimeIsBytesOverBandwidthPlusHandshake) {
+TEST(CostModel, ACommandWithNothingToDrawStillLoadsAndRunsItsInstruction) {
     const CostProfile p = tms34010();
-    EXPECT_DOUBLE_EQ(bus_seconds(p, 12) * 1e6, 2.5);   // FILL_RECT: 1.5 + 1 us
-    EXPECT_DOUBLE_EQ(bus_seconds(p, 10) * 1e6, 2.25);  // DRAW_SPAN, FRAME_BEGIN
-    EXPECT_DOUBLE_EQ(bus_seconds(p, 2) * 1e6, 1.25);   // FRAME_END
-    EXPECT_EQ(bus_seconds(p, 0), 0.0);                 // MARKER is not sent
+    EXPECT_EQ(outside_cycles(p, protocol::Opcode::FillRect), 18u + 27u + 12u);
+    EXPECT_EQ(outside_cycles(p, protocol::Opcode::DrawSpan), 18u + 32u + 10u);
+    EXPECT_EQ(frame_end_cycles(p), 18u + 5u + 2u);
 }
 
-TEST(CostModel, Tms34020FullScreenFillTakes79Point9Milliseconds) {
+TEST(CostModel, BusTimeIsBytesOverTheChipsPortPlusHandshake) {
+    const CostProfile p = tms34010();
+    // the host side's 8 MB/s is faster than the port: 2 bytes per 2 states of 160 ns
+    EXPECT_DOUBLE_EQ(p.host_port_bytes_per_s, 2 / 320e-9);
+    EXPECT_DOUBLE_EQ(p.bus_bytes_per_s(), 6.25e6);
+    EXPECT_NEAR(bus_seconds(p, 12) * 1e6, 12 / 6.25 + 1, 1e-12);  // FILL_RECT
+    EXPECT_NEAR(bus_seconds(p, 2) * 1e6, 2 / 6.25 + 1, 1e-12);    // FRAME_END
+    EXPECT_EQ(bus_seconds(p, 0), 0.0);                            // MARKER is not sent
+    // the ISA board's host is slower than the port
+    EXPECT_DOUBLE_EQ(load_profile("tms34010-isa").bus_bytes_per_s(), 2.58e6);
+}
+
+TEST(CostModel, Tms34020WritesFourPixelsAWordOfItsThirtyTwoBitBus) {
     const CostProfile p = load_profile("tms34020-40mhz");
-    const uint64_t cycles = fill_rect_cycles(p, PixelRect{0, 0, 1024, 780});
-    EXPECT_EQ(cycles, 798'753u);  // the same fill() in MAME, a faster clock
-    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 79.8753, 1e-9);
-    EXPECT_NEAR(bus_seconds(p, 12) * 1e6, 1.1, 1e-12);  // 0.6 + 0.5 us
+    EXPECT_EQ(p.pixels_per_word(), 4u);
+    EXPECT_EQ(frame_begin_cycles(p, 1024, 780), 18u + 29u + 10u + 780u * 256u * 2u);
+    EXPECT_NEAR(cycles_to_seconds(p, frame_begin_cycles(p, 1024, 780)) * 1e3,
+                399'417 / 10e6 / (1 - p.stolen_share) * 1e3, 1e-9);
+    EXPECT_DOUBLE_EQ(p.bus_bytes_per_s(), 10e6);  // 2 bytes per 2 states of 100 ns
 }
 
 TEST(CostModel, IdealProfileCostsNothing) {
@@ -124,8 +192,14 @@ std::vector<CostProfile> profiles_to_compare() {
             p.bpp = bpp;
             p.span_as = span_as;
             p.c_row = 3;
-            p.c_line_setup = 17;
+            derive_figures(p);
             out.push_back(p);
+            for (uint32_t bus : {32u}) {  // and on a 32-bit bus, four or more pixels a word
+                CostProfile wide = p;
+                wide.bus_bits = bus;
+                derive_figures(wide);
+                out.push_back(wide);
+            }
         }
     return out;
 }
@@ -133,7 +207,11 @@ std::vector<CostProfile> profiles_to_compare() {
 TEST(CycleCosts, EqualTheCostFormulasForEveryProfileAndPlacement) {
     for (const CostProfile& p : profiles_to_compare()) {
         const CycleCosts costs(p);
-        EXPECT_EQ(costs.command_only(), command_only_cycles(p)) << p.to_string();
+        EXPECT_EQ(costs.fill_outside(), outside_cycles(p, protocol::Opcode::FillRect))
+            << p.to_string();
+        EXPECT_EQ(costs.span_outside(), outside_cycles(p, protocol::Opcode::DrawSpan))
+            << p.to_string();
+        EXPECT_EQ(costs.frame_end(), frame_end_cycles(p)) << p.to_string();
         for (uint32_t x : {0u, 1u, 3u, 7u, 8u, 15u, 16u, 17u, 1023u, 16383u})
             for (uint32_t w : {1u, 2u, 5u, 15u, 16u, 17u, 33u, 1024u, 16384u}) {
                 ASSERT_EQ(costs.draw_span(x, w), draw_span_cycles(p, x, w))
@@ -147,7 +225,7 @@ TEST(CycleCosts, EqualTheCostFormulasForEveryProfileAndPlacement) {
 }
 
 TEST(CycleCosts, RefuseABppThatIsNotAPowerOfTwoUpTo16) {
-    for (uint32_t bpp : {0u, 3u, 32u}) {
+    for (uint32_t bpp : {0u, 3u, 64u}) {
         CostProfile p = tms34010();
         p.bpp = bpp;
         EXPECT_THROW(CycleCosts{p}, std::invalid_argument) << "bpp " << bpp;

@@ -21,12 +21,17 @@ namespace {
 using nlohmann::json;
 using protocol::Opcode;
 
-// The default profile's fields without its bands, so that a test may set a figure anywhere
-// (with a band, a figure outside it is refused: Profile.BandsHoldTheirFiguresAndSayWhy).
+// A profile that gives its cycle figures (the first model's, tms34010-mame) without its
+// bands, so that a test may set any figure anywhere (with a band, a figure outside it is
+// refused: Profile.BandsHoldTheirFiguresAndSayWhy).
 json default_profile_json() {
-    json j = load_profile("tms34010-50mhz").to_json();
+    json j = load_profile("tms34010-mame").to_json();
     j.erase("bands");
     return j;
+}
+// The default profile (a listing and a memory model), bands and all.
+json listing_profile_json() {
+    return load_profile("tms34010-50mhz").to_json();
 }
 
 // The message parse_profile throws for `j`, or "" when it loads.
@@ -39,20 +44,31 @@ std::string load_error(const json& j) {
     return "";
 }
 
-TEST(Profile, DefaultIsTms34010At50MhzWithTheDesignFigures) {
+TEST(Profile, DefaultIsTms34010At50MhzPricedFromTheDataSheet) {
     const CostProfile p = default_profile();
     EXPECT_EQ(p.name, "tms34010-50mhz");
     EXPECT_EQ(p.f_cyc_hz, 6.25e6);
     EXPECT_EQ(p.bpp, 8u);
+    EXPECT_EQ(p.bus_bits, 16u);
     EXPECT_EQ(p.pixels_per_word(), 2u);
-    EXPECT_EQ(p.c_cmd, 25u);
-    EXPECT_EQ(p.c_setup, 8u);
+    EXPECT_EQ(p.gsp, "tms34010");
+    EXPECT_EQ(p.memory_cycle_states, 2u);
+    EXPECT_EQ(p.wait_states, 0u);
+    EXPECT_EQ(p.refresh_every_states, 64u);
+    EXPECT_EQ(p.screen_transfers_per_s, 46'800);
+    // derived: the listing's paths and the memory cycles
+    EXPECT_EQ(p.c_cmd, 18u);
+    EXPECT_EQ(p.c_setup, 27u);
+    EXPECT_EQ(p.c_line_setup, 32u);
     EXPECT_EQ(p.c_op, 2u);
+    EXPECT_EQ(p.c_op_partial, 4u);
     EXPECT_EQ(p.c_row, 0u);
+    EXPECT_EQ(p.c_line_pix, 4u);
+    EXPECT_EQ(p.c_host_word, 2u);
+    EXPECT_TRUE(p.outside_pays_setup);
     EXPECT_EQ(p.span_as, SpanAs::Line);
-    EXPECT_EQ(p.c_line_setup, 12u);
-    EXPECT_EQ(p.c_line_pix, 2u);
     EXPECT_EQ(p.b_bus_bytes_per_s, 8e6);
+    EXPECT_EQ(p.bus_bytes_per_s(), 6.25e6);
     EXPECT_EQ(p.t_handshake_s, 1e-6);
     EXPECT_EQ(p.bytes_of(Opcode::FillRect), 12u);
     EXPECT_EQ(p.bytes_of(Opcode::DrawSpan), 10u);
@@ -61,29 +77,87 @@ TEST(Profile, DefaultIsTms34010At50MhzWithTheDesignFigures) {
     EXPECT_EQ(p.bytes_of(Opcode::Marker), 0u);
 }
 
-TEST(Profile, Tms34020HasHundredNanosecondCycleAnd20MBPerSecondPort) {
+TEST(Profile, TheFirstModelKeepsItsGivenFigures) {
+    const CostProfile p = load_profile("tms34010-mame");
+    EXPECT_TRUE(p.gsp.empty());
+    EXPECT_EQ(p.c_cmd, 25u);
+    EXPECT_EQ(p.c_setup, 8u);
+    EXPECT_EQ(p.c_op, 2u);
+    EXPECT_EQ(p.c_op_partial, 2u);
+    EXPECT_EQ(p.c_line_setup, 12u);
+    EXPECT_EQ(p.c_line_pix, 2u);
+    EXPECT_EQ(p.c_host_word, 0u);
+    EXPECT_EQ(p.stolen_share, 0.0);
+    EXPECT_FALSE(p.outside_pays_setup);
+    EXPECT_EQ(p.bus_bytes_per_s(), 8e6);
+}
+
+TEST(Profile, Tms34020HasAHundredNanosecondStateAndAThirtyTwoBitBus) {
     const CostProfile p = load_profile("tms34020-40mhz");
     EXPECT_EQ(p.f_cyc_hz, 10e6);
+    EXPECT_EQ(p.bus_bits, 32u);
     EXPECT_EQ(p.b_bus_bytes_per_s, 20e6);
+    EXPECT_EQ(p.bus_bytes_per_s(), 10e6);  // the port's limit at a 100 ns state
 }
 
-TEST(Profile, ListsTheFourBuiltInProfiles) {
+TEST(Profile, ListsTheBuiltInProfiles) {
     EXPECT_EQ(list_profiles(), (std::vector<std::string>{"ideal", "tms34010-50mhz", "tms34010-isa",
-                                                         "tms34020-40mhz"}));
+                                                         "tms34010-mame", "tms34020-40mhz"}));
 }
 
-TEST(Profile, EveryBuiltInFigureCitesEmuOrEstSource) {
+TEST(Profile, EveryBuiltInFigureCitesItsSource) {
     for (const std::string& name : list_profiles()) {
         const CostProfile p = load_profile(name);
         for (const auto& [field, source] : p.sources)
-            EXPECT_TRUE(source.rfind("[EMU]", 0) == 0 || source.rfind("[EST]", 0) == 0)
+            EXPECT_TRUE(source.rfind("[DS]", 0) == 0 || source.rfind("[UG]", 0) == 0 ||
+                        source.rfind("[EMU]", 0) == 0 || source.rfind("[EST]", 0) == 0)
                 << name << " " << field << ": " << source;
         if (name == "ideal") continue;
-        for (const char* field :
-             {"f_cyc_hz", "bpp", "C_cmd", "C_setup", "C_op", "C_row", "span_as", "C_line_setup",
-              "C_line_pix", "B_bus_bytes_per_s", "t_handshake_s", "bytes", "command_buffer_bytes"})
+        std::vector<const char*> fields = {
+            "f_cyc_hz",          "bpp",           "C_row", "span_as",
+            "B_bus_bytes_per_s", "t_handshake_s", "bytes", "command_buffer_bytes"};
+        if (p.gsp.empty())
+            fields.insert(fields.end(), {"C_cmd", "C_setup", "C_op", "C_line_setup", "C_line_pix"});
+        else
+            fields.insert(fields.end(),
+                          {"bus_bits", "gsp", "memory_cycle_states", "wait_states",
+                           "refresh_every_states", "screen_transfers_per_s", "C_line_extra"});
+        for (const char* field : fields)
             EXPECT_TRUE(p.sources.contains(field)) << name << " has no source for " << field;
     }
+}
+
+// A profile with a listing gives its memory model and never the figures derived from it.
+TEST(Profile, AListingProfileDerivesItsCycleFiguresAndRefusesThemGiven) {
+    json j = listing_profile_json();
+    j["C_cmd"] = 25;
+    EXPECT_NE(load_error(j).find("\"C_cmd\": derived from the listing"), std::string::npos)
+        << load_error(j);
+    j = listing_profile_json();
+    j.erase("wait_states");
+    EXPECT_NE(load_error(j).find("\"wait_states\": missing"), std::string::npos) << load_error(j);
+    j = listing_profile_json();
+    j["gsp"] = "tms9918";
+    EXPECT_NE(load_error(j).find("\"gsp\": unknown GSP listing \"tms9918\""), std::string::npos)
+        << load_error(j);
+    j = default_profile_json();
+    j["wait_states"] = 1;
+    EXPECT_NE(load_error(j).find("\"wait_states\": only a profile with \"gsp\""), std::string::npos)
+        << load_error(j);
+    j = listing_profile_json();
+    j["bpp"] = 16;
+    j["bus_bits"] = 8;
+    EXPECT_NE(load_error(j).find("\"bus_bits\": must be 16 or 32"), std::string::npos);
+    j = listing_profile_json();
+    j["bands"].erase("refresh_every_states");
+    j["refresh_every_states"] = 4;
+    EXPECT_NE(load_error(j).find("\"refresh_every_states\": 0 (no refresh) or at least"),
+              std::string::npos)
+        << load_error(j);
+    // "derived" is written for the reader and ignored when read
+    j = listing_profile_json();
+    j["derived"]["C_cmd"] = 1;
+    EXPECT_EQ(parse_profile(j.dump(), "test").c_cmd, 18u);
 }
 
 TEST(Profile, TheCommandBufferIsUnboundedOrHoldsTheLargestCommand) {
@@ -112,41 +186,58 @@ TEST(Profile, TheCommandBufferIsUnboundedOrHoldsTheLargestCommand) {
 TEST(Profile, BandsHoldTheirFiguresAndSayWhy) {
     for (const char* name : {"tms34010-50mhz", "tms34010-isa", "tms34020-40mhz"}) {
         const CostProfile p = load_profile(name);
-        for (const char* field : {"C_cmd", "C_line_setup", "B_bus_bytes_per_s", "t_handshake_s",
-                                  "command_buffer_bytes"})
+        for (const char* field :
+             {"gsp", "wait_states", "refresh_every_states", "screen_transfers_per_s", "C_row",
+              "C_line_extra", "B_bus_bytes_per_s", "t_handshake_s", "command_buffer_bytes"})
             EXPECT_TRUE(p.bands.count(field)) << name << " " << field;
         const CostProfile cheap = band_end(p, false), dear = band_end(p, true);
         EXPECT_LE(cheap.c_cmd, p.c_cmd);
         EXPECT_GE(dear.c_cmd, p.c_cmd);
-        EXPECT_GE(cheap.b_bus_bytes_per_s, p.b_bus_bytes_per_s);
-        EXPECT_LE(dear.b_bus_bytes_per_s, p.b_bus_bytes_per_s);
+        EXPECT_LE(cheap.c_line_setup, p.c_line_setup);
+        EXPECT_GE(dear.c_line_pix, p.c_line_pix);
+        EXPECT_GE(dear.stolen_share, p.stolen_share);
+        EXPECT_LE(cheap.stolen_share, p.stolen_share);
+        EXPECT_GE(cheap.bus_bytes_per_s(), p.bus_bytes_per_s());
+        EXPECT_LE(dear.bus_bytes_per_s(), p.bus_bytes_per_s());
         EXPECT_EQ(dear.command_buffer_bytes, 1024u);
         EXPECT_EQ(cheap.command_buffer_bytes, p.command_buffer_bytes);
         EXPECT_EQ(dear.name, std::string(name) + " (dear end)");
     }
     const CostProfile p = load_profile("tms34010-50mhz");
     const CostProfile dear = band_end(p, true);
-    EXPECT_EQ(dear.c_cmd, 50u);
-    EXPECT_EQ(dear.c_line_setup, 24u);
+    EXPECT_EQ(dear.wait_states, 1u);
+    EXPECT_EQ(dear.refresh_every_states, 32u);
+    EXPECT_EQ(dear.c_op, 3u);
+    EXPECT_EQ(dear.c_line_pix, 2u * 3u + 2u);
+    EXPECT_EQ(dear.c_cmd, 18u + 3u + 2u);  // wait states on its reads, a state more to issue each
     EXPECT_EQ(dear.b_bus_bytes_per_s, 4e6);
     EXPECT_EQ(dear.t_handshake_s, 3e-6);
-    EXPECT_EQ(band_end(p, false).c_cmd, 12u);
+    EXPECT_EQ(band_end(p, false).c_line_setup, 30u);  // LINE's own set-up at 2
+    // the first model's bands are on its given figures
+    const CostProfile first = load_profile("tms34010-mame");
+    EXPECT_EQ(band_end(first, true).c_cmd, 50u);
+    EXPECT_EQ(band_end(first, false).c_cmd, 12u);
     // a band needs its reason, must hold its figure and may only be on a banded figure
-    json j = load_profile("tms34010-50mhz").to_json();
+    json j = load_profile("tms34010-mame").to_json();
     j["bands"]["C_cmd"].erase("why");
     EXPECT_NE(load_error(j).find("\"bands.C_cmd.why\": missing"), std::string::npos)
         << load_error(j);
-    j = load_profile("tms34010-50mhz").to_json();
+    j = load_profile("tms34010-mame").to_json();
     j["C_cmd"] = 60;
     EXPECT_NE(load_error(j).find("\"bands.C_cmd\": the figure 60 must lie within its band"),
               std::string::npos)
         << load_error(j);
-    j = load_profile("tms34010-50mhz").to_json();
+    j = listing_profile_json();
     j["bands"]["bpp"] = {{"low", 4}, {"high", 16}, {"why", "x"}};
     EXPECT_NE(load_error(j).find("\"bands.bpp\": names no figure that can have a band"),
               std::string::npos)
         << load_error(j);
-    j = load_profile("tms34010-50mhz").to_json();
+    j = listing_profile_json();
+    j["bands"]["C_cmd"] = {{"low", 4}, {"high", 60}, {"why", "x"}};
+    EXPECT_NE(load_error(j).find("\"bands.C_cmd\": a figure derived from the listing"),
+              std::string::npos)
+        << load_error(j);
+    j = listing_profile_json();
     j["bands"]["command_buffer_bytes"]["low"] = 8;  // FILL_RECT takes 12
     EXPECT_NE(load_error(j).find("\"bands.command_buffer_bytes.low\""), std::string::npos)
         << load_error(j);

@@ -38,8 +38,8 @@ TEST(RenderJobPipeline, NativelyTheFrameLiesBetweenTheLargerSideAndTheirSum) {
     }
 }
 
-// A bounded buffer the bus and the controller must take turns through (64 bytes, a few
-// commands, on the ISA bus's slow profile): the controller alone is slower than the split's
+// A bounded buffer the bus and the controller must take turns through (12 bytes, one
+// FILL_RECT, on the ISA bus's slow profile): the controller alone is slower than the split's
 // unbounded pipeline, and the frame, taken against it, still lies between max and sum -- the
 // overlap a share in [0, 1], not the negative one host + the unbounded controller would give.
 TEST(RenderJobPipeline, ABufferThatSlowsTheControllerIsCountedOnTheControllersSide) {
@@ -49,7 +49,7 @@ TEST(RenderJobPipeline, ABufferThatSlowsTheControllerIsCountedOnTheControllersSi
     job.repeat = 1;
     job.controller = "tms34010-isa";
     job.methods.emplace_back(host::Method::Warnock);
-    for (const uint64_t buffer : {uint64_t{64}, controller::kUnboundedBuffer}) {
+    for (const uint64_t buffer : {uint64_t{12}, controller::kUnboundedBuffer}) {
         job.buffer_bytes = buffer;
         const RenderResult result = run_render_job(job);
         const MethodRun& run = result.runs.front();

@@ -1,0 +1,481 @@
+// Counting the GSP's command executive (see gsp_listing.h and docs/COST_MODEL.md).
+//
+// The listing is read line by line: "NAME .equ VALUE" defines a symbol, "label:" a label,
+// other directives (".long") are data, and every other line is one instruction. Each
+// instruction is priced by the form of its operands from the data sheet's tables; a form the
+// tables do not give is an error, so nothing is priced by a default.
+#include "controller_sim/gsp_listing.h"
+
+#include <algorithm>
+#include <cctype>
+#include <optional>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace fb89::controller {
+
+namespace {
+
+// The two fields' sizes the executive sets at start-up (SETF 16,0,0 and SETF 32,0,1).
+constexpr uint32_t kFieldBits[2] = {16, 32};
+// On-chip I/O registers: 0C0000000h to 0C00001FFh (SPVS002C p. 10, figure 6).
+constexpr uint64_t kIoFirst = 0xC0000000, kIoLast = 0xC00001FF;
+// A path longer than this has a loop in it.
+constexpr int kMaxPathSteps = 1000;
+
+// The B file's names in TI's documents (SADDR = B0 ... PATTRN = B13).
+constexpr std::string_view kBFileNames[] = {"SADDR",  "SPTCH", "DADDR", "DPTCH",  "OFFSET",
+                                            "WSTART", "WEND",  "DYDX",  "COLOR0", "COLOR1",
+                                            "COUNT",  "INC1",  "INC2",  "PATTRN"};
+
+constexpr std::string_view kConditions[] = {"UC", "EQ", "NE", "LO", "HS", "LT", "GE", "LE",
+                                            "GT", "C",  "NC", "Z",  "NZ", "P",  "N",  "NN",
+                                            "V",  "NV", "HI", "LS", "MI", "PL", "LE"};
+
+std::string upper(std::string_view s) {
+    std::string out(s);
+    for (char& c : out)
+        c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return out;
+}
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
+        s.remove_prefix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
+        s.remove_suffix(1);
+    return s;
+}
+
+bool is_register(std::string_view s) {
+    const std::string u = upper(s);
+    if (u == "SP") return true;
+    if (std::find(std::begin(kBFileNames), std::end(kBFileNames), u) != std::end(kBFileNames))
+        return true;
+    if (u.size() < 2 || u.size() > 3 || (u[0] != 'A' && u[0] != 'B')) return false;
+    if (!std::all_of(u.begin() + 1, u.end(), [](char c) { return std::isdigit(c) != 0; }))
+        return false;
+    return std::stoi(u.substr(1)) <= 14;
+}
+
+// A number as the TI assembler writes it: decimal, or hexadecimal with a trailing h.
+std::optional<uint64_t> parse_number(std::string_view s) {
+    s = trim(s);
+    if (s.empty() || !std::isdigit(static_cast<unsigned char>(s[0]))) return std::nullopt;
+    const bool hex = s.back() == 'h' || s.back() == 'H';
+    if (hex) s.remove_suffix(1);
+    uint64_t v = 0;
+    for (char c : s) {
+        const int d = std::isdigit(static_cast<unsigned char>(c))
+                          ? c - '0'
+                          : (hex && std::isxdigit(static_cast<unsigned char>(c))
+                                 ? std::tolower(static_cast<unsigned char>(c)) - 'a' + 10
+                                 : -1);
+        if (d < 0) return std::nullopt;
+        v = v * (hex ? 16 : 10) + static_cast<uint64_t>(d);
+        if (v > 0xFFFFFFFFu) return std::nullopt;
+    }
+    return v;
+}
+
+enum class Kind { Register, MemoryRead, MemoryWrite, Branch, Jump, Dispatch, Graphics };
+
+struct Instruction {
+    int line = 0;
+    std::string label;  // "" when the line has none
+    std::string mnemonic;
+    std::vector<std::string> operands;
+    std::string comment;
+    std::string text;  // mnemonic and operands as written
+};
+
+struct Parsed {
+    std::vector<Instruction> code;                           // in listing order
+    std::map<std::string, std::size_t> labels;               // label -> index into code
+    std::map<std::string, uint64_t> symbols;                 // .equ
+    std::vector<std::pair<std::string, std::string>> paths;  // name, start label
+};
+
+// What one instruction costs, before the write queue is applied.
+struct Price {
+    Kind kind = Kind::Register;
+    uint32_t words = 1;
+    uint32_t cycles = 0;            // taken, for a branch
+    uint32_t cycles_not_taken = 0;  // a branch only
+    uint32_t queued = 0;            // a write's memory states, which overlap what follows
+    std::string source;
+    std::string target;  // a jump's label
+    std::string graphics;
+};
+
+class Pricer {
+  public:
+    Pricer(const Listing& listing, const Parsed& parsed, const MemoryTiming& memory, TimingEnd end)
+        : m_listing(listing), m_parsed(parsed), m_memory(memory), m_end(end) {}
+
+    [[noreturn]] void fail(const Instruction& in, std::string_view what) const {
+        throw std::runtime_error(
+            fmt::format("listing {}.asm line {}: {}: {}", m_listing.name, in.line, in.text, what));
+    }
+
+    Price price(const Instruction& in) const {
+        const std::string& m = in.mnemonic;
+        const auto& ops = in.operands;
+        const auto n = ops.size();
+        const auto reg = [&](std::size_t i) { return i < n && is_register(ops[i]); };
+
+        if (m == "MOVE" && n == 2 && reg(0) && reg(1))
+            return simple(1, 1, "[DS] p. 12, MOVE Rs,Rd");
+        if (m == "MOVE" && (n == 2 || n == 3)) return memory_move(in);
+        if (m == "MOVI" && n == 2 && reg(1)) {
+            const bool is_short = fits_word(in, ops[0]);
+            return is_short ? simple(2, 2, "[DS] p. 13, MOVI IW,Rd")
+                            : simple(3, 3, "[DS] p. 13, MOVI IL,Rd");
+        }
+        if ((m == "ADDI" || m == "SUBI" || m == "CMPI") && n == 2 && reg(1)) {
+            const bool is_short = fits_word(in, ops[0]);
+            return is_short ? simple(2, 2, fmt::format("[DS] pp. 13-14, {} IW,Rd", m))
+                            : simple(3, 3, fmt::format("[DS] pp. 13-14, {} IL,Rd", m));
+        }
+        if ((m == "ANDI" || m == "ORI" || m == "XORI") && n == 2 && reg(1))
+            return simple(3, 3, fmt::format("[DS] pp. 13-14, {} IL,Rd", m));
+        if ((m == "MOVK" || m == "ADDK" || m == "SUBK") && n == 2 && reg(1) && constant(in, ops[0]))
+            return simple(1, 1, fmt::format("[DS] pp. 13-14, {} K,Rd", m));
+        if ((m == "SLL" || m == "SRL" || m == "SRA" || m == "RL") && n == 2 && reg(1) &&
+            (reg(0) || constant(in, ops[0])))
+            return simple(1, 1, fmt::format("[DS] pp. 13-14, {}", m));
+        if ((m == "ADD" || m == "ADDC" || m == "SUB" || m == "SUBB" || m == "CMP" || m == "AND" ||
+             m == "ANDN" || m == "OR" || m == "XOR" || m == "ADDXY" || m == "SUBXY") &&
+            n == 2 && reg(0) && reg(1)) {
+            same_file(in);
+            return simple(1, 1, fmt::format("[DS] pp. 11, 13-14, {} Rs,Rd", m));
+        }
+        if (m == "CMPXY" && n == 2 && reg(0) && reg(1)) return simple(1, 3, "[DS] p. 11, CMPXY");
+        if ((m == "NEG" || m == "NEGB" || m == "NOT" || m == "CLR" || m == "INC" || m == "DEC" ||
+             m == "ABS") &&
+            n == 1 && reg(0))
+            return simple(1, 1, fmt::format("[DS] p. 13, {} Rd", m));
+        if (m.size() >= 4 && m.rfind("JR", 0) == 0 && n == 1) {
+            const std::string code = m.substr(2);
+            if (std::find(std::begin(kConditions), std::end(kConditions), code) ==
+                std::end(kConditions))
+                fail(in, "not a condition code");
+            Price p = simple(1, 2, "[DS] p. 14, JRcc short: 2 taken, 1 not");
+            p.kind = code == "UC" ? Kind::Jump : Kind::Branch;
+            p.cycles_not_taken = 1;
+            p.target = ops[0];
+            return p;
+        }
+        if (m == "JUMP" && n == 1 && reg(0)) {
+            Price p = simple(1, 2, "[DS] p. 14, JUMP Rs");
+            p.kind = Kind::Dispatch;
+            return p;
+        }
+        if (m == "FILL" && n == 1 && upper(ops[0]) == "XY") {
+            Price p = simple(1, 8,
+                             "[EMU] FILL XY's own set-up, MAME's fill(): 4 + 2 (XY) + 2; its "
+                             "pixels are the memory model's");
+            p.kind = Kind::Graphics;
+            p.graphics = "FILL";
+            return p;
+        }
+        if (m == "LINE" && n == 1 && (ops[0] == "0" || ops[0] == "1")) {
+            const uint32_t c = m_end == TimingEnd::Low ? 2 : m_end == TimingEnd::High ? 8 : 4;
+            Price p = simple(1, c,
+                             "[EST] LINE's own set-up, 4 (band 2-8): the data sheet defers to the "
+                             "User's Guide, MAME charges none; its pixels are the memory model's");
+            p.kind = Kind::Graphics;
+            p.graphics = "LINE";
+            return p;
+        }
+        fail(in, "no timing for this instruction form in the data sheet's tables");
+    }
+
+  private:
+    static Price simple(uint32_t words, uint32_t cycles, std::string source) {
+        Price p;
+        p.words = words;
+        p.cycles = cycles;
+        p.source = std::move(source);
+        return p;
+    }
+
+    uint64_t value(const Instruction& in, std::string_view s) const {
+        if (auto v = parse_number(s)) return *v;
+        auto it = m_parsed.symbols.find(std::string(trim(s)));
+        if (it == m_parsed.symbols.end()) fail(in, fmt::format("{}: not a number or a symbol", s));
+        return it->second;
+    }
+    bool fits_word(const Instruction& in, std::string_view s) const {
+        return value(in, s) < 0x8000;
+    }
+    bool constant(const Instruction& in, std::string_view s) const {
+        const uint64_t v = value(in, s);
+        if (v < 1 || v > 32) fail(in, "a constant K is 1 to 32");
+        return true;
+    }
+    void same_file(const Instruction& in) const {
+        const auto file = [](std::string_view r) {
+            const std::string u = upper(r);
+            return u[0] == 'B' || std::find(std::begin(kBFileNames), std::end(kBFileNames), u) !=
+                                      std::end(kBFileNames);
+        };
+        if (file(in.operands[0]) != file(in.operands[1]))
+            fail(in, "only MOVE crosses between the A and B files");
+    }
+
+    // MOVE with a memory operand: the data sheet's tables give no figure ("depends on field
+    // size and alignment", p. 12), so the price is one state to issue it [EST, band 1-2] plus
+    // the memory cycles of its field, word-aligned: a read waits for them; a write is queued
+    // (p. 10) and overlaps the instructions after it until the next memory access.
+    Price memory_move(const Instruction& in) const {
+        const auto& ops = in.operands;
+        const std::size_t field = ops.size() == 3 ? (ops[2] == "1" ? 1 : ops[2] == "0" ? 0 : 2) : 0;
+        if (field > 1) fail(in, "the field select is 0 or 1");
+        const auto memory = [](std::string_view s) {
+            return s.starts_with("*") || s.starts_with("@");
+        };
+        const bool read = memory(ops[0]) && is_register(ops[1]);
+        const bool write = is_register(ops[0]) && memory(ops[1]);
+        if (!read && !write) fail(in, "a MOVE is register to memory or memory to register here");
+        const std::string_view where = read ? std::string_view(ops[0]) : std::string_view(ops[1]);
+        if (where.starts_with("*")) {
+            std::string_view r = where.substr(1);
+            if (r.ends_with("+")) r.remove_suffix(1);
+            if (!is_register(r)) fail(in, "an indirect operand is *Rn or *Rn+");
+        }
+        bool io = false;
+        if (where.starts_with("@")) {
+            const uint64_t address = value(in, where.substr(1));
+            io = address >= kIoFirst && address <= kIoLast;
+            if (address % 16 != 0) fail(in, "an absolute operand here is word-aligned");
+        }
+        const uint32_t field_words = kFieldBits[field] / 16;
+        const uint32_t per_word = io ? m_memory.io_cycle_states : m_memory.cycle_states;
+        const uint32_t issue = m_end == TimingEnd::High ? 2 : 1;
+        Price p;
+        p.words = where.starts_with("@") ? 3 : 1;
+        p.kind = read ? Kind::MemoryRead : Kind::MemoryWrite;
+        const std::string what = fmt::format(
+            "[EST] {} state{} to issue (band 1-2; DS p. 12: 'depends on field size and alignment') "
+            "+ {} {}-bit {} cycle{} of {} states (DS p. 19{})",
+            issue, issue == 1 ? "" : "s", field_words, 16, io ? "I/O" : "memory",
+            field_words == 1 ? "" : "s", per_word, read ? "" : "; a write is queued, p. 10");
+        p.source = what;
+        if (read) {
+            p.cycles = issue + field_words * per_word;
+        } else {
+            p.cycles = issue;
+            p.queued = field_words * per_word;
+        }
+        return p;
+    }
+
+    const Listing& m_listing;
+    const Parsed& m_parsed;
+    MemoryTiming m_memory;
+    TimingEnd m_end;
+};
+
+Parsed parse(const Listing& listing) {
+    Parsed out;
+    int number = 0;
+    std::string pending_label;
+    std::string_view text = listing.text;
+    const auto fail = [&](std::string_view what) {
+        throw std::runtime_error(
+            fmt::format("listing {}.asm line {}: {}", listing.name, number, what));
+    };
+    while (!text.empty()) {
+        const std::size_t eol = text.find('\n');
+        std::string_view line = text.substr(0, eol);
+        text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
+        ++number;
+        std::string_view comment;
+        if (const std::size_t semi = line.find(';'); semi != std::string_view::npos) {
+            comment = trim(line.substr(semi + 1));
+            line = line.substr(0, semi);
+        }
+        if (comment.starts_with("@path")) {
+            std::string_view rest = trim(comment.substr(5));
+            const std::size_t space = rest.find(' ');
+            if (space == std::string_view::npos) fail("@path takes a name and a label");
+            out.paths.emplace_back(std::string(rest.substr(0, space)),
+                                   std::string(trim(rest.substr(space + 1))));
+            continue;
+        }
+        std::string_view code = line;
+        std::string label;
+        if (!code.empty() && !std::isspace(static_cast<unsigned char>(code[0]))) {
+            std::size_t end = 0;
+            while (end < code.size() && !std::isspace(static_cast<unsigned char>(code[end])))
+                ++end;
+            std::string_view first = code.substr(0, end);
+            code = trim(code.substr(end));
+            if (first.ends_with(":")) {
+                label = std::string(first.substr(0, first.size() - 1));
+            } else if (code.starts_with(".equ")) {
+                const auto v = parse_number(code.substr(4));
+                if (!v) fail("a .equ takes a number");
+                out.symbols[std::string(first)] = *v;
+                continue;
+            } else {
+                fail(fmt::format("{}: a label ends with ':'", first));
+            }
+        }
+        code = trim(code);
+        if (!label.empty()) {
+            if (!pending_label.empty()) fail("two labels for one instruction");
+            pending_label = label;
+        }
+        if (code.empty() || code.starts_with(".")) {
+            if (code.starts_with(".")) pending_label.clear();  // a label on data
+            continue;
+        }
+        Instruction in;
+        in.line = number;
+        in.label = pending_label;
+        pending_label.clear();
+        in.comment = std::string(comment);
+        in.text = std::string(code);
+        std::size_t space = 0;
+        while (space < code.size() && !std::isspace(static_cast<unsigned char>(code[space])))
+            ++space;
+        in.mnemonic = upper(code.substr(0, space));
+        std::string_view ops = trim(code.substr(space));
+        while (!ops.empty()) {
+            const std::size_t comma = ops.find(',');
+            in.operands.emplace_back(trim(ops.substr(0, comma)));
+            ops = comma == std::string_view::npos ? std::string_view{} : ops.substr(comma + 1);
+        }
+        if (!in.label.empty()) {
+            if (out.labels.count(in.label)) fail(fmt::format("label {} defined twice", in.label));
+            out.labels[in.label] = out.code.size();
+        }
+        out.code.push_back(std::move(in));
+    }
+    return out;
+}
+
+// Walks one path from its label, pricing each instruction and applying the write queue:
+// a queued write's states overlap the register instructions after it and are waited for
+// by the next memory access, the graphics instruction, or the path's end.
+CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pricer,
+                 const std::string& name, const std::string& start, const std::string& loop) {
+    CountedPath path;
+    path.name = name;
+    auto it = parsed.labels.find(start);
+    if (it == parsed.labels.end())
+        throw std::runtime_error(
+            fmt::format("listing {}.asm: @path {}: no label {}", listing.name, name, start));
+    std::size_t pc = it->second;
+    uint32_t queued = 0;
+    for (int step = 0;; ++step) {
+        if (step > kMaxPathSteps || pc >= parsed.code.size())
+            throw std::runtime_error(fmt::format(
+                "listing {}.asm: @path {} does not end (a path ends at a dispatch or a jump to {})",
+                listing.name, name, loop));
+        const Instruction& in = parsed.code[pc];
+        const Price p = pricer.price(in);
+        uint32_t cycles = p.cycles;
+        const bool touches_memory =
+            p.kind == Kind::MemoryRead || p.kind == Kind::MemoryWrite || p.kind == Kind::Graphics;
+        if (touches_memory) {
+            cycles += queued;  // wait for the queued write
+            queued = 0;
+        }
+        bool taken = p.kind == Kind::Jump;
+        if (p.kind == Kind::Branch) {
+            if (in.comment.starts_with("not taken"))
+                taken = false;
+            else if (in.comment.starts_with("taken"))
+                taken = true;
+            else
+                pricer.fail(in, "a conditional jump on a path says \"taken\" or \"not taken\"");
+            if (!taken) cycles = p.cycles_not_taken;
+        }
+        if (!touches_memory) queued = cycles >= queued ? 0 : queued - cycles;
+        if (p.kind == Kind::MemoryWrite) queued = p.queued;
+        if (p.kind == Kind::Graphics) path.graphics = p.graphics;
+        const bool ends = p.kind == Kind::Dispatch || (taken && p.target == loop);
+        if (ends) cycles += queued;  // paid before the path's work is done
+        path.lines.push_back({in.line, in.text, cycles, p.words, p.source});
+        path.cycles += cycles;
+        if (ends) break;
+        if (taken) {
+            auto target = parsed.labels.find(p.target);
+            if (target == parsed.labels.end()) pricer.fail(in, "no such label");
+            pc = target->second;
+        } else {
+            ++pc;
+        }
+    }
+    return path;
+}
+
+}  // namespace
+
+const Listing& builtin_listing(std::string_view name) {
+    for (const Listing& l : builtin_listings())
+        if (l.name == name) return l;
+    std::vector<std::string> names;
+    for (const Listing& l : builtin_listings())
+        names.push_back(l.name);
+    throw std::runtime_error(fmt::format("unknown GSP listing \"{}\": the built-in ones are {}",
+                                         name, fmt::join(names, ", ")));
+}
+
+std::map<std::string, CountedPath> count_paths(const Listing& listing, const MemoryTiming& memory,
+                                               TimingEnd end) {
+    const Parsed parsed = parse(listing);
+    const Pricer pricer(listing, parsed, memory, end);
+    std::string loop;
+    for (const auto& [name, start] : parsed.paths)
+        if (name == "COMMON") loop = start;
+    if (loop.empty())
+        throw std::runtime_error(fmt::format("listing {}.asm: no @path COMMON", listing.name));
+    std::map<std::string, CountedPath> out;
+    for (const auto& [name, start] : parsed.paths)
+        out[name] = walk(listing, parsed, pricer, name, start, loop);
+    return out;
+}
+
+uint32_t listing_words(const Listing& listing) {
+    const Parsed parsed = parse(listing);
+    const Pricer pricer(listing, parsed, MemoryTiming{}, TimingEnd::Estimate);
+    uint32_t words = 0;
+    for (const Instruction& in : parsed.code)
+        words += pricer.price(in).words;
+    return words;
+}
+
+std::string annotated_listing(const Listing& listing, const MemoryTiming& memory) {
+    const auto paths = count_paths(listing, memory);
+    std::map<int, const CountedLine*> priced;
+    for (const auto& [name, path] : paths)
+        for (const CountedLine& l : path.lines)
+            priced.emplace(l.line, &l);
+    std::string out = fmt::format(
+        "; {}.asm, each counted instruction with its cycles (memory cycle {} states, I/O {})\n",
+        listing.name, memory.cycle_states, memory.io_cycle_states);
+    std::string_view text = listing.text;
+    int number = 0;
+    while (!text.empty()) {
+        const std::size_t eol = text.find('\n');
+        const std::string_view line = text.substr(0, eol);
+        text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
+        ++number;
+        auto it = priced.find(number);
+        out += it == priced.end() ? fmt::format("{:>4}  {}\n", "", line)
+                                  : fmt::format("{:>4}  {}\n", it->second->cycles, line);
+    }
+    for (const auto& [name, path] : paths)
+        out += fmt::format(
+            "; {:<15} {:>4} cycles{}\n", name, path.cycles,
+            path.graphics.empty() ? "" : fmt::format(" with {}'s own set-up", path.graphics));
+    return out;
+}
+
+}  // namespace fb89::controller

@@ -1,0 +1,68 @@
+// The GSP's command executive as counted code: a TMS34010 assembly listing
+// (controller_sim/gsp/*.asm, embedded at build time) whose paths are priced instruction by
+// instruction from the data sheet's minimum-cycle tables (SPVS002C pp. 11-14) and the memory
+// cycles each field needs (p. 19). The controller's per-command cycles (C_cmd and each
+// opcode's set-up) are these sums, never typed in: docs/COST_MODEL.md, "The command loop".
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fb89::controller {
+
+// What the memory costs an instruction of the listing: the states of one local-memory cycle
+// with its wait states (a 16-bit word read or written), and of an I/O register's cycle
+// (which ignores LRDY: no wait states, SPVS002C p. 20).
+struct MemoryTiming {
+    uint32_t cycle_states = 2;
+    uint32_t io_cycle_states = 2;
+};
+
+// Which end of an estimated instruction timing a count takes: the estimate itself, or the
+// low or high end of its band.
+enum class TimingEnd { Estimate, Low, High };
+
+// One instruction on a counted path, with its price.
+struct CountedLine {
+    int line = 0;         // 1-based, in the listing
+    std::string text;     // the instruction as written (label and comment dropped)
+    uint32_t cycles = 0;  // what it adds to the path, queued writes included
+    uint32_t words = 0;   // its length in 16-bit instruction words
+    std::string source;   // "[DS] p. 13", "[DS] p. 12 + p. 19 (...)", "[EMU] ..."
+};
+
+struct CountedPath {
+    std::string name;  // COMMON, FRAME_BEGIN, FILL_RECT, DRAW_SPAN:line, ...
+    std::vector<CountedLine> lines;
+    uint64_t cycles = 0;  // the sum of lines[].cycles
+    // The graphics instruction the path runs ("FILL" or "LINE"; "" for none): its fixed part
+    // is in `cycles`, its pixels are the cost model's.
+    std::string graphics;
+};
+
+struct Listing {
+    std::string name;  // the file stem, e.g. "tms34010"
+    std::string text;
+};
+std::span<const Listing> builtin_listings();  // defined in the generated file
+
+// The listing by name; throws std::runtime_error naming the known ones.
+const Listing& builtin_listing(std::string_view name);
+
+// Counts every ";@path" of `listing`. Throws std::runtime_error naming the listing and line
+// for an instruction it cannot price, an unknown label, or a path that does not end.
+std::map<std::string, CountedPath> count_paths(const Listing& listing, const MemoryTiming& memory,
+                                               TimingEnd end = TimingEnd::Estimate);
+
+// The listing's length in 16-bit words, instructions only (what the 256-byte instruction
+// cache must hold for the minimum cycles to apply, SPVS002C p. 2).
+uint32_t listing_words(const Listing& listing);
+
+// The listing's text, each instruction of a counted path marked with its cycles and source.
+std::string annotated_listing(const Listing& listing, const MemoryTiming& memory);
+
+}  // namespace fb89::controller

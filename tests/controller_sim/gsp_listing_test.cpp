@@ -1,0 +1,146 @@
+// Tests of controller_sim/gsp_listing: the command loop's paths priced instruction by
+// instruction from the data sheet's tables (SPVS002C pp. 11-14) and memory cycles (p. 19),
+// the write queue (p. 10), wait states, and the profile's derived figures held to the sums.
+#include "controller_sim/gsp_listing.h"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "controller_sim/profile.h"
+
+namespace fb89::controller {
+namespace {
+
+const Listing& tms34010() {
+    return builtin_listing("tms34010");
+}
+
+std::vector<uint32_t> cycles_of(const CountedPath& path) {
+    std::vector<uint32_t> out;
+    for (const CountedLine& l : path.lines)
+        out.push_back(l.cycles);
+    return out;
+}
+
+// The message count_paths throws for `text`, or "" when it counts.
+std::string count_error(const std::string& text) {
+    try {
+        count_paths(Listing{"bad", text}, MemoryTiming{});
+    } catch (const std::runtime_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The loop, by hand from the tables: CMP 1 (p. 13), JRNE short taken 2 (p. 14), CMP 1, JRLO
+// taken 2, MOVE *A0+,A5 (16-bit read: 1 + one 2-state cycle), SLL 1, ADD 1, MOVE *A5,A5,1
+// (32-bit read: 1 + two cycles), JUMP 2 (p. 14).
+TEST(GspListing, TheLoopIsCountedInstructionByInstruction) {
+    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    const CountedPath& loop = paths.at("COMMON");
+    EXPECT_EQ(cycles_of(loop), (std::vector<uint32_t>{1, 2, 1, 2, 3, 1, 1, 5, 2}));
+    EXPECT_EQ(loop.cycles, 18u);
+    EXPECT_EQ(loop.lines.front().text, "CMP    A1,A0");
+    EXPECT_EQ(loop.lines.back().text, "JUMP   A5");
+    EXPECT_NE(loop.lines[1].source.find("[DS] p. 14"), std::string::npos);
+    EXPECT_NE(loop.lines[4].source.find("[EST]"), std::string::npos);  // a memory MOVE
+    EXPECT_EQ(loop.graphics, "");
+}
+
+TEST(GspListing, EachHandlerEndsWithItsJumpBackAndNamesItsGraphicsInstruction) {
+    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    for (const char* name :
+         {"FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN:line", "DRAW_SPAN:fill", "FRAME_END"})
+        EXPECT_EQ(paths.at(name).lines.back().text, "JRUC   next") << name;
+    EXPECT_EQ(paths.at("FILL_RECT").graphics, "FILL");
+    EXPECT_EQ(paths.at("DRAW_SPAN:line").graphics, "LINE");
+    EXPECT_EQ(paths.at("DRAW_SPAN:fill").graphics, "FILL");
+    EXPECT_EQ(paths.at("FRAME_END").graphics, "");
+    // two 32-bit reads, a 16-bit one, four register moves, FILL XY's 8 [EMU], JRUC 2
+    EXPECT_EQ(cycles_of(paths.at("FILL_RECT")), (std::vector<uint32_t>{5, 5, 3, 1, 1, 1, 1, 8, 2}));
+    EXPECT_EQ(paths.at("FILL_RECT").cycles, 27u);
+}
+
+// FRAME_BEGIN writes the frame's number and reads the next word at once: the write is
+// queued (p. 10), and the read waits for its 2 states. FRAME_END's write to HSTCTL overlaps
+// the jump back.
+TEST(GspListing, AQueuedWriteOverlapsRegisterInstructionsAndDelaysTheNextAccess) {
+    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    const auto begin = cycles_of(paths.at("FRAME_BEGIN"));
+    ASSERT_GE(begin.size(), 3u);
+    EXPECT_EQ(begin[1], 1u);       // MOVE A5,@FRAME_NO,0: issued, its cycle queued
+    EXPECT_EQ(begin[2], 5u + 2u);  // MOVE *A0+,DYDX,1 waits 2 states for it
+    EXPECT_EQ(cycles_of(paths.at("FRAME_END")), (std::vector<uint32_t>{2, 1, 2}));
+}
+
+TEST(GspListing, WaitStatesLengthenMemoryReadsButNotAnIoWrite) {
+    const auto slow = count_paths(tms34010(), MemoryTiming{3, 2});
+    EXPECT_EQ(slow.at("COMMON").cycles, 18u + 1u + 2u);  // one word read and two
+    EXPECT_EQ(slow.at("FRAME_END").cycles, 5u);
+}
+
+TEST(GspListing, TheBandsEndsMoveEveryEstimatedTimingAndNothingElse) {
+    const auto low = count_paths(tms34010(), MemoryTiming{2, 2}, TimingEnd::Low);
+    const auto high = count_paths(tms34010(), MemoryTiming{2, 2}, TimingEnd::High);
+    EXPECT_EQ(low.at("COMMON").cycles, 18u);
+    EXPECT_EQ(high.at("COMMON").cycles, 18u + 2u);         // two memory MOVEs, a state more each
+    EXPECT_EQ(low.at("DRAW_SPAN:line").cycles, 32u - 2u);  // LINE's own set-up 2
+    EXPECT_EQ(high.at("DRAW_SPAN:line").cycles, 32u + 3u + 4u);  // three MOVEs; LINE 8
+}
+
+TEST(GspListing, TheProfilesFiguresAreTheListingsSums) {
+    for (const char* name : {"tms34010-50mhz", "tms34010-isa", "tms34020-40mhz"}) {
+        const CostProfile p = load_profile(name);
+        const uint32_t m = p.memory_cycle_states + p.wait_states;
+        const auto paths = count_paths(builtin_listing(p.gsp), MemoryTiming{m, 2});
+        const auto sum = [](const CountedPath& path) {
+            return std::accumulate(path.lines.begin(), path.lines.end(), uint64_t{0},
+                                   [](uint64_t s, const CountedLine& l) { return s + l.cycles; });
+        };
+        EXPECT_EQ(p.c_cmd, sum(paths.at("COMMON"))) << name;
+        EXPECT_EQ(p.c_frame_begin_setup, sum(paths.at("FRAME_BEGIN"))) << name;
+        EXPECT_EQ(p.c_setup, sum(paths.at("FILL_RECT"))) << name;
+        EXPECT_EQ(p.c_line_setup, sum(paths.at("DRAW_SPAN:line"))) << name;
+        EXPECT_EQ(p.c_span_fill_setup, sum(paths.at("DRAW_SPAN:fill"))) << name;
+        EXPECT_EQ(p.c_frame_end_setup, sum(paths.at("FRAME_END"))) << name;
+        for (const auto& [path_name, path] : paths)
+            EXPECT_EQ(path.cycles, sum(path)) << name << " " << path_name;
+    }
+}
+
+TEST(GspListing, FitsTheInstructionCache) {
+    EXPECT_LE(listing_words(tms34010()), 128u);  // 256 bytes, SPVS002C p. 2
+    EXPECT_GE(listing_words(tms34010()), 60u);   // every instruction counted, not just a path
+}
+
+TEST(GspListing, TheAnnotatedListingMarksEachCountedInstruction) {
+    const std::string text = annotated_listing(tms34010(), MemoryTiming{2, 2});
+    EXPECT_NE(text.find("   3  fetch:    MOVE   *A0+,A5,0"), std::string::npos) << text;
+    EXPECT_NE(text.find("COMMON            18 cycles"), std::string::npos) << text;
+    EXPECT_NE(text.find("      table:"), std::string::npos);  // data: no cycles
+}
+
+TEST(GspListing, RefusesWhatItCannotPriceNamingTheLine) {
+    const std::string head = ";@path COMMON next\nnext: CMP A1,A0\n";
+    EXPECT_NE(count_error(head + "      DIVS A1,A0\n      JUMP A5\n")
+                  .find("listing bad.asm line 3: DIVS A1,A0: no timing"),
+              std::string::npos);
+    EXPECT_NE(count_error(head + "      JRNE next\n").find("says \"taken\" or \"not taken\""),
+              std::string::npos);
+    EXPECT_NE(count_error(head + "      JRUC elsewhere\n").find("no such label"),
+              std::string::npos);
+    EXPECT_NE(count_error(head).find("does not end"), std::string::npos);
+    EXPECT_NE(count_error("next: CMP A1,A0\n").find("no @path COMMON"), std::string::npos);
+    EXPECT_NE(count_error(head + "      ADD A1,B2\n      JUMP A5\n").find("A and B files"),
+              std::string::npos);
+    EXPECT_NE(count_error(head + "      MOVE *A0+,A5,2\n      JUMP A5\n").find("0 or 1"),
+              std::string::npos);
+    EXPECT_THROW(builtin_listing("tms9918"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace fb89::controller
