@@ -403,6 +403,16 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     } catch (const std::runtime_error& e) {
         r.fail("gsp", e.what());
     }
+    if (!p.gsp.empty() && !p.bands.empty()) {
+        for (const bool dear : {false, true}) {
+            try {
+                (void)band_end(p, dear);
+            } catch (const std::runtime_error& e) {
+                r.fail("bands",
+                       fmt::format("at the {} end: {}", dear ? "dear" : "cheap", e.what()));
+            }
+        }
+    }
     return p;
 }
 
@@ -441,6 +451,10 @@ void derive_figures(CostProfile& p) {
     p.c_host_word = m;
     // DRAM refresh (a cycle every refresh_every_states, User's Guide §6) and the display's
     // memory-to-register transfers take the bus from the GSP.
+    if (p.refresh_every_states != 0 && p.refresh_every_states < 4 * m)
+        throw std::runtime_error(fmt::format(
+            "a refresh every {} states leaves the GSP less than three memory cycles in four",
+            p.refresh_every_states));
     p.stolen_share =
         (p.refresh_every_states ? static_cast<double>(m) / p.refresh_every_states : 0) +
         p.screen_transfers_per_s * m / p.f_cyc_hz;

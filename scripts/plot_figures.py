@@ -432,7 +432,7 @@ def timeline_png(json_path, png_path):
         buf.step(xs, [y / 1024 for y in ys], where="post", color="#228833", linewidth=0.8)
     buf.set_ylabel("buffer KiB", fontsize=8)
     buf.set_xlabel("ms from the start of the host's set-up", fontsize=8)
-    ax.set_title(f"{other['title']}: frame {other['frame_us'] / 1e3:,.1f} ms, utilization host "
+    ax.set_title(f"{other['title']}: frame {other['frame_ms']:,.1f} ms, utilization host "
                  f"{100 * other['host_utilization']:.1f}%, controller "
                  f"{100 * other['controller_utilization']:.1f}% (send times "
                  f"{other['send_times']})", fontsize=8)

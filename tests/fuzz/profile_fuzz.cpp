@@ -28,10 +28,13 @@ void check_ranges(const controller::CostProfile& p) {
     if (p.name.empty()) finding("empty name");
     if (p.bpp != 1 && p.bpp != 2 && p.bpp != 4 && p.bpp != 8 && p.bpp != 16)
         finding("bpp not 1, 2, 4, 8 or 16");
-    for (uint32_t c : {p.c_cmd, p.c_setup, p.c_op, p.c_row, p.c_line_setup, p.c_line_pix})
+    for (uint32_t c :
+         {p.c_cmd, p.c_setup, p.c_op, p.c_row, p.c_line_setup, p.c_line_pix, p.c_op_partial,
+          p.c_host_word, p.c_frame_begin_setup, p.c_span_fill_setup, p.c_frame_end_setup})
         if (c > kMaxCycles) finding("a cycle figure above the limit");
     if (!std::isfinite(p.f_cyc_hz) || !(p.f_cyc_hz > 0)) finding("f_cyc_hz not finite and > 0");
     if (!(p.b_bus_bytes_per_s > 0)) finding("B_bus_bytes_per_s not > 0");
+    if (!(p.stolen_share >= 0 && p.stolen_share < 0.5)) finding("refresh's share not in [0, 0.5)");
     if (!std::isfinite(p.t_handshake_s) || p.t_handshake_s < 0) finding("t_handshake_s bad");
     for (uint32_t b : p.bytes)
         if (b > 1'000'000) finding("a byte count above the limit");
@@ -48,7 +51,11 @@ void check_round_trip(const controller::CostProfile& p) {
         q.bpp != p.bpp || q.c_cmd != p.c_cmd || q.c_setup != p.c_setup || q.c_op != p.c_op ||
         q.c_row != p.c_row || q.span_as != p.span_as || q.c_line_setup != p.c_line_setup ||
         q.c_line_pix != p.c_line_pix || q.b_bus_bytes_per_s != p.b_bus_bytes_per_s ||
-        q.t_handshake_s != p.t_handshake_s || q.bytes != p.bytes || q.sources != p.sources)
+        q.t_handshake_s != p.t_handshake_s || q.bytes != p.bytes || q.sources != p.sources ||
+        q.gsp != p.gsp || q.c_op_partial != p.c_op_partial || q.c_host_word != p.c_host_word ||
+        q.c_frame_begin_setup != p.c_frame_begin_setup ||
+        q.c_span_fill_setup != p.c_span_fill_setup || q.stolen_share != p.stolen_share ||
+        q.host_port_bytes_per_s != p.host_port_bytes_per_s)
         finding("the round trip through to_json() changed the profile");
 }
 
