@@ -36,7 +36,7 @@ constexpr const char* kUnlimited = "unlimited";
 // The value of command_buffer_bytes for a buffer without a bound.
 constexpr const char* kUnbounded = "unbounded";
 
-constexpr std::array<std::string_view, 25> kKnownKeys = {"name",
+constexpr std::array<std::string_view, 28> kKnownKeys = {"name",
                                                          "description",
                                                          "f_cyc_hz",
                                                          "bpp",
@@ -60,7 +60,10 @@ constexpr std::array<std::string_view, 25> kKnownKeys = {"name",
                                                          "refresh_every_states",
                                                          "screen_transfers_per_s",
                                                          "C_line_extra",
-                                                         "derived"};
+                                                         "derived",
+                                                         "byte_strobes",
+                                                         "page_mode_states",
+                                                         "host_port_bytes_per_s"};
 
 // A profile's cycle figures given directly (no "gsp"), and derived from the listing (with it).
 constexpr std::array<std::string_view, 5> kGivenCycles = {"C_cmd", "C_setup", "C_op",
@@ -85,7 +88,7 @@ constexpr std::array<Bandable, 14> kBandable = {{
     {"C_cmd", &CostProfile::c_cmd, nullptr, true},
     {"C_setup", &CostProfile::c_setup, nullptr, true},
     {"C_op", &CostProfile::c_op, nullptr, true},
-    {"C_row", &CostProfile::c_row, nullptr, true},
+    {"C_row", &CostProfile::row_states, nullptr, true},
     {"C_line_setup", &CostProfile::c_line_setup, nullptr, true},
     {"C_line_pix", &CostProfile::c_line_pix, nullptr, true},
     {"B_bus_bytes_per_s", nullptr, &CostProfile::b_bus_bytes_per_s, false},
@@ -354,12 +357,25 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
                    "0 (no refresh) or at least four memory cycles, so that the GSP keeps the bus");
         p.screen_transfers_per_s = r.number_in("screen_transfers_per_s", true, 1, kMaxRate);
         p.c_line_extra = r.count(r.require("C_line_extra"), "C_line_extra", 64);
+        if (auto b = j.find("byte_strobes"); b != j.end()) {
+            if (!b->is_boolean())
+                r.fail("byte_strobes", fmt::format("expected true or false, got {}", b->dump()));
+            p.byte_strobes = b->get<bool>();
+        }
+        if (auto pm = j.find("page_mode_states"); pm != j.end())
+            p.page_mode_states = r.count(*pm, "page_mode_states", 64);
+        if (p.page_mode_states > p.memory_cycle_states)
+            r.fail("page_mode_states", "a page-mode cycle is no longer than a memory cycle");
+        if (j.contains("host_port_bytes_per_s"))
+            p.host_port_rated_bytes_per_s =
+                r.number_in("host_port_bytes_per_s", false, kMinRate, kMaxRate);
     } else {
         for (std::string_view model : kMemoryModel)
             if (j.contains(model))
                 r.fail(model, "only a profile with \"gsp\" (a listing) has a memory model");
-        if (j.contains("C_line_extra"))
-            r.fail("C_line_extra", "only a profile with \"gsp\" (a listing) has it");
+        for (std::string_view field :
+             {"C_line_extra", "byte_strobes", "page_mode_states", "host_port_bytes_per_s"})
+            if (j.contains(field)) r.fail(field, "only a profile with \"gsp\" (a listing) has it");
         p.c_cmd = r.cycles("C_cmd");
         p.c_setup = r.cycles("C_setup");
         p.c_op = r.cycles("C_op");
@@ -371,7 +387,8 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         p.c_frame_begin_setup = p.c_setup;
         p.c_span_fill_setup = p.c_setup;
     }
-    p.c_row = r.cycles("C_row");
+    p.row_states = r.cycles("C_row");
+    p.c_row = p.row_states;
     const std::string span_as = r.text("span_as", "");
     if (span_as == "line")
         p.span_as = SpanAs::Line;
@@ -417,6 +434,7 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
 }
 
 void derive_figures(CostProfile& p) {
+    p.c_row = p.row_states;
     if (p.gsp.empty()) return;
     const uint32_t m = p.memory_cycle_states + p.wait_states;  // one memory cycle, SPVS002C p. 19
     const TimingEnd end = p.listing_dear    ? TimingEnd::High
@@ -443,9 +461,14 @@ void derive_figures(CostProfile& p) {
     // A word of the bus written whole is one write cycle; a partial word is read, modified
     // and written (one CAS, one W, no byte strobes: the pin list); so is a pixel narrower than
     // the bus drawn by LINE, one pixel a time.
-    p.c_op = m;
-    p.c_op_partial = 2 * m;
-    p.c_line_pix = (p.bpp < p.bus_bits ? 2 * m : m) + p.c_line_extra;
+    // With page mode a row's words after its first are page-mode cycles; the first's extra
+    // is the row's. With a CAS per byte a pixel of 8 bits or more is written alone.
+    const uint32_t page = p.page_mode_states ? p.page_mode_states + p.wait_states : 0;
+    p.c_op = page ? page : m;
+    p.c_row = p.row_states + (page ? m - page : 0);
+    const bool whole_pixel = p.bpp >= p.bus_bits || (p.byte_strobes && p.bpp >= 8);
+    p.c_op_partial = p.byte_strobes && p.bpp >= 8 ? p.c_op : 2 * m;
+    p.c_line_pix = (whole_pixel ? m : 2 * m) + p.c_line_extra;
     // Each word the host writes through HSTDATA is a memory cycle of the GSP's bus, which
     // the host's request wins over the GSP's own (User's Guide §11.3).
     p.c_host_word = m;
@@ -465,7 +488,8 @@ void derive_figures(CostProfile& p) {
     // parameter 3); and each word waits for its memory cycle (HRDY).
     const double state_s = 1 / p.f_cyc_hz;
     const double word_s = std::max(7 * state_s / 4 + 10e-9, m * state_s);
-    p.host_port_bytes_per_s = 2 / word_s;
+    p.host_port_bytes_per_s =
+        p.host_port_rated_bytes_per_s > 0 ? p.host_port_rated_bytes_per_s : 2 / word_s;
     p.outside_pays_setup = true;
 }
 
@@ -523,7 +547,7 @@ nlohmann::json CostProfile::to_json() const {
            {"f_cyc_hz", f_cyc_hz},
            {"bpp", bpp},
            {"bus_bits", bus_bits},
-           {"C_row", c_row},
+           {"C_row", row_states},
            {"span_as", controller::to_string(span_as)},
            {"B_bus_bytes_per_s",
             std::isinf(b_bus_bytes_per_s) ? json(kUnlimited) : json(b_bus_bytes_per_s)},
@@ -545,8 +569,13 @@ nlohmann::json CostProfile::to_json() const {
         j["refresh_every_states"] = refresh_every_states;
         j["screen_transfers_per_s"] = screen_transfers_per_s;
         j["C_line_extra"] = c_line_extra;
+        j["byte_strobes"] = byte_strobes;
+        j["page_mode_states"] = page_mode_states;
+        if (host_port_rated_bytes_per_s > 0)
+            j["host_port_bytes_per_s"] = host_port_rated_bytes_per_s;
         // What the listing and the memory model come to; ignored when the file is read.
         j["derived"] = {{"C_cmd", c_cmd},
+                        {"C_row", c_row},
                         {"C_setup", c_setup},
                         {"C_frame_begin_setup", c_frame_begin_setup},
                         {"C_line_setup", c_line_setup},

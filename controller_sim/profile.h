@@ -48,6 +48,11 @@ struct CostProfile {
     uint32_t refresh_every_states = 0;  // a DRAM refresh cycle every N states (0: none)
     double screen_transfers_per_s = 0;  // VRAM memory-to-register cycles for the display
     uint32_t c_line_extra = 0;          // LINE's step beyond its pixel's memory cycles
+    uint32_t row_states = 0;            // "C_row": what a FILL row costs beyond its words
+    bool byte_strobes = false;          // a CAS per byte: 8-bit pixels written without a read
+    uint32_t page_mode_states = 0;      // a page-mode cycle, the words of a row after the first
+    // The chip's host port as its data sheet rates it; 0: from the TMS34010's strobe rule.
+    double host_port_rated_bytes_per_s = 0;
     // Which end of the listing's estimated timings the figures were counted at (band_end).
     bool listing_dear = false, listing_cheap = false;
 
@@ -59,7 +64,7 @@ struct CostProfile {
     uint32_t c_frame_end_setup = 0;    // FRAME_END's
     uint32_t c_op = 0;                 // per aligned word FILL writes
     uint32_t c_op_partial = 0;         // per partial word (read, modify, write)
-    uint32_t c_row = 0;                // per FILL row
+    uint32_t c_row = 0;                // per FILL row (a page-mode row's first word's extra too)
     SpanAs span_as = SpanAs::Line;
     uint32_t c_line_setup = 0;        // DRAW_SPAN's as a line, LINE's own included
     uint32_t c_line_pix = 0;          // per LINE pixel

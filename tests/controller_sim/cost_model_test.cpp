@@ -162,13 +162,19 @@ TEST(CostModel, BusTimeIsBytesOverTheChipsPortPlusHandshake) {
     EXPECT_DOUBLE_EQ(load_profile("tms34010-isa").bus_bytes_per_s(), 2.58e6);
 }
 
-TEST(CostModel, Tms34020WritesFourPixelsAWordOfItsThirtyTwoBitBus) {
+TEST(CostModel, Tms34020WritesFourPixelsAWordInPageModeWithByteStrobes) {
     const CostProfile p = load_profile("tms34020-40mhz");
     EXPECT_EQ(p.pixels_per_word(), 4u);
-    EXPECT_EQ(frame_begin_cycles(p, 1024, 780), 18u + 29u + 10u + 780u * 256u * 2u);
+    // a row: its first word a 2-state cycle, the other 255 page-mode cycles of 1 state
+    EXPECT_EQ(p.c_op, 1u);
+    EXPECT_EQ(p.c_row, 1u);
+    EXPECT_EQ(frame_begin_cycles(p, 1024, 780), 18u + 29u + 10u + 780u * (1u + 256u * 1u));
     EXPECT_NEAR(cycles_to_seconds(p, frame_begin_cycles(p, 1024, 780)) * 1e3,
-                399'417 / 10e6 / (1 - p.stolen_share) * 1e3, 1e-9);
-    EXPECT_DOUBLE_EQ(p.bus_bytes_per_s(), 10e6);  // 2 bytes per 2 states of 100 ns
+                200'517 / 10e6 / (1 - p.stolen_share) * 1e3, 1e-9);
+    // a CAS per byte: an 8-bit pixel, or a partial word, is one write
+    EXPECT_EQ(p.c_line_pix, 2u);
+    EXPECT_EQ(p.c_op_partial, p.c_op);
+    EXPECT_DOUBLE_EQ(p.bus_bytes_per_s(), 20e6);  // the port as its data sheet rates it
 }
 
 TEST(CostModel, IdealProfileCostsNothing) {

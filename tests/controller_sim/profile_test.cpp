@@ -92,12 +92,14 @@ TEST(Profile, TheFirstModelKeepsItsGivenFigures) {
     EXPECT_EQ(p.bus_bytes_per_s(), 8e6);
 }
 
-TEST(Profile, Tms34020HasAHundredNanosecondStateAndAThirtyTwoBitBus) {
+TEST(Profile, Tms34020HasAHundredNanosecondStatePageModeAndByteStrobes) {
     const CostProfile p = load_profile("tms34020-40mhz");
     EXPECT_EQ(p.f_cyc_hz, 10e6);
     EXPECT_EQ(p.bus_bits, 32u);
     EXPECT_EQ(p.b_bus_bytes_per_s, 20e6);
-    EXPECT_EQ(p.bus_bytes_per_s(), 10e6);  // the port's limit at a 100 ns state
+    EXPECT_TRUE(p.byte_strobes);
+    EXPECT_EQ(p.page_mode_states, 1u);
+    EXPECT_EQ(p.bus_bytes_per_s(), 20e6);  // the port as SPVS004D rates it
 }
 
 TEST(Profile, ListsTheBuiltInProfiles) {
@@ -152,6 +154,19 @@ TEST(Profile, AListingProfileDerivesItsCycleFiguresAndRefusesThemGiven) {
     j["bands"].erase("refresh_every_states");
     j["refresh_every_states"] = 4;
     EXPECT_NE(load_error(j).find("\"refresh_every_states\": 0 (no refresh) or at least"),
+              std::string::npos)
+        << load_error(j);
+    j = listing_profile_json();
+    j["page_mode_states"] = 3;
+    EXPECT_NE(load_error(j).find("\"page_mode_states\": a page-mode cycle is no longer"),
+              std::string::npos)
+        << load_error(j);
+    j = listing_profile_json();
+    j["byte_strobes"] = "yes";
+    EXPECT_NE(load_error(j).find("\"byte_strobes\": expected true or false"), std::string::npos);
+    j = default_profile_json();
+    j["page_mode_states"] = 1;
+    EXPECT_NE(load_error(j).find("\"page_mode_states\": only a profile with \"gsp\""),
               std::string::npos)
         << load_error(j);
     // "derived" is written for the reader and ignored when read
