@@ -422,7 +422,7 @@ const Listing& builtin_listing(std::string_view name) {
         if (l.name == name) return l;
     std::vector<std::string> names;
     for (const Listing& l : builtin_listings())
-        names.push_back(l.name);
+        names.emplace_back(l.name);
     throw std::runtime_error(fmt::format("unknown GSP listing \"{}\": the built-in ones are {}",
                                          name, fmt::join(names, ", ")));
 }

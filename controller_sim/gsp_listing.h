@@ -45,8 +45,8 @@ struct CountedPath {
 };
 
 struct Listing {
-    std::string name;  // the file stem, e.g. "tms34010"
-    std::string text;
+    std::string_view name;  // the file stem, e.g. "tms34010"
+    std::string_view text;
 };
 std::span<const Listing> builtin_listings();  // defined in the generated file
 
