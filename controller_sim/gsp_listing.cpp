@@ -32,7 +32,7 @@ constexpr std::string_view kBFileNames[] = {"SADDR",  "SPTCH", "DADDR", "DPTCH",
 
 constexpr std::string_view kConditions[] = {"UC", "EQ", "NE", "LO", "HS", "LT", "GE", "LE",
                                             "GT", "C",  "NC", "Z",  "NZ", "P",  "N",  "NN",
-                                            "V",  "NV", "HI", "LS", "MI", "PL", "LE"};
+                                            "V",  "NV", "HI", "LS", "MI", "PL"};
 
 std::string upper(std::string_view s) {
     std::string out(s);
