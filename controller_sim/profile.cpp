@@ -381,14 +381,8 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         p.c_op = r.cycles("C_op");
         p.c_line_setup = r.cycles("C_line_setup");
         p.c_line_pix = r.cycles("C_line_pix");
-        // The first cost model's rules: a partial word costs a full one, every set-up
-        // FILL's, FRAME_END and a command outside the frame C_cmd alone.
-        p.c_op_partial = p.c_op;
-        p.c_frame_begin_setup = p.c_setup;
-        p.c_span_fill_setup = p.c_setup;
     }
     p.row_states = r.cycles("C_row");
-    p.c_row = p.row_states;
     const std::string span_as = r.text("span_as", "");
     if (span_as == "line")
         p.span_as = SpanAs::Line;
@@ -420,7 +414,7 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     } catch (const std::runtime_error& e) {
         r.fail("gsp", e.what());
     }
-    if (!p.gsp.empty() && !p.bands.empty()) {
+    if (!p.bands.empty()) {
         for (const bool dear : {false, true}) {
             try {
                 (void)band_end(p, dear);
@@ -435,7 +429,20 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
 
 void derive_figures(CostProfile& p) {
     p.c_row = p.row_states;
-    if (p.gsp.empty()) return;
+    if (p.gsp.empty()) {
+        // The first cost model's rules, from its given figures: a partial word costs a whole
+        // one, every set-up is FILL's, FRAME_END and a command outside the frame cost C_cmd
+        // alone, and nothing is taken for the host's words or refresh.
+        p.c_op_partial = p.c_op;
+        p.c_frame_begin_setup = p.c_setup;
+        p.c_span_fill_setup = p.c_setup;
+        p.c_frame_end_setup = 0;
+        p.c_host_word = 0;
+        p.stolen_share = 0;
+        p.host_port_bytes_per_s = std::numeric_limits<double>::infinity();
+        p.outside_pays_setup = false;
+        return;
+    }
     const uint32_t m = p.memory_cycle_states + p.wait_states;  // one memory cycle, SPVS002C p. 19
     const TimingEnd end = p.listing_dear    ? TimingEnd::High
                           : p.listing_cheap ? TimingEnd::Low

@@ -150,8 +150,9 @@ inline CostProfile default_profile() {
     return load_profile(kDefaultProfile);
 }
 
-// Fills a "gsp" profile's derived figures from its listing and memory model (parse_profile
-// and band_end call it); a profile without "gsp" is left as it is.
+// Fills the figures the cost model charges: a "gsp" profile's from its listing and memory
+// model, a profile without one's from its given figures by the first model's rules
+// (parse_profile and band_end call it, so a band's end moves what follows from a figure).
 void derive_figures(CostProfile& p);
 
 // Parses profile JSON (comments allowed); `origin` names the text in errors. A missing
