@@ -88,7 +88,7 @@ StreamInfo scan(protocol::StreamReader& reader, controller::Controller& ctl) {
 json opcode_counts(const controller::PerOpcode& ops) {
     json j = json::object();
     for (int i = 0; i < protocol::kOpcodeCount; ++i)
-        j[protocol::to_string(static_cast<protocol::Opcode>(i + 1))] = ops[i].commands;
+        j[protocol::to_string(protocol::kOpcodes[i])] = ops[i].commands;
     return j;
 }
 
@@ -156,18 +156,29 @@ void print_text(const json& j) {
     fmt::print("commands       {} in {} frame(s), {} outside frames\n",
                grouped(j["commands"].get<uint64_t>()), j["frames"].size(),
                grouped(j["unframed_commands"].get<uint64_t>()));
-    fmt::print("\n{:>6} {:>11} {:>11} {:>9} {:>9} {:>7} {:>9} {:>13} {:>11} {:>12}  {}\n", "frame",
-               "size", "FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN", "MARKER", "FRAME_END", "pixels",
-               "bus bytes", "file bytes", "checksum");
+    // the depth commands' columns only for a stream that has them (format version 3)
+    bool depth = false;
+    for (const json& f : j["frames"])
+        for (const char* op : {"DEPTH_CLEAR", "DEPTH_SPAN", "FACE"})
+            depth = depth || f["by_opcode"].value(op, uint64_t{0}) > 0;
+    const auto depth_columns = [&](const json* ops) {
+        if (!depth) return std::string();
+        if (!ops) return fmt::format(" {:>11} {:>10} {:>8}", "DEPTH_CLEAR", "DEPTH_SPAN", "FACE");
+        return fmt::format(" {:>11} {:>10} {:>8}", grouped((*ops)["DEPTH_CLEAR"]),
+                           grouped((*ops)["DEPTH_SPAN"]), grouped((*ops)["FACE"]));
+    };
+    fmt::print("\n{:>6} {:>11} {:>11} {:>9} {:>9} {:>7} {:>9}{} {:>13} {:>11} {:>12}  {}\n",
+               "frame", "size", "FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN", "MARKER", "FRAME_END",
+               depth_columns(nullptr), "pixels", "bus bytes", "file bytes", "checksum");
     for (const json& f : j["frames"]) {
         const json& ops = f["by_opcode"];
-        fmt::print("{:>6} {:>11} {:>11} {:>9} {:>9} {:>7} {:>9} {:>13} {:>11} {:>12}  {}{}\n",
+        fmt::print("{:>6} {:>11} {:>11} {:>9} {:>9} {:>7} {:>9}{} {:>13} {:>11} {:>12}  {}{}\n",
                    f["frame"].get<uint32_t>(),
                    fmt::format("{}x{}", f["width"].get<uint32_t>(), f["height"].get<uint32_t>()),
                    grouped(ops["FRAME_BEGIN"]), grouped(ops["FILL_RECT"]),
                    grouped(ops["DRAW_SPAN"]), grouped(ops["MARKER"]), grouped(ops["FRAME_END"]),
-                   grouped(f["pixels"]), grouped(f["bus_bytes"]), grouped(f["stream_bytes"]),
-                   f["checksum"].get<std::string>(),
+                   depth_columns(&ops), grouped(f["pixels"]), grouped(f["bus_bytes"]),
+                   grouped(f["stream_bytes"]), f["checksum"].get<std::string>(),
                    f["open"].get<bool>()        ? "  (open at the end)"
                    : !f["complete"].get<bool>() ? "  (no FRAME_END)"
                                                 : "");

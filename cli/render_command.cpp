@@ -16,6 +16,7 @@
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "experiments/beam_mask.h"
+#include "experiments/depth_agreement.h"
 #include "experiments/id_pass.h"
 #include "experiments/id_view.h"
 #include "experiments/period_runs.h"
@@ -101,9 +102,29 @@ host::WindowTest window_test_named(const std::string& name) {
 // The face-id pass: the same method through the same sink and controller, every face
 // coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer. Run once
 // for --ids (exact) and --ids-view (false colour) alike.
-void write_id_buffer(const RenderArgs& args, const host::Scene& scene, host::Renderer& renderer) {
-    experiments::write_id_pngs(experiments::id_framebuffer(scene, renderer), args.ids,
-                               args.ids_view);
+// A method that sends depth commands is held to the host Z-buffer's ids there and then: the
+// pixels where they differ are counted as ties (the fixed-point depth's) or as errors.
+std::optional<experiments::DepthAgreement> write_id_buffer(const RenderArgs& args,
+                                                           const host::Scene& scene,
+                                                           host::Renderer& renderer,
+                                                           uint32_t depth_bits) {
+    const controller::Framebuffer ids = experiments::id_framebuffer(scene, renderer, depth_bits);
+    experiments::write_id_pngs(ids, args.ids, args.ids_view);
+    if (!host::method_info(host::method_named(args.method)).depth_commands) return std::nullopt;
+    auto zbuffer = host::make_renderer(host::Method::ZBuffer);
+    host::Counters counters;
+    return experiments::depth_agreement(
+        host::project_scene(scene, host::ColorMode::FaceId, counters),
+        experiments::id_framebuffer(scene, *zbuffer), ids, depth_bits);
+}
+
+std::string agreement_line(const experiments::DepthAgreement& a) {
+    return fmt::format(
+        "ids against the host Z-buffer's ({}-bit depth word): {} of {} pixels differ: {} ties "
+        "(faces within {:.2g} of each other in depth, the largest {:.2g}), {} covered "
+        "differently, {} wrong\n",
+        a.depth_bits, controller::grouped(a.differ), controller::grouped(a.pixels),
+        controller::grouped(a.ties), a.tolerance, a.max_tie_dz, a.coverage, a.wrong);
 }
 
 // The paper's Figs. 4.7 and 4.10: the frame with the ray-traced pixels blacked out.
@@ -119,6 +140,13 @@ void write_beam_mask(const std::string& path, const controller::Framebuffer& fra
 protocol::Timing stream_timing(const RenderArgs& args, const experiments::RenderResult& job) {
     return job.runs.front().send_us.empty() || args.untimed_stream ? protocol::Timing::Untimed
                                                                    : protocol::Timing::Timed;
+}
+
+// A method that sends depth commands needs format version 3.
+protocol::Commands stream_commands(const RenderArgs& args) {
+    return host::method_info(host::method_named(args.method)).depth_commands
+               ? protocol::Commands::Depth
+               : protocol::Commands::Tiling;
 }
 
 protocol::Properties stream_properties(const RenderArgs& args,
@@ -140,7 +168,7 @@ protocol::Properties stream_properties(const RenderArgs& args,
 void write_stream(const RenderArgs& args, const experiments::RenderResult& job) {
     make_parent_dirs(args.stream);
     protocol::StreamWriter writer(args.stream, stream_properties(args, job),
-                                  stream_timing(args, job));
+                                  stream_timing(args, job), stream_commands(args));
     experiments::write_commands(writer, job.runs.front());
     writer.close();
 }
@@ -153,7 +181,8 @@ int send_to_controller(const RenderArgs& args, const experiments::RenderResult& 
     const protocol::MemoryBuffer& commands = job.runs.front().commands;
     protocol::UniqueFd socket = protocol::connect_socket(args.connect);  // names the path
     protocol::StreamWriter writer(socket.get(), "socket " + args.connect,
-                                  stream_properties(args, job), stream_timing(args, job));
+                                  stream_properties(args, job), stream_timing(args, job),
+                                  stream_commands(args));
     const std::size_t total = commands.size();
     try {
         experiments::write_commands(writer, job.runs.front());
@@ -306,8 +335,9 @@ int run_render(const RenderArgs& args) {
         controller::write_png(args.png, ctl.framebuffer());
     }
     if (!args.mask.empty()) write_beam_mask(args.mask, ctl.framebuffer(), *run.renderer);
+    std::optional<experiments::DepthAgreement> agreement;
     if (!args.ids.empty() || !args.ids_view.empty())
-        write_id_buffer(args, result.scene, *run.renderer);
+        agreement = write_id_buffer(args, result.scene, *run.renderer, ctl.profile().depth_bits);
     if (!args.stream.empty()) write_stream(args, result);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, result, ctl));
     if (!args.timeline.empty())
@@ -339,6 +369,11 @@ int run_render(const RenderArgs& args) {
         if (run.pipeline)
             fmt::print("{}", pipeline_line(*run.pipeline, run.controller.frame_ms,
                                            send_times_source(run.period.has_value())));
+        if (agreement) fmt::print("{}", agreement_line(*agreement));
+    }
+    if (agreement && !agreement->exact()) {
+        fmt::print(stderr, "fb89: error: {}", agreement_line(*agreement));
+        return kCheckFailed;
     }
     return kSuccess;
 }

@@ -22,6 +22,9 @@
 //  - Pixel processing other than replace (boolean, arithmetic, transparency, plane masks).
 //  - Time between frames: each frame's clock starts at 0 with its FRAME_BEGIN, bus and
 //    controller idle.
+//  - The depth loops' wrap: Z is held to [0, kDepthOne] where the GSP's 32-bit ADD would
+//    wrap a depth stepped past either end (a face's rounding at its very edge); the last
+//    pixel of a run is charged DSJ's taken 3 states for its not-taken 2 (docs/COST_MODEL.md).
 //
 // Commands outside a frame (before the first FRAME_BEGIN, or after a FRAME_END and before
 // the next FRAME_BEGIN) find no framebuffer to draw in: they write nothing, are counted
@@ -30,15 +33,22 @@
 // FRAME_BEGIN arriving inside an open frame first closes that frame as incomplete.
 #include "controller_sim/controller.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <variant>
+
+#include "protocol/coverage.h"
+#include "protocol/depth_fixed.h"
 
 #include <fmt/format.h>
 
 namespace fb89::controller {
 
 using protocol::Command;
+using protocol::DepthClear;
+using protocol::DepthSpan;
 using protocol::DrawSpan;
+using protocol::Face;
 using protocol::FillRect;
 using protocol::FrameBegin;
 using protocol::FrameEnd;
@@ -72,6 +82,9 @@ std::array<Controller::OpcodeEntry, protocol::kOpcodeCount> Controller::make_opc
         {"DRAW_SPAN", 4, 0, 0},
         {"MARKER", 1, 0, 0},
         {"FRAME_END", 0, 0, 0},
+        {"DEPTH_CLEAR", 0, 0, 0},
+        {"DEPTH_SPAN", 6, 0, 0},
+        {"FACE", 7, 0, 0},  // and the points
     }};
     for (int i = 0; i < protocol::kOpcodeCount; ++i) {
         t[i].bytes = p.bytes[i];
@@ -105,6 +118,15 @@ void Controller::execute(const Command& c) {
             break;
         case opcode_index(Opcode::FrameEnd):
             step(*std::get_if<FrameEnd>(&c));
+            break;
+        case opcode_index(Opcode::DepthClear):
+            step(*std::get_if<DepthClear>(&c));
+            break;
+        case opcode_index(Opcode::DepthSpan):
+            step(*std::get_if<DepthSpan>(&c));
+            break;
+        case opcode_index(Opcode::Face):
+            step(*std::get_if<Face>(&c));
             break;
     }
     if (m_observer) m_observer(m_next_command - 1, c);
@@ -149,6 +171,15 @@ void Controller::marker(const protocol::Marker& c) {
 void Controller::frame_end(const protocol::FrameEnd& c) {
     submit_one(c);
 }
+void Controller::depth_clear(const protocol::DepthClear& c) {
+    submit_one(c);
+}
+void Controller::depth_span(const protocol::DepthSpan& c) {
+    submit_one(c);
+}
+void Controller::face(const protocol::Face& c) {
+    submit_one(c);
+}
 
 void Controller::step(const FrameBegin& c) {
     account(Opcode::FrameBegin, exec_frame_begin(c));
@@ -166,6 +197,15 @@ void Controller::step(const FrameEnd& c) {
     account(Opcode::FrameEnd, exec_frame_end(c));
     if (m_in_frame) close_frame(true);
 }
+void Controller::step(const DepthClear& c) {
+    account(Opcode::DepthClear, exec_depth_clear(c));
+}
+void Controller::step(const DepthSpan& c) {
+    account(Opcode::DepthSpan, exec_depth_span(c));
+}
+void Controller::step(const Face& c) {
+    account(Opcode::Face, exec_face(c));
+}
 
 // --- exec_* ----------------------------------------------------------------------------
 
@@ -179,6 +219,7 @@ Controller::Executed Controller::exec_frame_begin(const FrameBegin& f) {
 
     m_fb.resize(f.width, f.height);
     m_fb.clear(f.background);
+    m_depth.clear();  // a frame's depth buffer is its DEPTH_CLEAR's
     m_in_frame = true;
     m_stats.frame_open = true;
     m_frame = FrameResult{};
@@ -220,6 +261,129 @@ Controller::Executed Controller::exec_frame_end(const FrameEnd&) {
     return Executed{m_costs.frame_end(), 0, false, !m_in_frame};
 }
 
+// --- the depth commands ------------------------------------------------------------------
+
+void Controller::check_depth(Opcode op, bool needs_buffer) const {
+    if (!profile().depth_priced)
+        throw std::invalid_argument(fmt::format(
+            "command {}: {}: profile {} prices no depth commands (it has no listing, \"gsp\"; "
+            "docs/COST_MODEL.md, \"Depth commands\")",
+            m_next_command, protocol::to_string(op), profile().name));
+    if (needs_buffer && m_in_frame && m_depth.empty())
+        throw std::invalid_argument(fmt::format(
+            "command {}: {}: no depth buffer in this frame (a DEPTH_CLEAR after its FRAME_BEGIN "
+            "makes one)",
+            m_next_command, protocol::to_string(op)));
+}
+
+void Controller::depth_run(uint32_t y, uint32_t x, uint32_t n, int64_t z, int64_t dz,
+                           protocol::Rgb color, DepthCounters& counts) {
+    const uint32_t bits = profile().depth_bits;
+    uint32_t* word = m_depth.data() + std::size_t{y} * m_fb.width() + x;
+    counts.tests += n;
+    uint32_t run = 0;  // nearer pixels not yet drawn, ending at i
+    for (uint32_t i = 0; i < n; ++i, z += dz) {
+        const uint32_t stored = protocol::stored_depth(z, bits);
+        if (stored < word[i]) {
+            word[i] = stored;
+            ++counts.nearer;
+            ++run;
+            continue;
+        }
+        counts.equal += stored == word[i] ? 1 : 0;
+        if (run) m_fb.draw_span(y, x + i - run, run, color);
+        run = 0;
+    }
+    if (run) m_fb.draw_span(y, x + n - run, run, color);
+}
+
+// DEPTH_CLEAR: the frame's depth buffer, every word far; charged as the FILL that clears it.
+Controller::Executed Controller::exec_depth_clear(const DepthClear& c) {
+    check_depth(Opcode::DepthClear, false);
+    if (!m_in_frame) return Executed{outside_cycles(profile(), Opcode::DepthClear), 0, false, true};
+    m_depth.assign(std::size_t{m_fb.width()} * m_fb.height(),
+                   protocol::depth_clear_value(profile().depth_bits));
+    m_frame.depth_bits = profile().depth_bits;
+    return Executed{depth_clear_cycles(profile(), m_fb.width(), m_fb.height()), 0, false, false};
+}
+
+// DEPTH_SPAN: clipped to the frame (a cut on the left steps Z to the first column), then
+// each pixel tested and drawn where nearer.
+Controller::Executed Controller::exec_depth_span(const DepthSpan& s) {
+    check_depth(Opcode::DepthSpan, true);
+    const int64_t w = m_fb.width(), h = m_fb.height();
+    if (!m_in_frame || s.y < 0 || s.y >= h || s.x1 < 0 || s.x0 >= w || s.x1 < s.x0)
+        return Executed{depth_span_outside_cycles(profile()), 0, false, true};
+    const int64_t x0 = std::max<int64_t>(s.x0, 0), x1 = std::min<int64_t>(s.x1, w - 1);
+    const bool cut_left = x0 > s.x0;
+    const int64_t z = int64_t{s.z} + int64_t{s.dz} * (x0 - s.x0);
+    DepthCounters counts;
+    depth_run(static_cast<uint32_t>(s.y), static_cast<uint32_t>(x0),
+              static_cast<uint32_t>(x1 - x0 + 1), z, s.dz, s.color, counts);
+    m_frame.depth += counts;
+    m_stats.depth += counts;
+    return Executed{
+        depth_span_cycles(profile(), cut_left, counts.nearer, counts.tests - counts.nearer),
+        counts.nearer, cut_left || x1 < s.x1, false};
+}
+
+// FACE: its edges by the coverage rule (protocol/coverage.h), its rows clipped to the frame,
+// each row's covered run tested and drawn like a DEPTH_SPAN.
+Controller::Executed Controller::exec_face(const Face& f) {
+    check_depth(Opcode::Face, true);
+    if (f.points.size() < 3 || f.points.size() > protocol::kMaxFacePoints)
+        throw std::invalid_argument(fmt::format("command {}: FACE: {} points, outside 3..{}",
+                                                m_next_command, f.points.size(),
+                                                protocol::kMaxFacePoints));
+    const uint32_t n = static_cast<uint32_t>(f.points.size());
+    const int64_t bytes = face_bytes(n);
+    FaceWork work;
+    work.points = n;
+    if (!m_in_frame) {
+        Executed x{face_cycles(profile(), work), 0, false, true};
+        x.bytes = bytes;
+        return x;
+    }
+    std::array<protocol::EdgeFunction, protocol::kMaxFacePoints> edges;
+    protocol::setup_edges(f.points.data(), n, edges.data());
+    // the rows whose centres (y + 1/2) may be covered: between the points' lowest and highest
+    int64_t lo = f.points[0].y, hi = f.points[0].y;
+    for (const protocol::SnappedPoint& p : f.points) {
+        lo = std::min(lo, p.y);
+        hi = std::max(hi, p.y);
+    }
+    const int64_t half = protocol::kSubpixel / 2;
+    const int64_t h = m_fb.height(), w = m_fb.width();
+    const int64_t first =
+        std::max<int64_t>(0, protocol::detail::ceil_div(lo - half, protocol::kSubpixel));
+    const int64_t last =
+        std::min<int64_t>(h - 1, protocol::detail::floor_div(hi - half, protocol::kSubpixel));
+    const bool clipped = first > protocol::detail::ceil_div(lo - half, protocol::kSubpixel) ||
+                         last < protocol::detail::floor_div(hi - half, protocol::kSubpixel);
+    DepthCounters counts;
+    bool cut_sides = false;
+    for (int64_t y = first; y <= last; ++y) {
+        ++work.rows;
+        int xb = 0, xe = 0;
+        if (!protocol::row_span(edges.data(), n, static_cast<int>(y), 0, static_cast<int>(w), xb,
+                                xe))
+            continue;
+        ++work.runs;
+        cut_sides = cut_sides || xb == 0 || xe == w;
+        const int64_t z = int64_t{f.z} + int64_t{f.dzdx} * (xb - int64_t{f.x_ref}) +
+                          int64_t{f.dzdy} * (y - int64_t{f.y_ref});
+        depth_run(static_cast<uint32_t>(y), static_cast<uint32_t>(xb),
+                  static_cast<uint32_t>(xe - xb), z, f.dzdx, f.color, counts);
+    }
+    work.nearer = counts.nearer;
+    work.farther = counts.tests - counts.nearer;
+    m_frame.depth += counts;
+    m_stats.depth += counts;
+    Executed x{face_cycles(profile(), work), counts.nearer, clipped || cut_sides, work.runs == 0};
+    x.bytes = bytes;
+    return x;
+}
+
 // --- accounting ------------------------------------------------------------------------
 
 namespace {
@@ -240,16 +404,18 @@ void count(OpcodeCounters& c, uint32_t bytes, uint64_t cycles, uint64_t pixels, 
 void Controller::account(Opcode opcode, const Executed& x) {
     const int op = opcode_index(opcode);
     const OpcodeEntry& e = m_opcodes[op];
+    const uint32_t bytes = x.bytes < 0 ? e.bytes : static_cast<uint32_t>(x.bytes);
+    const double bus_us = x.bytes < 0 ? e.bus_us : bus_seconds(profile(), bytes) * 1e6;
     // counters
-    count((m_in_frame ? m_frame.ops : m_stats.unframed)[op], e.bytes, x.cycles, x.pixels, x.clipped,
+    count((m_in_frame ? m_frame.ops : m_stats.unframed)[op], bytes, x.cycles, x.pixels, x.clipped,
           x.outside);
-    count(m_stats.totals[op], e.bytes, x.cycles, x.pixels, x.clipped, x.outside);
+    count(m_stats.totals[op], bytes, x.cycles, x.pixels, x.clipped, x.outside);
 
     // time: summed command by command, in stream order (floating-point sums)
     const double exec_us = static_cast<double>(x.cycles) * m_us_per_cycle;
-    (m_in_frame ? m_frame_pipe : m_unframed_pipe).push(e.bus_us, exec_us);
-    m_last_cost = {e.bytes, e.bus_us, exec_us};
-    m_stats.bus_busy_us += e.bus_us;
+    (m_in_frame ? m_frame_pipe : m_unframed_pipe).push(bus_us, exec_us);
+    m_last_cost = {bytes, bus_us, exec_us};
+    m_stats.bus_busy_us += bus_us;
     m_stats.controller_busy_us += exec_us;
     ++m_next_command;
 }

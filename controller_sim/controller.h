@@ -36,6 +36,23 @@ struct OpcodeCounters {
 };
 
 using PerOpcode = std::array<OpcodeCounters, protocol::kOpcodeCount>;  // by opcode_index
+
+// What the depth commands' pixels did: every depth test, the nearer ones (drawn), and of the
+// others those exactly as near as the word they met (kept by the lower id's rule: the ties
+// the depth word's resolution makes).
+struct DepthCounters {
+    uint64_t tests = 0;
+    uint64_t nearer = 0;
+    uint64_t equal = 0;
+
+    DepthCounters& operator+=(const DepthCounters& o) {
+        tests += o.tests;
+        nearer += o.nearer;
+        equal += o.equal;
+        return *this;
+    }
+    friend bool operator==(const DepthCounters&, const DepthCounters&) = default;
+};
 OpcodeCounters sum(const PerOpcode& ops);
 
 // One frame, from its FRAME_BEGIN to its FRAME_END.
@@ -48,6 +65,8 @@ struct FrameResult {
     // closed there, and its checksum taken then.
     bool complete = true;
     PerOpcode ops{};
+    DepthCounters depth;
+    uint32_t depth_bits = 0;  // the depth buffer's word, 0 when the frame had none
     double bus_busy_us = 0;
     double controller_busy_us = 0;
     double end_us = 0;  // when its last command finished, from its first command's start
@@ -66,6 +85,7 @@ struct ControllerStats {
     bool frame_open = false;          // a frame begun and not yet closed (a cut stream's last)
     PerOpcode totals{};               // every command, in frames or not
     PerOpcode unframed{};             // commands outside any frame (before the first, between)
+    DepthCounters depth;              // every depth command's pixels
     double bus_busy_us = 0;           // every command
     double controller_busy_us = 0;    // every command
     double frames_end_us = 0;         // sum of the closed frames' end_us
@@ -84,6 +104,12 @@ class Controller final : public protocol::CommandSink {
     void draw_span(const protocol::DrawSpan& c) override;
     void marker(const protocol::Marker& c) override;
     void frame_end(const protocol::FrameEnd& c) override;
+    // Version 3's depth commands. A DEPTH_SPAN or FACE in a frame without a DEPTH_CLEAR, or
+    // any of them under a profile that does not price them, throws std::invalid_argument
+    // naming the command (a replay then stops with exit 2).
+    void depth_clear(const protocol::DepthClear& c) override;
+    void depth_span(const protocol::DepthSpan& c) override;
+    void face(const protocol::Face& c) override;
 
     // Executes any command through the opcode table.
     void execute(const protocol::Command& c);
@@ -97,6 +123,8 @@ class Controller final : public protocol::CommandSink {
 
     const CostProfile& profile() const { return m_stats.profile; }
     const Framebuffer& framebuffer() const { return m_fb; }
+    // The open frame's depth buffer (width x height words, row by row), empty without one.
+    const std::vector<uint32_t>& depth_buffer() const { return m_depth; }
     const ControllerStats& stats() const { return m_stats; }
     const std::vector<FrameResult>& frames() const { return m_stats.frames; }
     bool in_frame() const { return m_in_frame; }
@@ -127,6 +155,7 @@ class Controller final : public protocol::CommandSink {
         uint64_t pixels = 0;
         bool clipped = false;
         bool outside = false;
+        int64_t bytes = -1;  // the command's own bytes (a FACE's), -1: the opcode's
     };
     struct OpcodeEntry {
         const char* name;
@@ -141,6 +170,16 @@ class Controller final : public protocol::CommandSink {
     Executed exec_draw_span(const protocol::DrawSpan& c);
     Executed exec_marker(const protocol::Marker& c);
     Executed exec_frame_end(const protocol::FrameEnd& c);
+    Executed exec_depth_clear(const protocol::DepthClear& c);
+    Executed exec_depth_span(const protocol::DepthSpan& c);
+    Executed exec_face(const protocol::Face& c);
+    // A depth command's checks: the profile prices it, and (but for DEPTH_CLEAR) the frame has
+    // a depth buffer.
+    void check_depth(protocol::Opcode op, bool needs_buffer) const;
+    // Pixels x .. x+n-1 of row y (inside the frame), pixel x at depth z and each next dz more:
+    // tested against the depth buffer, drawn where nearer; adds to the counters.
+    void depth_run(uint32_t y, uint32_t x, uint32_t n, int64_t z, int64_t dz, protocol::Rgb color,
+                   DepthCounters& counts);
 
     // One command: its exec_*, its accounting, and for FRAME_END the frame's close.
     void step(const protocol::FrameBegin& c);
@@ -148,6 +187,9 @@ class Controller final : public protocol::CommandSink {
     void step(const protocol::DrawSpan& c);
     void step(const protocol::Marker& c);
     void step(const protocol::FrameEnd& c);
+    void step(const protocol::DepthClear& c);
+    void step(const protocol::DepthSpan& c);
+    void step(const protocol::Face& c);
     // A sink call: step() alone, or through execute() when an observer wants the Command.
     template <class C>
     void submit_one(const C& c);
@@ -164,6 +206,7 @@ class Controller final : public protocol::CommandSink {
     CycleCosts m_costs;
     double m_us_per_cycle;
     Framebuffer m_fb;
+    std::vector<uint32_t> m_depth;  // the open frame's depth buffer, after its DEPTH_CLEAR
     ControllerStats m_stats;
     bool m_in_frame = false;
     FrameResult m_frame;  // the open frame's counters

@@ -3,6 +3,7 @@
 // One set of counters feeds both. Only controller figures appear here; host times are
 // reported elsewhere, apart. Modelled time = cycles / f_cyc; bus time = commands x
 // (bytes / B_bus + t_handshake) for opcodes that are sent.
+#include <algorithm>
 #include <string>
 
 #include <fmt/format.h>
@@ -17,15 +18,24 @@ namespace {
 using nlohmann::json;
 
 const char* opcode_name(int i) {
-    return protocol::to_string(static_cast<protocol::Opcode>(i + 1));
+    return protocol::to_string(protocol::kOpcodes[i]);
 }
 
 double modelled_us(const CostProfile& p, uint64_t cycles) {
     return cycles_to_seconds(p, cycles) * 1e6;
 }
 
-double bus_us(const CostProfile& p, int opcode, uint64_t commands) {
-    return static_cast<double>(commands) * bus_seconds(p, p.bytes[opcode]) * 1e6;
+// The bus time of an opcode's commands: their bytes at the bus's rate and a handshake each
+// (bus_seconds, summed; a FACE's bytes vary with its points).
+double bus_us(const CostProfile& p, const OpcodeCounters& c) {
+    if (c.bytes == 0) return 0;
+    return (static_cast<double>(c.bytes) / p.bus_bytes_per_s() +
+            static_cast<double>(c.commands) * p.t_handshake_s) *
+           1e6;
+}
+
+json depth_json(const DepthCounters& d) {
+    return json{{"tests", d.tests}, {"nearer", d.nearer}, {"equal", d.equal}};
 }
 
 json counters_json(const OpcodeCounters& c) {
@@ -40,8 +50,8 @@ json per_opcode_json(const CostProfile& p, const PerOpcode& ops) {
     for (int i = 0; i < protocol::kOpcodeCount; ++i) {
         json j = counters_json(ops[i]);
         j["modelled_us"] = modelled_us(p, ops[i].cycles);
-        j["bus_us"] = bus_us(p, i, ops[i].commands);
-        all_bus_us += bus_us(p, i, ops[i].commands);
+        j["bus_us"] = bus_us(p, ops[i]);
+        all_bus_us += bus_us(p, ops[i]);
         out[opcode_name(i)] = std::move(j);
     }
     const OpcodeCounters all = sum(ops);
@@ -60,6 +70,9 @@ json frame_json(const CostProfile& p, const FrameResult& f) {
                 {"checksum", fmt::format("{:016x}", f.checksum)},
                 {"complete", f.complete},
                 {"opcodes", per_opcode_json(p, f.ops)},
+                {"depth", depth_json(f.depth)},
+                {"depth_bits", f.depth_bits},
+                {"depth_buffer_bytes", f.depth_bits ? p.depth_buffer_bytes(f.width, f.height) : 0},
                 {"bus_busy_us", f.bus_busy_us},
                 {"controller_busy_us", f.controller_busy_us},
                 {"end_us", f.end_us}};
@@ -95,6 +108,7 @@ nlohmann::json ControllerStats::to_json() const {
                 {"frame_open", frame_open},
                 {"totals", per_opcode_json(profile, totals)},
                 {"unframed", per_opcode_json(profile, unframed)},
+                {"depth", depth_json(depth)},
                 {"bus_busy_us", bus_busy_us},
                 {"controller_busy_us", controller_busy_us},
                 {"frames_end_us", frames_end_us},
@@ -108,7 +122,9 @@ std::string ControllerStats::summary() const {
                        "outside");
     double all_bus_ms = 0;
     for (int i = 0; i < protocol::kOpcodeCount; ++i) {
-        const double bus_ms = bus_us(profile, i, totals[i].commands) / 1e3;
+        // the depth commands' rows only where a stream has them
+        if (protocol::is_depth_opcode(protocol::kOpcodes[i]) && totals[i].commands == 0) continue;
+        const double bus_ms = bus_us(profile, totals[i]) / 1e3;
         all_bus_ms += bus_ms;
         append_row(out, opcode_name(i), totals[i], modelled_us(profile, totals[i].cycles) / 1e3,
                    bus_ms);
@@ -122,6 +138,19 @@ std::string ControllerStats::summary() const {
         frames_closed, frames_incomplete,
         frame_open ? ", 1 still open (begun, never ended: its commands are counted above)" : "",
         frames_end_us / 1e3, controller_busy_us / 1e3, bus_busy_us / 1e3);
+    if (depth.tests > 0) {
+        uint32_t width = 0, height = 0;
+        for (const FrameResult& f : frames)
+            if (f.depth_bits) {
+                width = std::max(width, f.width);
+                height = std::max(height, f.height);
+            }
+        out += fmt::format(
+            "depth: {} tests, {} nearer (drawn), {} as near as the word they met (kept: ties of "
+            "the {}-bit word); the buffer takes {:.2f} MB of the board's memory at {}x{}\n",
+            grouped(depth.tests), grouped(depth.nearer), grouped(depth.equal), profile.depth_bits,
+            profile.depth_buffer_bytes(width, height) / 1e6, width, height);
+    }
     const OpcodeCounters loose = sum(unframed);
     if (loose.commands > 0)
         out +=

@@ -99,6 +99,33 @@ CycleCosts::CycleCosts(const CostProfile& p)
     m_word_mask = p.pixels_per_word() - 1;
 }
 
+uint64_t depth_clear_cycles(const CostProfile& p, uint32_t width, uint32_t height) {
+    const uint64_t host = host_word_cycles(p, protocol::Opcode::DepthClear);
+    if (width == 0 || height == 0) return uint64_t{p.c_cmd} + p.c_zclear_setup + host;
+    const uint64_t words = (uint64_t{width} * p.depth_bits + p.bus_bits - 1) / p.bus_bits;
+    return uint64_t{p.c_cmd} + p.c_zclear_setup + host +
+           uint64_t{height} * (p.c_row + uint64_t{p.c_op} * words);
+}
+
+uint64_t depth_span_cycles(const CostProfile& p, bool cut_left, uint64_t nearer, uint64_t farther) {
+    return uint64_t{p.c_cmd} + p.c_zspan_setup + host_word_cycles(p, protocol::Opcode::DepthSpan) +
+           (cut_left ? p.c_zclip : 0) + nearer * p.c_zpass + farther * p.c_zfail + p.c_zexit;
+}
+
+uint64_t depth_span_outside_cycles(const CostProfile& p) {
+    return uint64_t{p.c_cmd} + p.c_zspan_outside + host_word_cycles(p, protocol::Opcode::DepthSpan);
+}
+
+uint64_t face_cycles(const CostProfile& p, const FaceWork& w) {
+    const uint64_t host = uint64_t{(face_bytes(w.points) + 1) / 2} * p.c_host_word;
+    const uint64_t edges = w.points;
+    return uint64_t{p.c_cmd} + host + p.c_face_setup +
+           (w.points > 0 ? uint64_t{w.points - 1} * p.c_face_point + p.c_face_last : 0) +
+           w.rows * (p.c_face_row + edges * p.c_face_edge) +
+           w.runs * (uint64_t{p.c_face_span} + p.c_zexit) + (w.rows - w.runs) * p.c_face_empty +
+           w.nearer * p.c_zpass + w.farther * p.c_zfail + p.c_face_done;
+}
+
 double bus_seconds(const CostProfile& p, uint32_t bytes) {
     if (bytes == 0) return 0;
     return static_cast<double>(bytes) / p.bus_bytes_per_s() + p.t_handshake_s;

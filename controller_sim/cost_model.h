@@ -40,6 +40,30 @@ inline uint64_t host_word_cycles(const CostProfile& p, protocol::Opcode op) {
     return uint64_t{p.host_words_of(op)} * p.c_host_word;
 }
 
+// --- the depth commands (docs/COST_MODEL.md, "Depth commands") --------------------------
+// DEPTH_CLEAR: C_cmd, its set-up, its host word and the clear, a FILL of the depth buffer's
+// words (the frame's width times depth_bits / 16 a row, whole words).
+uint64_t depth_clear_cycles(const CostProfile& p, uint32_t width, uint32_t height);
+// A DEPTH_SPAN that reaches its pixel loop: C_cmd, its set-up and host words, the left cut's
+// steps when it was cut there, each pixel nearer or not, and the loop's return.
+uint64_t depth_span_cycles(const CostProfile& p, bool cut_left, uint64_t nearer, uint64_t farther);
+// One with nothing in the frame: C_cmd, its host words and its set-up to where it finds so.
+uint64_t depth_span_outside_cycles(const CostProfile& p);
+// What a FACE did: its points, the rows of the frame it walked, the rows whose run was not
+// empty, and its pixels' tests.
+struct FaceWork {
+    uint32_t points = 0;
+    uint64_t rows = 0, runs = 0;
+    uint64_t nearer = 0, farther = 0;
+};
+// FACE: C_cmd, its host words, its set-up and each point's edge, each row's step of every
+// edge, each run's span set-up and return or an empty row's, each pixel, and the end.
+uint64_t face_cycles(const CostProfile& p, const FaceWork& w);
+// A FACE's bytes on the bus: its fixed words and two words a coordinate of each point.
+inline uint32_t face_bytes(std::size_t points) {
+    return kFaceFixedBytes + kFacePointBytes * static_cast<uint32_t>(points);
+}
+
 // The formulas above, for the controller's per-command path: the profile's figures widened
 // to 64 bits once, each command's constant part summed, and the division by P a shift (P is
 // a power of two). Same results as fill_rect_cycles / draw_span_cycles / outside_cycles /

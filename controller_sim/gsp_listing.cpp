@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 
@@ -91,11 +92,17 @@ struct Instruction {
     std::string text;  // mnemonic and operands as written
 };
 
+struct PathSpec {
+    std::string name, start;
+    std::string end;                 // "" : to a dispatch or a jump back to COMMON's label
+    std::vector<std::string> taken;  // "take LABEL": jumps to these are taken on this path
+};
+
 struct Parsed {
-    std::vector<Instruction> code;                           // in listing order
-    std::map<std::string, std::size_t> labels;               // label -> index into code
-    std::map<std::string, uint64_t> symbols;                 // .equ
-    std::vector<std::pair<std::string, std::string>> paths;  // name, start label
+    std::vector<Instruction> code;              // in listing order
+    std::map<std::string, std::size_t> labels;  // label -> index into code
+    std::map<std::string, uint64_t> symbols;    // .equ
+    std::vector<PathSpec> paths;
 };
 
 // What one instruction costs, before the write queue is applied.
@@ -157,7 +164,7 @@ class Pricer {
              m == "ABS") &&
             n == 1 && reg(0))
             return simple(1, 1, fmt::format("[DS] p. 13, {} Rd", m));
-        if (m.size() >= 4 && m.rfind("JR", 0) == 0 && n == 1) {
+        if (m.size() >= 3 && m.rfind("JR", 0) == 0 && n == 1) {
             const std::string code = m.substr(2);
             if (std::find(std::begin(kConditions), std::end(kConditions), code) ==
                 std::end(kConditions))
@@ -166,6 +173,36 @@ class Pricer {
             p.kind = code == "UC" ? Kind::Jump : Kind::Branch;
             p.cycles_not_taken = 1;
             p.target = ops[0];
+            return p;
+        }
+        if (m == "DSJ" && n == 2 && reg(0)) {
+            Price p = simple(2, 3, "[DS] p. 14, DSJ Rd,Address: 3 taken, 2 not");
+            p.kind = Kind::Branch;
+            p.cycles_not_taken = 2;
+            p.target = ops[1];
+            return p;
+        }
+        if (m == "MPYS" && n == 2 && reg(0) && reg(1))
+            return simple(1, 5 + kFieldBits[1] / 2, "[DS] p. 13, MPYS Rs,Rd: 5 + FS1/2, FS1 = 32");
+        if (m == "DIVS" && n == 2 && reg(0) && reg(1))
+            return simple(1, 40, "[DS] p. 13, DIVS Rs,Rd");
+        if (m == "CVXYL" && n == 2 && reg(0) && reg(1)) return simple(1, 3, "[DS] p. 11, CVXYL");
+        if ((m == "MOVX" || m == "MOVY") && n == 2 && reg(0) && reg(1))
+            return simple(1, 1, fmt::format("[DS] p. 11, {} Rs,Rd", m));
+        if (m == "PIXT" && n == 2 && reg(0) && ops[1].starts_with("*") &&
+            is_register(std::string_view(ops[1]).substr(1))) {
+            // PIXT Rs,*Rd: the data sheet defers it to the User's Guide (p. 11, "T"); priced
+            // as a memory write of one pixel, queued like a MOVE's
+            const uint32_t issue = m_end == TimingEnd::High ? 2 : 1;
+            Price p =
+                simple(1, issue,
+                       fmt::format("[EST] PIXT Rs,*Rd: {} state{} to issue (band 1-2; DS p. "
+                                   "11 defers it to the User's Guide) + the pixel's write, "
+                                   "{} states (DS p. 19; a read and a write for a pixel "
+                                   "narrower than the word, no byte strobes)",
+                                   issue, issue == 1 ? "" : "s", m_memory.pixel_write_states));
+            p.kind = Kind::MemoryWrite;
+            p.queued = m_memory.pixel_write_states;
             return p;
         }
         if (m == "JUMP" && n == 1 && reg(0)) {
@@ -204,6 +241,8 @@ class Pricer {
 
     uint64_t value(const Instruction& in, std::string_view s) const {
         if (auto v = parse_number(s)) return *v;
+        // a code label: an address in the GSP's memory, a 32-bit immediate
+        if (m_parsed.labels.count(std::string(trim(s)))) return 0xFFFFFFFFu;
         auto it = m_parsed.symbols.find(std::string(trim(s)));
         if (it == m_parsed.symbols.end()) fail(in, fmt::format("{}: not a number or a symbol", s));
         return it->second;
@@ -299,11 +338,24 @@ Parsed parse(const Listing& listing) {
             line = line.substr(0, semi);
         }
         if (comment.starts_with("@path")) {
+            std::vector<std::string> words;
             std::string_view rest = trim(comment.substr(5));
-            const std::size_t space = rest.find(' ');
-            if (space == std::string_view::npos) fail("@path takes a name and a label");
-            out.paths.emplace_back(std::string(rest.substr(0, space)),
-                                   std::string(trim(rest.substr(space + 1))));
+            while (!rest.empty()) {
+                const std::size_t space = rest.find(' ');
+                words.emplace_back(rest.substr(0, space));
+                rest = space == std::string_view::npos ? std::string_view{}
+                                                       : trim(rest.substr(space + 1));
+            }
+            if (words.size() < 2) fail("@path takes a name and a label");
+            PathSpec spec{words[0], words[1], "", {}};
+            std::size_t i = 2;
+            if (i < words.size() && words[i] != "take") spec.end = words[i++];
+            for (; i < words.size(); i += 2) {
+                if (words[i] != "take" || i + 1 >= words.size())
+                    fail("@path NAME START [END] [take LABEL]...");
+                spec.taken.push_back(words[i + 1]);
+            }
+            out.paths.push_back(std::move(spec));
             continue;
         }
         std::string_view code = line;
@@ -363,20 +415,31 @@ Parsed parse(const Listing& listing) {
 // a queued write's states overlap the register instructions after it and are waited for
 // by the next memory access, the graphics instruction, or the path's end.
 CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pricer,
-                 const std::string& name, const std::string& start, const std::string& loop) {
+                 const PathSpec& spec, const std::string& loop) {
     CountedPath path;
-    path.name = name;
-    auto it = parsed.labels.find(start);
-    if (it == parsed.labels.end())
-        throw std::runtime_error(
-            fmt::format("listing {}.asm: @path {}: no label {}", listing.name, name, start));
-    std::size_t pc = it->second;
+    path.name = spec.name;
+    const auto label = [&](const std::string& l) {
+        auto it = parsed.labels.find(l);
+        if (it == parsed.labels.end())
+            throw std::runtime_error(
+                fmt::format("listing {}.asm: @path {}: no label {}", listing.name, spec.name, l));
+        return it->second;
+    };
+    std::size_t pc = label(spec.start);
+    const std::size_t end = spec.end.empty() ? SIZE_MAX : label(spec.end);
+    for (const std::string& t : spec.taken)
+        (void)label(t);
     uint32_t queued = 0;
     for (int step = 0;; ++step) {
+        if (step > 0 && pc == end) {  // reached its end: a queued write is paid by it
+            path.cycles += queued;
+            if (!path.lines.empty()) path.lines.back().cycles += queued;
+            break;
+        }
         if (step > kMaxPathSteps || pc >= parsed.code.size())
             throw std::runtime_error(fmt::format(
-                "listing {}.asm: @path {} does not end (a path ends at a dispatch or a jump to {})",
-                listing.name, name, loop));
+                "listing {}.asm: @path {} does not end (a path ends at a dispatch, a jump to {}{})",
+                listing.name, spec.name, loop, spec.end.empty() ? "" : " or at " + spec.end));
         const Instruction& in = parsed.code[pc];
         const Price p = pricer.price(in);
         uint32_t cycles = p.cycles;
@@ -387,8 +450,12 @@ CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pri
             queued = 0;
         }
         bool taken = p.kind == Kind::Jump;
+        const bool forced =
+            std::find(spec.taken.begin(), spec.taken.end(), p.target) != spec.taken.end();
         if (p.kind == Kind::Branch) {
-            if (in.comment.starts_with("not taken"))
+            if (forced)
+                taken = true;
+            else if (in.comment.starts_with("not taken"))
                 taken = false;
             else if (in.comment.starts_with("taken"))
                 taken = true;
@@ -432,13 +499,13 @@ std::map<std::string, CountedPath> count_paths(const Listing& listing, const Mem
     const Parsed parsed = parse(listing);
     const Pricer pricer(listing, parsed, memory, end);
     std::string loop;
-    for (const auto& [name, start] : parsed.paths)
-        if (name == "COMMON") loop = start;
+    for (const PathSpec& spec : parsed.paths)
+        if (spec.name == "COMMON") loop = spec.start;
     if (loop.empty())
         throw std::runtime_error(fmt::format("listing {}.asm: no @path COMMON", listing.name));
     std::map<std::string, CountedPath> out;
-    for (const auto& [name, start] : parsed.paths)
-        out[name] = walk(listing, parsed, pricer, name, start, loop);
+    for (const PathSpec& spec : parsed.paths)
+        out[spec.name] = walk(listing, parsed, pricer, spec, loop);
     return out;
 }
 
@@ -449,6 +516,34 @@ uint32_t listing_words(const Listing& listing) {
     for (const Instruction& in : parsed.code)
         words += pricer.price(in).words;
     return words;
+}
+
+uint32_t working_set_words(const std::map<std::string, CountedPath>& paths,
+                           std::span<const std::string_view> names) {
+    std::map<int, uint32_t> words;
+    for (std::string_view name : names) {
+        auto it = paths.find(std::string(name));
+        if (it == paths.end()) throw std::runtime_error(fmt::format("no @path {}", name));
+        for (const CountedLine& l : it->second.lines)
+            words[l.line] = l.words;
+    }
+    uint32_t n = 0;
+    for (const auto& [line, w] : words)
+        n += w;
+    return n;
+}
+
+std::span<const CachedWork> cached_work() {
+    static const std::vector<CachedWork> work = {
+        {"the tiling commands' executive",
+         {"COMMON", "FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN:line", "DRAW_SPAN:fill", "FRAME_END"}},
+        {"a DEPTH_SPAN and its pixel loop",
+         {"COMMON", "DEPTH_SPAN", "ZPIXEL16:nearer", "ZPIXEL16:farther", "ZSPAN_EXIT"}},
+        {"a FACE's row loop",
+         {"FACE:row", "FACE:edge", "FACE:span", "FACE:empty", "ZPIXEL16:nearer", "ZPIXEL16:farther",
+          "ZSPAN_EXIT"}},
+    };
+    return work;
 }
 
 std::string annotated_listing(const Listing& listing, const MemoryTiming& memory) {

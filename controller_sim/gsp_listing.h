@@ -20,6 +20,9 @@ namespace fb89::controller {
 struct MemoryTiming {
     uint32_t cycle_states = 2;
     uint32_t io_cycle_states = 2;
+    // One pixel written alone (PIXT): a write cycle when the pixel fills its word or byte
+    // strobes take it alone, else a read and a write.
+    uint32_t pixel_write_states = 4;
 };
 
 // Which end of an estimated instruction timing a count takes: the estimate itself, or the
@@ -53,14 +56,31 @@ std::span<const Listing> builtin_listings();  // defined in the generated file
 // The listing by name; throws std::runtime_error naming the known ones.
 const Listing& builtin_listing(std::string_view name);
 
-// Counts every ";@path" of `listing`. Throws std::runtime_error naming the listing and line
-// for an instruction it cannot price, an unknown label, or a path that does not end.
+// Counts every ";@path NAME START [END] [take LABEL]..." of `listing`: from START to a
+// dispatch, a taken jump back to COMMON's label, or (with END) the point where it reaches END
+// (by a jump or by running into it). A "take LABEL" makes every conditional jump to LABEL
+// on the path taken, whatever its comment says (a loop's other way). Throws
+// std::runtime_error naming the listing and line for an instruction it cannot price, an
+// unknown label, or a path that does not end.
 std::map<std::string, CountedPath> count_paths(const Listing& listing, const MemoryTiming& memory,
                                                TimingEnd end = TimingEnd::Estimate);
 
 // The listing's length in 16-bit words, instructions only (what the 256-byte instruction
 // cache must hold for the minimum cycles to apply, SPVS002C p. 2).
 uint32_t listing_words(const Listing& listing);
+
+// The 16-bit words of the instructions on the named paths, each instruction once: what must
+// sit in the instruction cache for those paths to run at their minimum cycles.
+uint32_t working_set_words(const std::map<std::string, CountedPath>& paths,
+                           std::span<const std::string_view> names);
+// The paths each command repeats, whose working set the cache must hold: the tiling
+// commands' whole executive, a DEPTH_SPAN with its pixel loop, and a FACE's row loop (its
+// set-up, once a face, runs through the cache: docs/COST_MODEL.md, "Depth commands").
+struct CachedWork {
+    std::string_view what;
+    std::vector<std::string_view> paths;
+};
+std::span<const CachedWork> cached_work();
 
 // The listing's text, each instruction of a counted path marked with its cycles and source.
 std::string annotated_listing(const Listing& listing, const MemoryTiming& memory);

@@ -8,6 +8,7 @@
 #include "controller_sim/gsp_listing.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -17,6 +18,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
+
+#include "protocol/depth_fixed.h"
 
 namespace fb89::controller {
 
@@ -36,7 +39,7 @@ constexpr const char* kUnlimited = "unlimited";
 // The value of command_buffer_bytes for a buffer without a bound.
 constexpr const char* kUnbounded = "unbounded";
 
-constexpr std::array<std::string_view, 28> kKnownKeys = {"name",
+constexpr std::array<std::string_view, 29> kKnownKeys = {"name",
                                                          "description",
                                                          "f_cyc_hz",
                                                          "bpp",
@@ -63,7 +66,8 @@ constexpr std::array<std::string_view, 28> kKnownKeys = {"name",
                                                          "derived",
                                                          "byte_strobes",
                                                          "page_mode_states",
-                                                         "host_port_bytes_per_s"};
+                                                         "host_port_bytes_per_s",
+                                                         "depth_bits"};
 
 // A profile's cycle figures given directly (no "gsp"), and derived from the listing (with it).
 constexpr std::array<std::string_view, 5> kGivenCycles = {"C_cmd", "C_setup", "C_op",
@@ -180,17 +184,27 @@ void read_bytes(const FieldReader& r, CostProfile& p) {
     const json& bytes = r.require("bytes");
     if (!bytes.is_object()) r.fail("bytes", "expected an object of opcode name -> bytes");
     for (const auto& [key, value] : bytes.items()) {
-        bool known = false;
-        for (int i = 0; i < protocol::kOpcodeCount; ++i)
-            known = known || key == protocol::to_string(static_cast<protocol::Opcode>(i + 1));
+        bool known = false, depth = false;
+        for (protocol::Opcode op : protocol::kOpcodes) {
+            known = known || key == protocol::to_string(op);
+            depth = depth || (key == protocol::to_string(op) && protocol::is_depth_opcode(op));
+        }
         if (!known) r.fail("bytes." + key, "not an opcode (FRAME_BEGIN, FILL_RECT, ...)");
+        if (depth)
+            r.fail("bytes." + key,
+                   "a depth command's bytes follow from its words (docs/COST_MODEL.md): not given");
     }
-    for (int i = 0; i < protocol::kOpcodeCount; ++i) {
-        const std::string key = protocol::to_string(static_cast<protocol::Opcode>(i + 1));
+    for (protocol::Opcode op : protocol::kOpcodes) {
+        const int i = protocol::opcode_index(op);
+        if (protocol::is_depth_opcode(op)) continue;
+        const std::string key = protocol::to_string(op);
         auto it = bytes.find(key);
         if (it == bytes.end()) r.fail("bytes." + key, "missing");
         p.bytes[i] = r.count(*it, "bytes." + key, 1'000'000);
     }
+    p.bytes[protocol::opcode_index(protocol::Opcode::DepthClear)] = kDepthClearBytes;
+    p.bytes[protocol::opcode_index(protocol::Opcode::DepthSpan)] = kDepthSpanBytes;
+    p.bytes[protocol::opcode_index(protocol::Opcode::Face)] = kFaceFixedBytes;
 }
 
 void read_sources(const FieldReader& r, const json& j, CostProfile& p) {
@@ -273,7 +287,7 @@ void read_bands(const FieldReader& r, const json& j, CostProfile& p) {
             r.fail(field, fmt::format("the figure {:g} must lie within its band, {:g} to {:g}",
                                       value, b.low, b.high));
         if (buffer) {
-            const uint32_t largest = *std::max_element(p.bytes.begin(), p.bytes.end());
+            const uint32_t largest = p.largest_tiling_bytes();
             if (b.low != std::floor(b.low) || b.low < largest)
                 r.fail(field + ".low",
                        fmt::format("expected a whole number of bytes from the largest "
@@ -392,9 +406,14 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         r.fail("span_as", span_as.empty() ? "missing" : "expected \"line\" or \"fill\"");
     p.b_bus_bytes_per_s = r.bandwidth("B_bus_bytes_per_s");
     p.t_handshake_s = r.number_in("t_handshake_s", true, 1e-15, 1.0);
+    if (auto it = j.find("depth_bits"); it != j.end()) {
+        p.depth_bits = r.count(*it, "depth_bits", 32);
+        if (!protocol::valid_depth_bits(p.depth_bits))
+            r.fail("depth_bits", fmt::format("must be 16 or 32, got {}", p.depth_bits));
+    }
     read_bytes(r, p);
     if (auto it = j.find("command_buffer_bytes"); it != j.end()) {
-        const uint32_t largest = *std::max_element(p.bytes.begin(), p.bytes.end());
+        const uint32_t largest = p.largest_tiling_bytes();
         if (it->is_string() && it->get<std::string>() == kUnbounded) {
             p.command_buffer_bytes = kUnboundedBuffer;
         } else if (!it->is_number_unsigned() || it->get<uint64_t>() < largest ||
@@ -441,6 +460,9 @@ void derive_figures(CostProfile& p) {
         p.stolen_share = 0;
         p.host_port_bytes_per_s = std::numeric_limits<double>::infinity();
         p.outside_pays_setup = false;
+        // the depth commands: priced only by a listing, or free where everything is
+        p.depth_priced = p.c_cmd == 0 && p.c_setup == 0 && p.c_op == 0 && p.c_row == 0 &&
+                         p.c_line_setup == 0 && p.c_line_pix == 0;
         return;
     }
     const uint32_t m = p.memory_cycle_states + p.wait_states;  // one memory cycle, SPVS002C p. 19
@@ -448,8 +470,12 @@ void derive_figures(CostProfile& p) {
                           : p.listing_cheap ? TimingEnd::Low
                                             : TimingEnd::Estimate;
     // An I/O register's cycle ignores LRDY (p. 20): no wait states.
+    // A pixel written alone (PIXT): one write when it fills its word or a byte strobe takes
+    // it, else a read and a write.
+    const bool pixel_alone = p.bpp >= p.bus_bits || (p.byte_strobes && p.bpp >= 8);
     const auto paths =
-        count_paths(builtin_listing(p.gsp), MemoryTiming{m, p.memory_cycle_states}, end);
+        count_paths(builtin_listing(p.gsp),
+                    MemoryTiming{m, p.memory_cycle_states, pixel_alone ? m : 2 * m}, end);
     const auto path = [&](const char* name, const char* graphics) -> uint32_t {
         auto it = paths.find(name);
         if (it == paths.end())
@@ -465,6 +491,23 @@ void derive_figures(CostProfile& p) {
     p.c_line_setup = path("DRAW_SPAN:line", "LINE");
     p.c_span_fill_setup = path("DRAW_SPAN:fill", "FILL");
     p.c_frame_end_setup = path("FRAME_END", "");
+    p.c_zclear_setup = path("DEPTH_CLEAR", "FILL");
+    p.c_zspan_setup = path("DEPTH_SPAN", "");
+    p.c_zspan_outside = path("DEPTH_SPAN:outside", "");
+    p.c_zclip = path("DEPTH_SPAN:clip", "");
+    const bool wide = p.depth_bits == 32;
+    p.c_zpass = path(wide ? "ZPIXEL32:nearer" : "ZPIXEL16:nearer", "");
+    p.c_zfail = path(wide ? "ZPIXEL32:farther" : "ZPIXEL16:farther", "");
+    p.c_zexit = path("ZSPAN_EXIT", "");
+    p.c_face_setup = path("FACE", "");
+    p.c_face_point = path("FACE:point", "");
+    p.c_face_last = path("FACE:last", "");
+    p.c_face_row = path("FACE:row", "");
+    p.c_face_edge = path("FACE:edge", "");
+    p.c_face_span = path("FACE:span", "");
+    p.c_face_empty = path("FACE:empty", "");
+    p.c_face_done = path("FACE:done", "");
+    p.depth_priced = true;
     // A word of the bus written whole is one write cycle; a partial word is read, modified
     // and written (one CAS, one W, no byte strobes: the pin list); so is a pixel narrower than
     // the bus drawn by LINE, one pixel a time.
@@ -547,13 +590,15 @@ nlohmann::json CostProfile::to_json() const {
         if (field != "command_buffer_bytes") bands_json[field]["high"] = band.high;
     }
     json bytes_json = json::object();
-    for (int i = 0; i < protocol::kOpcodeCount; ++i)
-        bytes_json[protocol::to_string(static_cast<protocol::Opcode>(i + 1))] = bytes[i];
+    for (protocol::Opcode op : protocol::kOpcodes)
+        if (!protocol::is_depth_opcode(op))
+            bytes_json[protocol::to_string(op)] = bytes[protocol::opcode_index(op)];
     json j{{"name", name},
            {"description", description},
            {"f_cyc_hz", f_cyc_hz},
            {"bpp", bpp},
            {"bus_bits", bus_bits},
+           {"depth_bits", depth_bits},
            {"C_row", row_states},
            {"span_as", controller::to_string(span_as)},
            {"B_bus_bytes_per_s",
@@ -593,9 +638,36 @@ nlohmann::json CostProfile::to_json() const {
                         {"C_line_pix", c_line_pix},
                         {"C_host_word", c_host_word},
                         {"stolen_share", stolen_share},
-                        {"host_port_bytes_per_s", host_port_bytes_per_s}};
+                        {"host_port_bytes_per_s", host_port_bytes_per_s},
+                        {"C_zclear_setup", c_zclear_setup},
+                        {"C_zspan_setup", c_zspan_setup},
+                        {"C_zspan_outside", c_zspan_outside},
+                        {"C_zclip", c_zclip},
+                        {"C_zpass", c_zpass},
+                        {"C_zfail", c_zfail},
+                        {"C_zexit", c_zexit},
+                        {"C_face_setup", c_face_setup},
+                        {"C_face_point", c_face_point},
+                        {"C_face_last", c_face_last},
+                        {"C_face_row", c_face_row},
+                        {"C_face_edge", c_face_edge},
+                        {"C_face_span", c_face_span},
+                        {"C_face_empty", c_face_empty},
+                        {"C_face_done", c_face_done}};
     }
     return j;
+}
+
+uint32_t CostProfile::largest_tiling_bytes() const {
+    uint32_t largest = 0;
+    for (protocol::Opcode op : protocol::kOpcodes)
+        if (!protocol::is_depth_opcode(op)) largest = std::max(largest, bytes_of(op));
+    return largest;
+}
+
+uint64_t CostProfile::depth_buffer_bytes(uint32_t width, uint32_t height) const {
+    const uint64_t pitch_words = std::bit_ceil(uint64_t{width});
+    return pitch_words * height * depth_bits / 8;
 }
 
 std::string CostProfile::to_string() const {

@@ -72,13 +72,37 @@ struct CostProfile {
     double stolen_share = 0;          // the share of the bus refresh takes from the GSP
     bool outside_pays_setup = false;  // a command outside the frame still loads and runs FILL
 
+    // The depth commands (stream format version 3; docs/COST_MODEL.md, "Depth commands").
+    // The depth buffer's word, in bits: 16 or 32 ("depth_bits"; 16 when absent).
+    uint32_t depth_bits = 16;
+    // Whether the profile prices them: one with a listing does, and one whose figures are
+    // all zero (the ideal controller); any other refuses them.
+    bool depth_priced = false;
+    uint32_t c_zclear_setup = 0;   // DEPTH_CLEAR's set-up, FILL's own included
+    uint32_t c_zspan_setup = 0;    // DEPTH_SPAN's set-up to its pixel loop
+    uint32_t c_zspan_outside = 0;  // ... to where it finds nothing in the frame
+    uint32_t c_zclip = 0;          // a span cut on the left: Z stepped to column 0
+    uint32_t c_zpass = 0;          // a pixel nearer than the depth buffer: tested and written
+    uint32_t c_zfail = 0;          // a pixel as near or farther: tested
+    uint32_t c_zexit = 0;          // the loop's return
+    uint32_t c_face_setup = 0;     // FACE's set-up
+    uint32_t c_face_point = 0;     // an edge set up from a point (all but the last)
+    uint32_t c_face_last = 0;      // the last point's edge, back to the first
+    uint32_t c_face_row = 0;       // a row of the face's rows in the frame
+    uint32_t c_face_edge = 0;      // an edge stepped to the row
+    uint32_t c_face_span = 0;      // a row's run handed to the pixel loop, a span's set-up
+    uint32_t c_face_empty = 0;     // a row with no covered centre
+    uint32_t c_face_done = 0;      // the end of its rows
+
     double b_bus_bytes_per_s = 0;  // the host side's bandwidth; +inf: "unlimited"
     // The chip's host port: no faster than its strobe spacing and the memory cycle each word
     // takes (+inf for a profile without "gsp").
     double host_port_bytes_per_s = std::numeric_limits<double>::infinity();
     double t_handshake_s = 0;  // per command sent
     // Bytes a command occupies on the modelled bus, by protocol::opcode_index. Fixed per
-    // opcode whatever the file encoding; 0 means the command is not sent at all.
+    // opcode whatever the file encoding; 0 means the command is not sent at all. The tiling
+    // commands' are the profile's ("bytes"); the depth commands' follow from their 16-bit
+    // words (kDepthClearBytes...), a FACE's fixed part here and kFacePointBytes a point more.
     std::array<uint32_t, protocol::kOpcodeCount> bytes{};
     // The controller's command buffer, in bytes (the pipeline in time, timed_pipeline.h):
     // "command_buffer_bytes", a number at least the largest command's bytes, or "unbounded"
@@ -108,7 +132,13 @@ struct CostProfile {
     }
     // The 16-bit host words of a command, each a memory cycle the GSP's bus gives the host.
     uint32_t host_words_of(protocol::Opcode op) const { return (bytes_of(op) + 1) / 2; }
+    // The board memory the depth buffer takes for a frame: its rows at a pitch of the width
+    // rounded up to a power of two (the listing shifts by the pitch), depth_bits a word.
+    uint64_t depth_buffer_bytes(uint32_t width, uint32_t height) const;
     uint32_t bytes_of(protocol::Opcode op) const { return bytes[protocol::opcode_index(op)]; }
+    // The largest tiling command's bytes: what a command buffer must hold at least (a depth
+    // command too large for a buffer is refused where it comes, timed_pipeline.h).
+    uint32_t largest_tiling_bytes() const;
 
     nlohmann::json to_json() const;  // the same fields as the profile file
     std::string to_string() const;   // one line for logs and test messages
@@ -128,6 +158,15 @@ std::string command_buffer_text(uint64_t bytes);
 // ever waits for the bus ("host waited for the bus 1.234 ms"); with a bounded one, for the
 // bus or for room in the buffer ("host stalled 1.234 ms (bus or full buffer)").
 std::string host_stall_text(uint64_t buffer_bytes, double stalled_ms);
+
+// The depth commands' words as the host writes them (controller_sim/gsp/tms34010.asm's
+// header): DEPTH_CLEAR its opcode; DEPTH_SPAN opcode, x0, y, x1, z and dz (two each), colour;
+// FACE opcode, count, colour, x_ref, y_ref, z, dzdx and dzdy (two each), and each point's x
+// and y (two each).
+inline constexpr uint32_t kDepthClearBytes = 2;
+inline constexpr uint32_t kDepthSpanBytes = 18;
+inline constexpr uint32_t kFaceFixedBytes = 22;
+inline constexpr uint32_t kFacePointBytes = 8;
 
 // A profile compiled into the library.
 struct BuiltinProfile {

@@ -7,20 +7,24 @@
 namespace fb89::experiments {
 
 controller::Framebuffer framebuffer_of(const host::Scene& scene, host::ColorMode mode,
-                                       host::Renderer& renderer) {
+                                       host::Renderer& renderer, uint32_t depth_bits) {
     host::HostStats stats;
     host::ScreenScene screen = host::project_scene(scene, mode, stats.counters);
     renderer.setup(screen);
     protocol::MemoryBuffer commands;
     host::render_frame(renderer, screen, commands, stats);
-    // pixels do not depend on the cost profile: the ideal one costs nothing to model
-    controller::Controller ctl(controller::load_profile("ideal"));
+    // pixels do not depend on the cost profile but for the depth word: the ideal one costs
+    // nothing to model
+    controller::CostProfile ideal = controller::load_profile("ideal");
+    ideal.depth_bits = depth_bits;
+    controller::Controller ctl(std::move(ideal));
     commands.replay_into(ctl);
     return ctl.framebuffer();
 }
 
-controller::Framebuffer id_framebuffer(const host::Scene& scene, host::Renderer& renderer) {
-    return framebuffer_of(scene, host::ColorMode::FaceId, renderer);
+controller::Framebuffer id_framebuffer(const host::Scene& scene, host::Renderer& renderer,
+                                       uint32_t depth_bits) {
+    return framebuffer_of(scene, host::ColorMode::FaceId, renderer, depth_bits);
 }
 
 }  // namespace fb89::experiments

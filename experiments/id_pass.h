@@ -12,11 +12,13 @@
 namespace fb89::experiments {
 
 // The frame `renderer` makes of `scene` projected in `mode`, as the controller holds it
-// (pixels do not depend on the cost profile; the ideal one is used).
+// (pixels do not depend on the cost profile, but for the depth commands' on its depth word:
+// the ideal profile is used, with a depth word of `depth_bits`).
 controller::Framebuffer framebuffer_of(const host::Scene& scene, host::ColorMode mode,
-                                       host::Renderer& renderer);
+                                       host::Renderer& renderer, uint32_t depth_bits = 32);
 
 // framebuffer_of() in id mode: the face-id buffer.
-controller::Framebuffer id_framebuffer(const host::Scene& scene, host::Renderer& renderer);
+controller::Framebuffer id_framebuffer(const host::Scene& scene, host::Renderer& renderer,
+                                       uint32_t depth_bits = 32);
 
 }  // namespace fb89::experiments

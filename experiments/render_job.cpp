@@ -79,11 +79,10 @@ FramePipeline pipeline_figures(const protocol::MemoryBuffer& commands,
     controller::Controller ctl(profile);
     controller::TimedPipeline pipe(buffer_bytes);
     controller::TimedPipeline alone(buffer_bytes);  // every command waiting at 0
-    for (const uint32_t bytes : profile.bytes)
-        if (bytes > buffer_bytes)
-            throw std::invalid_argument("--buffer: " + std::to_string(buffer_bytes) +
-                                        " bytes is less than a command of " + profile.name +
-                                        " (up to " + std::to_string(bytes) + " bytes)");
+    if (const uint32_t bytes = profile.largest_tiling_bytes(); bytes > buffer_bytes)
+        throw std::invalid_argument("--buffer: " + std::to_string(buffer_bytes) +
+                                    " bytes is less than a command of " + profile.name +
+                                    " (up to " + std::to_string(bytes) + " bytes)");
     const auto& all = commands.commands();
     if (send_us.size() != all.size())
         throw std::invalid_argument(std::to_string(send_us.size()) + " send times for " +

@@ -26,10 +26,10 @@ std::optional<uint64_t> parse_buffer_option(const std::string& text, const std::
         limit_problem(limits::kBufferBytes, static_cast<double>(bytes)))
         throw UsageError(
             fmt::format("{}: '{}': a whole number of bytes (1 to 2^40) or unbounded", name, text));
-    for (const uint32_t largest : controller::load_profile(profile).bytes)
-        if (largest > bytes)
-            throw UsageError(fmt::format("{}: {} bytes cannot hold a command of {} ({} bytes)",
-                                         name, bytes, profile, largest));
+    const uint32_t largest = controller::load_profile(profile).largest_tiling_bytes();
+    if (largest > bytes)
+        throw UsageError(fmt::format("{}: {} bytes cannot hold a command of {} ({} bytes)", name,
+                                     bytes, profile, largest));
     return bytes;
 }
 

@@ -59,15 +59,25 @@ class Trimmer {
             const uint64_t position = m_next_position++;
             if (m_has_frames && position > m_frames.last()) return false;
             m_pending = *begin;
+            m_depth_clear = false;
             m_in_frame = true;
             m_frame_selected = !m_has_frames || m_frames.contains_number(position);
         }
         const bool selected = (!m_has_calls || m_calls.contains(n, c)) &&
                               (!m_has_frames || (m_in_frame && m_frame_selected));
+        // a kept frame keeps its DEPTH_CLEAR, as it keeps its FRAME_BEGIN: its depth
+        // commands need the buffer it makes
+        const bool depth_clear = m_in_frame && std::holds_alternative<protocol::DepthClear>(c);
         const bool is_framing = std::holds_alternative<protocol::FrameBegin>(c) ||
-                                (m_in_frame && std::holds_alternative<protocol::FrameEnd>(c));
+                                (m_in_frame && std::holds_alternative<protocol::FrameEnd>(c)) ||
+                                depth_clear;
+        if (depth_clear) {
+            m_depth_clear = true;
+            if (m_emitted) m_writer.depth_clear({});
+        }
         if (selected && m_in_frame && !m_emitted) {
             m_writer.frame_begin(m_pending);
+            if (m_depth_clear) m_writer.depth_clear({});
             m_emitted = true;
             ++m_frames_kept;
         }
@@ -105,6 +115,7 @@ class Trimmer {
     uint64_t m_next_position = 0;  // stream position of the next FRAME_BEGIN
     bool m_in_frame = false, m_frame_selected = false, m_emitted = false;
     protocol::FrameBegin m_pending;
+    bool m_depth_clear = false;  // the open frame's DEPTH_CLEAR has been read
     uint64_t m_frames_kept = 0;
 };
 
@@ -231,7 +242,9 @@ TrimOutcome trim_stream(const TrimRequest& args) {
     make_parent_dirs(args.output);
     protocol::StreamWriter writer(
         args.output, properties,
-        reader.timed() ? protocol::Timing::Timed : protocol::Timing::Untimed);
+        reader.timed() ? protocol::Timing::Timed : protocol::Timing::Untimed,
+        reader.version() >= protocol::kDepthVersion ? protocol::Commands::Depth
+                                                    : protocol::Commands::Tiling);
     Trimmer trimmer(selection, writer);
 
     // seek through the frame index to where the selection starts

@@ -3,6 +3,7 @@
 #include <array>
 #include <stdexcept>
 
+#include "host/raster/controller_depth.h"
 #include "host/raster/scanline.h"
 #include "host/raster/zbuffer.h"
 
@@ -10,7 +11,7 @@ namespace fb89::host {
 
 namespace {
 
-constexpr std::array<MethodInfo, 6> kMethods{{
+constexpr std::array<MethodInfo, 8> kMethods{{
     {Method::ZBuffer, "zbuffer", "Z-buffer: depth test per pixel, spans of equal colour", 0},
     {Method::ScanLine, "scanline", "Watkins scan-line: active faces per row, depth per segment", 0},
     {Method::Warnock, "warnock", "Warnock window sampling (§1, §2): fills from the thinker",
@@ -26,6 +27,10 @@ constexpr std::array<MethodInfo, 6> kMethods{{
      "beam-ray hybrid (§4): beams query the rays' BVH and fill windows, Expr. 2.7 hands to rays "
      "[--accel grid: rays and beams walk a uniform grid, as in 1989]",
      kTraceOptions | kBeamOptions},
+    {Method::DepthSpans, "zspans",
+     "host scan-converts, controller tests depth: DEPTH_SPANs, no depth test on the host", 0, true},
+    {Method::Faces, "faces",
+     "host projects and clips only: FACEs the controller scan-converts and depth-tests", 0, true},
 }};
 
 }  // namespace
@@ -96,6 +101,10 @@ std::unique_ptr<Renderer> make_renderer(const MethodOptions& o) {
             return std::make_unique<RayTraceRenderer>(o.trace);
         case Method::Beam:
             return std::make_unique<BeamRayHybrid>(o.beam, o.trace);
+        case Method::DepthSpans:
+            return std::make_unique<DepthSpans>();
+        case Method::Faces:
+            return std::make_unique<FaceSender>();
     }
     throw std::invalid_argument("unknown method");
 }

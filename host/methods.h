@@ -21,7 +21,7 @@
 
 namespace fb89::host {
 
-enum class Method { ZBuffer, ScanLine, Warnock, Hybrid, RayTrace, Beam };
+enum class Method { ZBuffer, ScanLine, Warnock, Hybrid, RayTrace, Beam, DepthSpans, Faces };
 
 // Which option groups a method reads; any other group's options do not apply to it.
 enum OptionGroup : unsigned {
@@ -36,10 +36,12 @@ struct MethodInfo {
     std::string_view name;
     std::string_view description;
     unsigned options;  // OptionGroup bits
+    // Whether it sends depth commands (stream format version 3): the controller tests depth.
+    bool depth_commands = false;
     bool uses(OptionGroup group) const { return (options & group) != 0; }
 };
 
-// Every method, in the order the paper introduces them.
+// Every method, in the order the paper introduces them; then the two that move the split.
 std::span<const MethodInfo> methods();
 const MethodInfo& method_info(Method method);
 // Throws std::invalid_argument naming the known methods when `name` is not one.

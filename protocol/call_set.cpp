@@ -31,20 +31,38 @@ struct Filter {
 const Filter kFilters[] = {
     {"fill", bit(Opcode::FillRect)},
     {"span", bit(Opcode::DrawSpan)},
-    {"draw", static_cast<uint8_t>(bit(Opcode::FillRect) | bit(Opcode::DrawSpan))},
+    {"zspan", bit(Opcode::DepthSpan)},
+    {"face", bit(Opcode::Face)},
+    {"zclear", bit(Opcode::DepthClear)},
+    {"draw", static_cast<uint8_t>(bit(Opcode::FillRect) | bit(Opcode::DrawSpan) |
+                                  bit(Opcode::DepthSpan) | bit(Opcode::Face))},
+    {"depth",
+     static_cast<uint8_t>(bit(Opcode::DepthClear) | bit(Opcode::DepthSpan) | bit(Opcode::Face))},
     {"marker", bit(Opcode::Marker)},
     {"frame", static_cast<uint8_t>(bit(Opcode::FrameBegin) | bit(Opcode::FrameEnd))},
 };
+// The filters that only stand for others (written out by filter_names).
+bool is_composite(std::string_view name) {
+    return name == "draw" || name == "depth";
+}
+
+// "/fill /span ..." in the table's order.
+std::string filter_list() {
+    std::string out;
+    for (const Filter& f : kFilters)
+        out += (out.empty() ? "/" : " /") + std::string(f.name);
+    return out;
+}
 
 bool is_word_char(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
 }
 
-// "/fill/span" for a mask of FILL_RECT and DRAW_SPAN ("/draw" is written out).
+// "/fill/span" for a mask of FILL_RECT and DRAW_SPAN ("/draw" and "/depth" are written out).
 std::string filter_names(uint8_t opcodes) {
     std::string out;
     for (const Filter& f : kFilters) {
-        if (std::string_view(f.name) != "draw" && (opcodes & f.opcodes) == f.opcodes)
+        if (!is_composite(f.name) && (opcodes & f.opcodes) == f.opcodes)
             out += std::string("/") + f.name;
     }
     return out;
@@ -145,10 +163,9 @@ class CallSetParser {
                 return;
             }
         }
-        fail(
-            fmt::format("unknown filter '/{}'; expected a step or one of /fill /span /draw "
-                        "/marker /frame",
-                        word.empty() ? std::string_view(m_text.substr(m_pos, 1)) : word));
+        fail(fmt::format("unknown filter '/{}'; expected a step or one of {}",
+                         word.empty() ? std::string_view(m_text.substr(m_pos, 1)) : word,
+                         filter_list()));
     }
 
     uint64_t parse_number() {

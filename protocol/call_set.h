@@ -5,7 +5,8 @@
 // The grammar is in docs/PROTOCOL.md, "Call sets". In short: a comma-separated list of
 // items; an item is a range (`N`, `N-M`, `N-`, `*`, or `frame` = every FRAME_END) followed
 // by suffixes: at most one step `/S` and any number of opcode filters `/fill`, `/span`,
-// `/draw`, `/marker`, `/frame`. A command is in the set when any item matches it. Parsing
+// `/zspan`, `/face`, `/zclear`, `/draw` (fills, spans and faces), `/depth` (the depth
+// commands), `/marker`, `/frame`. A command is in the set when any item matches it. Parsing
 // never reads a stream; matching needs only the command's number and opcode, so tools
 // decide command by command while they stream.
 #pragma once

@@ -1,5 +1,7 @@
 #include "protocol/command.h"
 
+#include <stdexcept>
+
 #include <fmt/format.h>
 
 #include "protocol/command_sink.h"
@@ -19,6 +21,12 @@ const char* to_string(Opcode op) {
             return "MARKER";
         case Opcode::FrameEnd:
             return "FRAME_END";
+        case Opcode::DepthClear:
+            return "DEPTH_CLEAR";
+        case Opcode::DepthSpan:
+            return "DEPTH_SPAN";
+        case Opcode::Face:
+            return "FACE";
     }
     return "UNKNOWN";
 }
@@ -28,7 +36,7 @@ std::string to_string(Rgb c) {
 }
 
 Opcode opcode_of(const Command& c) {
-    return static_cast<Opcode>(c.index() + 1);  // variant order follows the opcodes
+    return kOpcodes[c.index()];  // variant order follows the opcodes
 }
 
 namespace {
@@ -47,6 +55,19 @@ struct Describe {
     }
     std::string operator()(const Marker& c) const { return fmt::format("MARKER \"{}\"", c.text); }
     std::string operator()(const FrameEnd&) const { return "FRAME_END"; }
+    std::string operator()(const DepthClear&) const { return "DEPTH_CLEAR"; }
+    std::string operator()(const DepthSpan& c) const {
+        return fmt::format("DEPTH_SPAN y={} x0={} x1={} z={} dz={} color={}", c.y, c.x0, c.x1, c.z,
+                           c.dz, to_string(c.color));
+    }
+    std::string operator()(const Face& c) const {
+        std::string points;
+        for (const SnappedPoint& p : c.points)
+            points += fmt::format(" ({},{})", p.x, p.y);
+        return fmt::format("FACE ref=({},{}) z={} dzdx={} dzdy={} color={} points={}{}", c.x_ref,
+                           c.y_ref, c.z, c.dzdx, c.dzdy, to_string(c.color), c.points.size(),
+                           points);
+    }
 };
 }  // namespace
 
@@ -71,7 +92,33 @@ void CommandSink::submit(const Command& c) {
         case 4:
             frame_end(std::get<FrameEnd>(c));
             break;
+        case 5:
+            depth_clear(std::get<DepthClear>(c));
+            break;
+        case 6:
+            depth_span(std::get<DepthSpan>(c));
+            break;
+        case 7:
+            face(std::get<Face>(c));
+            break;
     }
+}
+
+namespace {
+[[noreturn]] void refuse(const Command& c) {
+    throw std::invalid_argument(fmt::format(
+        "{}: this sink takes no depth commands (stream format version 3)", to_string(c)));
+}
+}  // namespace
+
+void CommandSink::depth_clear(const DepthClear& c) {
+    refuse(c);
+}
+void CommandSink::depth_span(const DepthSpan& c) {
+    refuse(c);
+}
+void CommandSink::face(const Face& c) {
+    refuse(c);
 }
 
 void MemoryBuffer::replay_into(CommandSink& sink) const {

@@ -14,6 +14,12 @@ class CommandSink {
     virtual void draw_span(const DrawSpan& c) = 0;
     virtual void marker(const Marker& c) = 0;
     virtual void frame_end(const FrameEnd& c) = 0;
+    // Version 3's depth commands. A sink that cannot take them (a tiling-only controller
+    // path, a version-1 writer) says so by throwing; these defaults throw
+    // std::invalid_argument naming the command.
+    virtual void depth_clear(const DepthClear& c);
+    virtual void depth_span(const DepthSpan& c);
+    virtual void face(const Face& c);
 
     // Dispatches a decoded command to the matching call.
     void submit(const Command& c);

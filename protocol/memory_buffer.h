@@ -31,6 +31,9 @@ class MemoryBuffer final : public CommandSink {
         m_commands.emplace_back(c);
         if (m_packet) stamp();
     }
+    void depth_clear(const DepthClear& c) override { add(c); }
+    void depth_span(const DepthSpan& c) override { add(c); }
+    void face(const Face& c) override { add(c); }
 
     const std::vector<Command>& commands() const { return m_commands; }
     std::size_t size() const { return m_commands.size(); }

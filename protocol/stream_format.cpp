@@ -1,4 +1,4 @@
-// Wire encoding of the fb89 command stream, versions 1 and 2: byte-exact little-endian helpers,
+// Wire encoding of the fb89 command stream, versions 1 to 3: byte-exact little-endian helpers,
 // record encoders and decoders, and the field checks shared by the writer and the reader.
 // The layout implemented here is the one docs/PROTOCOL.md specifies, field for field.
 #include "protocol/stream_format.h"
@@ -20,7 +20,12 @@ std::optional<std::size_t> payload_size(uint8_t opcode) {
         case static_cast<uint8_t>(Opcode::Marker):
             return 2;  // u16 length; text follows
         case static_cast<uint8_t>(Opcode::FrameEnd):
+        case static_cast<uint8_t>(Opcode::DepthClear):
             return 0;
+        case static_cast<uint8_t>(Opcode::DepthSpan):
+            return 23;  // i32 y, x0, x1; u32 z; i32 dz; RGB
+        case static_cast<uint8_t>(Opcode::Face):
+            return kFaceFixedSize;  // u8 count, RGB, i32 x_ref, y_ref; u32 z; i32 dzdx, dzdy
         default:
             return std::nullopt;
     }
@@ -108,17 +113,43 @@ struct EncodePayload {
         out.insert(out.end(), c.text.begin(), c.text.end());
     }
     void operator()(const FrameEnd&) const {}
+    void operator()(const DepthClear&) const {}
+    void operator()(const DepthSpan& c) const {
+        put_i32(out, c.y);
+        put_i32(out, c.x0);
+        put_i32(out, c.x1);
+        put_u32(out, c.z);
+        put_i32(out, c.dz);
+        put_rgb(out, c.color);
+    }
+    void operator()(const Face& c) const {
+        put_u8(out, static_cast<uint8_t>(c.points.size()));
+        put_rgb(out, c.color);
+        put_i32(out, c.x_ref);
+        put_i32(out, c.y_ref);
+        put_u32(out, c.z);
+        put_i32(out, c.dzdx);
+        put_i32(out, c.dzdy);
+        for (const SnappedPoint& p : c.points) {
+            put_i32(out, static_cast<int32_t>(p.x));
+            put_i32(out, static_cast<int32_t>(p.y));
+        }
+    }
 };
 
 }  // namespace
 
-void encode_header(std::vector<uint8_t>& out, const Properties& properties, uint16_t version) {
+void encode_header(std::vector<uint8_t>& out, const Properties& properties, uint16_t version,
+                   uint16_t flags) {
     if (auto problem = check_properties(properties)) throw std::invalid_argument(*problem);
-    if (version != kUntimedVersion && version != kTimedVersion)
+    if (version < kUntimedVersion || version > kDepthVersion)
         throw std::invalid_argument(fmt::format("no stream format version {}", version));
+    if (flags != 0 && (version != kDepthVersion || flags != kFlagTimed))
+        throw std::invalid_argument(
+            fmt::format("format version {} has no header flags {:#06x}", version, flags));
     out.insert(out.end(), kMagic.begin(), kMagic.end());
     put_u16(out, version);
-    put_u16(out, 0);  // flags: reserved, zero in versions 1 and 2
+    put_u16(out, flags);  // zero in versions 1 and 2; version 3's kFlagTimed
     put_u32(out, static_cast<uint32_t>(properties.size()));
     for (const auto& [key, value] : properties) {  // std::map: ascending key order
         put_u16(out, static_cast<uint16_t>(key.size()));
@@ -167,10 +198,27 @@ Command decode_fixed_payload(Opcode op, const uint8_t* p) {
             return decode_draw_span(p);
         case Opcode::FrameEnd:
             return FrameEnd{};
+        case Opcode::DepthClear:
+            return DepthClear{};
+        case Opcode::DepthSpan:
+            return decode_depth_span(p);
         case Opcode::Marker:
+        case Opcode::Face:
             break;
     }
-    throw std::logic_error("decode_fixed_payload: MARKER has no fixed payload");
+    throw std::logic_error("decode_fixed_payload: MARKER and FACE have no fixed payload");
+}
+
+Face decode_face_fixed(const uint8_t* p) {
+    Face f;
+    f.points.resize(p[0]);
+    f.color = get_rgb(p + 1);
+    f.x_ref = get_i32(p + 4);
+    f.y_ref = get_i32(p + 8);
+    f.z = get_u32(p + 12);
+    f.dzdx = get_i32(p + 16);
+    f.dzdy = get_i32(p + 20);
+    return f;
 }
 
 FrameIndexEntry decode_index_entry(const uint8_t* p) {
@@ -211,6 +259,23 @@ struct CheckCommand {
         return std::nullopt;
     }
     std::optional<std::string> operator()(const FrameEnd&) const { return std::nullopt; }
+    std::optional<std::string> operator()(const DepthClear&) const { return std::nullopt; }
+    std::optional<std::string> operator()(const DepthSpan& c) const {
+        if (c.x1 < c.x0) return fmt::format("x1 {} < x0 {}", c.x1, c.x0);
+        return std::nullopt;
+    }
+    std::optional<std::string> operator()(const Face& c) const {
+        if (c.points.size() < 3 || c.points.size() > kMaxFacePoints)
+            return fmt::format("{} points, outside 3..{}", c.points.size(), kMaxFacePoints);
+        for (std::size_t i = 0; i < c.points.size(); ++i) {
+            const SnappedPoint& p = c.points[i];
+            if (p.x < -kMaxFaceCoordinate || p.x > kMaxFaceCoordinate ||
+                p.y < -kMaxFaceCoordinate || p.y > kMaxFaceCoordinate)
+                return fmt::format("point {} ({}, {}) is outside +-{} grid units", i, p.x, p.y,
+                                   kMaxFaceCoordinate);
+        }
+        return std::nullopt;
+    }
 };
 
 }  // namespace

@@ -1,12 +1,12 @@
-// Wire encoding of the fb89 command stream, versions 1 and 2 (normative spec:
-// docs/PROTOCOL.md; version 2 adds the send-time records).
+// Wire encoding of the fb89 command stream, versions 1 to 3 (normative spec:
+// docs/PROTOCOL.md; version 2 adds the send-time records, version 3 the depth commands).
 //
 // Little-endian throughout. A stream is a header (magic "FB89", u16 version, u16 flags,
 // u32 property count, properties), then one record per command (u8 opcode + a fixed
-// payload; MARKER carries a u16 length and its text), then optionally a trailing frame
-// index record (opcode 0xFE) ending in a fixed-size footer. This file holds the constants,
-// the byte-exact helpers and the per-record encoders/decoders that StreamWriter and
-// StreamReader share; it does no I/O.
+// payload; MARKER carries a u16 length and its text, FACE a point count and its points), then
+// optionally a trailing frame index record (opcode 0xFE) ending in a fixed-size footer. This file
+// holds the constants, the byte-exact helpers and the per-record encoders/decoders that
+// StreamWriter and StreamReader share; it does no I/O.
 #pragma once
 
 #include <array>
@@ -52,7 +52,16 @@ std::optional<std::size_t> payload_size(uint8_t opcode);  // nullopt: not a comm
 inline constexpr std::size_t kFrameBeginRecordSize = 16;  // opcode + 15-byte payload
 inline constexpr std::size_t kFillRectRecordSize = 20;    // opcode + 19-byte payload
 inline constexpr std::size_t kDrawSpanRecordSize = 16;    // opcode + 15-byte payload
+inline constexpr std::size_t kDepthSpanRecordSize = 24;   // opcode + 23-byte payload
+// FACE: opcode, a 24-byte fixed part (u8 count first), then 8 bytes a point.
+inline constexpr std::size_t kFaceFixedSize = 24;
+inline constexpr std::size_t kFacePointSize = 8;
 inline constexpr std::size_t kMaxRecordSize = 1 + 2 + kMaxMarkerLength;
+static_assert(1 + kFaceFixedSize + kMaxFacePoints * kFacePointSize <= kMaxRecordSize);
+
+// Version 3's header flags: bit 0, the stream carries send-time records (as version 2 does).
+// Versions 1 and 2 keep the flags 0.
+inline constexpr uint16_t kFlagTimed = 0x0001;
 
 // Version 2's time records: not commands (they get no command number). SEND_TIME: the
 // frame's commands after it were sent this many nanoseconds after the start of the host's
@@ -152,18 +161,19 @@ inline int64_t get_i64(const uint8_t* p) {
 }
 
 // --- encoders (append to out) --------------------------------------------------------
-// Throw std::invalid_argument for what version 1 cannot carry (see check_*).
-// The header of a stream of `version` (kUntimedVersion or kTimedVersion).
+// Throw std::invalid_argument for what the format cannot carry (see check_*).
+// The header of a stream of `version` (kUntimedVersion, kTimedVersion or kDepthVersion; the
+// flags 0 but for version 3's kFlagTimed).
 void encode_header(std::vector<uint8_t>& out, const Properties& properties,
-                   uint16_t version = kUntimedVersion);
+                   uint16_t version = kUntimedVersion, uint16_t flags = 0);
 void encode_command(std::vector<uint8_t>& out, const Command& c);
 void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Footer& footer);
 // A SEND_TIME or HOST_END record (version 2).
 void encode_time(std::vector<uint8_t>& out, uint8_t opcode, int64_t ns);
 
 // --- decoders ------------------------------------------------------------------------
-// Decodes a fixed-size command record's payload (not MARKER); p points after the opcode
-// and holds payload_size(opcode) bytes.
+// Decodes a fixed-size command record's payload (not MARKER or FACE); p points after the
+// opcode and holds payload_size(opcode) bytes.
 Command decode_fixed_payload(Opcode op, const uint8_t* p);
 // The same for the two drawing commands, inline for the reader's per-record fast path.
 inline FillRect decode_fill_rect(const uint8_t* p) {
@@ -172,6 +182,16 @@ inline FillRect decode_fill_rect(const uint8_t* p) {
 }
 inline DrawSpan decode_draw_span(const uint8_t* p) {
     return DrawSpan{get_i32(p), get_i32(p + 4), get_i32(p + 8), Rgb{p[12], p[13], p[14]}};
+}
+inline DepthSpan decode_depth_span(const uint8_t* p) {
+    return DepthSpan{get_i32(p),      get_i32(p + 4),  get_i32(p + 8),
+                     get_u32(p + 12), get_i32(p + 16), Rgb{p[20], p[21], p[22]}};
+}
+// A FACE's fixed part (p after the opcode, kFaceFixedSize bytes) with its point count as
+// the size of points (unfilled); then each point, p at its 8 bytes.
+Face decode_face_fixed(const uint8_t* p);
+inline SnappedPoint decode_face_point(const uint8_t* p) {
+    return SnappedPoint{get_i32(p), get_i32(p + 4)};
 }
 
 namespace detail {
@@ -188,11 +208,12 @@ T& held(Command& out) {
 
 }  // namespace detail
 
-// The StreamReader's fast path: decodes the FILL_RECT, DRAW_SPAN or FRAME_END record at p
-// (which must hold kFillRectRecordSize bytes, whatever the opcode) into out and returns its
-// size in bytes. Returns 0, leaving out as it was, for any other opcode and for a span that
-// check_command refuses (x1 < x0): those take the general path.
-inline std::size_t decode_common_record(const uint8_t* p, Command& out) {
+// The StreamReader's fast path: decodes the FILL_RECT, DRAW_SPAN, FRAME_END or (with `depth`,
+// a version-3 stream) DEPTH_SPAN record at p (which must hold kDepthSpanRecordSize bytes,
+// whatever the opcode) into out and returns its size in bytes. Returns 0, leaving out as it
+// was, for any other opcode and for a span that check_command refuses (x1 < x0): those take
+// the general path.
+inline std::size_t decode_common_record(const uint8_t* p, Command& out, bool depth) {
     switch (p[0]) {
         case static_cast<uint8_t>(Opcode::DrawSpan): {
             const DrawSpan s = decode_draw_span(p + 1);
@@ -217,6 +238,19 @@ inline std::size_t decode_common_record(const uint8_t* p, Command& out) {
         case static_cast<uint8_t>(Opcode::FrameEnd):
             detail::held<FrameEnd>(out);
             return 1;
+        case static_cast<uint8_t>(Opcode::DepthSpan): {
+            if (!depth) return 0;
+            const DepthSpan s = decode_depth_span(p + 1);
+            if (s.x1 < s.x0) return 0;
+            DepthSpan& d = detail::held<DepthSpan>(out);
+            d.y = s.y;
+            d.x0 = s.x0;
+            d.x1 = s.x1;
+            d.z = s.z;
+            d.dz = s.dz;
+            d.color = s.color;
+            return kDepthSpanRecordSize;
+        }
         default:
             return 0;
     }
@@ -227,7 +261,7 @@ FrameIndexEntry decode_index_entry(const uint8_t* p);
 std::optional<Footer> decode_footer(const uint8_t* p);
 
 // --- validation ----------------------------------------------------------------------
-// What is wrong with a command in version 1 ("x1 -3 < x0 0"), or nullopt if it is valid.
+// What is wrong with a command ("x1 -3 < x0 0"), or nullopt if it is valid.
 std::optional<std::string> check_command(const Command& c);
 std::optional<std::string> check_properties(const Properties& properties);
 // Whether entries are in stream order and point inside [first_record, index_offset) at

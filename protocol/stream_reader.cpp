@@ -178,7 +178,16 @@ void StreamReader::read_header() {
     if (m_version == 0) fail_header("format version 0", 4, "no fb89 writes version 0");
     if (!fill(kFixedHeaderSize)) fail_header("truncated header", 0, ends());
     const uint16_t flags = get_u16(&m_buf[m_pos + 6]);
-    if (flags != 0) fail_header("header flags", 6, fmt::format("{:#06x} is not 0", flags));
+    if (m_version == kDepthVersion) {
+        if ((flags & ~kFlagTimed) != 0)
+            fail_header(
+                "header flags", 6,
+                fmt::format("{:#06x} has bits other than {:#06x} (timed)", flags, kFlagTimed));
+        m_timed = (flags & kFlagTimed) != 0;
+    } else {
+        if (flags != 0) fail_header("header flags", 6, fmt::format("{:#06x} is not 0", flags));
+        m_timed = m_version >= kTimedVersion;
+    }
     const uint32_t count = get_u32(&m_buf[m_pos + 8]);
     if (count > kMaxPropertyCount) {
         fail_header("property count", 8,
@@ -285,9 +294,9 @@ void StreamReader::read_time(uint8_t opcode, uint64_t at) {
 }
 
 // The fast path of next() and read_batch(), for the records that make up almost every
-// stream: decodes FILL_RECT, DRAW_SPAN and FRAME_END records wholly in the buffer straight
-// into out[0], out[1], ..., with the read position and command numbers kept in locals.
-// Stops at out's end, after a FRAME_END, where fewer than kFillRectRecordSize bytes are
+// stream: decodes FILL_RECT, DRAW_SPAN, FRAME_END and DEPTH_SPAN records wholly in the buffer
+// straight into out[0], out[1], ..., with the read position and command numbers kept in locals.
+// Stops at out's end, after a FRAME_END, where fewer than kDepthSpanRecordSize bytes are
 // buffered, and before any other record -- FRAME_BEGIN, MARKER, the index, an unknown
 // opcode, a span with x1 < x0, a time record the frame refuses -- which the general path
 // then reads or reports, so both accept and refuse exactly the same records. A version-2
@@ -297,8 +306,9 @@ std::size_t StreamReader::decode_buffered(std::span<Command> out, int64_t* send_
     if (m_done) return 0;
     const uint8_t* const buf = m_buf.data();
     std::size_t pos = m_pos, last = m_pos, n = 0;
-    while (n < out.size() && m_end - pos >= kFillRectRecordSize) {
-        const std::size_t size = decode_common_record(buf + pos, out[n]);
+    const bool depth = m_version >= kDepthVersion;
+    while (n < out.size() && m_end - pos >= kDepthSpanRecordSize) {
+        const std::size_t size = decode_common_record(buf + pos, out[n], depth);
         if (size == 0) {
             // a version-2 time record the frame allows is taken here too (one every packet
             // of commands: leaving each to the general path cost a fifth of the replay);
@@ -351,6 +361,11 @@ Command StreamReader::read_record(uint8_t opcode, uint64_t at) {
     const std::optional<std::size_t> payload = payload_size(opcode);
     if (!payload) fail_command(fmt::format("unknown opcode {:#04x}", opcode), at, "");
     const auto op = static_cast<Opcode>(opcode);
+    if (is_depth_opcode(op) && m_version < kDepthVersion)
+        fail_command(fmt::format("opcode {:#04x} ({})", opcode, to_string(op)), at,
+                     fmt::format("a depth command needs format version {}; this stream is "
+                                 "version {}",
+                                 kDepthVersion, m_version));
     const auto need = [&](std::size_t n) {
         if (!fill(n)) {
             fail_command("truncated " + std::string(to_string(op)), at,
@@ -358,6 +373,19 @@ Command StreamReader::read_record(uint8_t opcode, uint64_t at) {
         }
     };
     need(1 + *payload);
+    if (op == Opcode::Face) {
+        Face f = decode_face_fixed(&m_buf[m_pos + 1]);
+        const std::size_t count = f.points.size();
+        if (count < 3 || count > kMaxFacePoints)
+            fail_command("FACE", at,
+                         fmt::format("{} points, outside 3..{}", count, kMaxFacePoints));
+        need(1 + kFaceFixedSize + count * kFacePointSize);
+        const uint8_t* p = &m_buf[m_pos + 1 + kFaceFixedSize];
+        for (std::size_t i = 0; i < count; ++i)
+            f.points[i] = decode_face_point(p + i * kFacePointSize);
+        m_pos += 1 + kFaceFixedSize + count * kFacePointSize;
+        return f;
+    }
     if (op != Opcode::Marker) {
         Command c = decode_fixed_payload(op, &m_buf[m_pos + 1]);
         m_pos += 1 + *payload;

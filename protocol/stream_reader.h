@@ -61,7 +61,7 @@ class StreamReader {
     // commands: the last command's send time in nanoseconds from the start of its frame's
     // set-up (0 before a frame's first SEND_TIME, and always in a version-1 stream), and the
     // HOST_END of the last command's frame once read (nullopt before it, or without one).
-    bool timed() const { return m_version >= kTimedVersion; }
+    bool timed() const { return m_timed; }
     int64_t send_time_ns() const { return m_times.send_ns; }
     std::optional<int64_t> host_end_ns() const { return m_times.host_end_ns; }
     // When the host's work on the last command's frame ended, as the pipeline takes it: its
@@ -120,6 +120,7 @@ class StreamReader {
     bool m_eof = false;
 
     uint16_t m_version = 0;
+    bool m_timed = false;  // version 2, or version 3 with kFlagTimed
     Properties m_properties;
     uint64_t m_header_size = 0;
 

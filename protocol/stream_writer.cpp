@@ -5,6 +5,8 @@
 // reason.
 #include "protocol/stream_writer.h"
 
+#include <algorithm>
+
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/socket.h>
@@ -24,10 +26,11 @@ constexpr std::size_t kFlushThreshold = 64 * 1024;
 constexpr const char* kMemoryName = "<memory>";
 }  // namespace
 
-StreamWriter::StreamWriter(const std::string& path, const Properties& properties, Timing timing)
-    : m_path(path), m_timed(timing == Timing::Timed) {
+StreamWriter::StreamWriter(const std::string& path, const Properties& properties, Timing timing,
+                           Commands commands)
+    : m_path(path), m_timed(timing == Timing::Timed), m_depth(commands == Commands::Depth) {
     // encode the header first: bad properties must not leave an empty file behind
-    encode_header(m_buffer, properties, version());
+    encode_header(m_buffer, properties, version(), header_flags());
     m_byte_count = m_buffer.size();
     OutputKind kind;
     try {
@@ -58,17 +61,21 @@ StreamWriter::StreamWriter(const std::string& path, const Properties& properties
     m_is_socket = ::fstat(m_fd, &st) == 0 && S_ISSOCK(st.st_mode);
 }
 
-StreamWriter::StreamWriter(int fd, std::string name, const Properties& properties, Timing timing)
-    : m_path(std::move(name)), m_fd(fd), m_timed(timing == Timing::Timed) {
-    encode_header(m_buffer, properties, version());
+StreamWriter::StreamWriter(int fd, std::string name, const Properties& properties, Timing timing,
+                           Commands commands)
+    : m_path(std::move(name)),
+      m_fd(fd),
+      m_timed(timing == Timing::Timed),
+      m_depth(commands == Commands::Depth) {
+    encode_header(m_buffer, properties, version(), header_flags());
     m_byte_count = m_buffer.size();
     struct stat st {};
     m_is_socket = ::fstat(fd, &st) == 0 && S_ISSOCK(st.st_mode);
 }
 
-StreamWriter::StreamWriter(const Properties& properties, Timing timing)
-    : m_path(kMemoryName), m_timed(timing == Timing::Timed) {
-    encode_header(m_buffer, properties, version());
+StreamWriter::StreamWriter(const Properties& properties, Timing timing, Commands commands)
+    : m_path(kMemoryName), m_timed(timing == Timing::Timed), m_depth(commands == Commands::Depth) {
+    encode_header(m_buffer, properties, version(), header_flags());
     m_byte_count = m_buffer.size();
 }
 
@@ -103,6 +110,15 @@ void StreamWriter::draw_span(const DrawSpan& c) {
 void StreamWriter::marker(const Marker& c) {
     write_command(c);
 }
+void StreamWriter::depth_clear(const DepthClear& c) {
+    write_command(c);
+}
+void StreamWriter::depth_span(const DepthSpan& c) {
+    write_command(c);
+}
+void StreamWriter::face(const Face& c) {
+    write_command(c);
+}
 
 void StreamWriter::frame_end(const FrameEnd& c) {
     write_command(c);
@@ -119,6 +135,11 @@ void StreamWriter::write_command(const Command& c) {
         throw std::invalid_argument(fmt::format("stream {}: refusing to write command {}: {}",
                                                 m_path, m_command_count, *problem));
     }
+    if (!m_depth && is_depth_opcode(opcode_of(c)))
+        throw std::invalid_argument(fmt::format(
+            "stream {}: refusing to write command {}: {} needs format version {} "
+            "(a writer with Commands::Depth); this stream is version {}",
+            m_path, m_command_count, to_string(opcode_of(c)), kDepthVersion, version()));
     if (const auto* begin = std::get_if<FrameBegin>(&c)) {
         m_index.push_back(FrameIndexEntry{begin->frame, m_command_count, m_byte_count});
         m_times.begin_frame();
@@ -209,7 +230,9 @@ void StreamWriter::fail(const std::string& what) {
 
 std::vector<uint8_t> encode_stream(const std::vector<Command>& commands,
                                    const Properties& properties, bool with_index) {
-    StreamWriter writer(properties);
+    const bool depth = std::any_of(commands.begin(), commands.end(),
+                                   [](const Command& c) { return is_depth_opcode(opcode_of(c)); });
+    StreamWriter writer(properties, Timing::Untimed, depth ? Commands::Depth : Commands::Tiling);
     for (const Command& c : commands)
         writer.submit(c);
     if (with_index) writer.close();

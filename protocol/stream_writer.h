@@ -1,6 +1,7 @@
 // StreamWriter: a CommandSink that encodes the commands it receives as an fb89 stream
 // (docs/PROTOCOL.md) into a file, stdout ("-") or memory: version 1, or with
-// Timing::Timed version 2, whose send_time() and host_end() say when the host sent them.
+// Timing::Timed version 2, whose send_time() and host_end() say when the host sent them, or
+// with Commands::Depth version 3, which carries the depth commands too (timed or not).
 //
 // The header (with its properties) is written on construction, each command as it
 // arrives. close() appends the trailing frame index and footer and flushes. Bytes reach
@@ -32,6 +33,13 @@ namespace fb89::protocol {
 
 // Whether a stream carries the host's send times (format version 2) or not (version 1).
 enum class Timing : bool { Untimed, Timed };
+// Whether a stream may carry the depth commands (format version 3) or only the tiling ones.
+enum class Commands : bool { Tiling, Depth };
+// The version a stream of these contents is written in: the oldest that carries them.
+inline uint16_t format_version(Timing timing, Commands commands) {
+    if (commands == Commands::Depth) return kDepthVersion;
+    return timing == Timing::Timed ? kTimedVersion : kUntimedVersion;
+}
 
 class StreamWriter final : public CommandSink {
   public:
@@ -39,26 +47,31 @@ class StreamWriter final : public CommandSink {
     // written in place). Throws std::runtime_error naming the path if it cannot be opened
     // or written, std::invalid_argument for properties the format cannot carry.
     StreamWriter(const std::string& path, const Properties& properties,
-                 Timing timing = Timing::Untimed);
+                 Timing timing = Timing::Untimed, Commands commands = Commands::Tiling);
     // Encodes into memory; read the bytes with bytes() or take_bytes().
-    explicit StreamWriter(const Properties& properties, Timing timing = Timing::Untimed);
+    explicit StreamWriter(const Properties& properties, Timing timing = Timing::Untimed,
+                          Commands commands = Commands::Tiling);
     // Writes to an open descriptor it does not own (e.g. a connected socket; close() then
     // leaves it open); name stands for it in messages. On a socket, writes never raise
     // SIGPIPE: a vanished reader is a std::runtime_error ("Broken pipe").
     StreamWriter(int fd, std::string name, const Properties& properties,
-                 Timing timing = Timing::Untimed);
+                 Timing timing = Timing::Untimed, Commands commands = Commands::Tiling);
     ~StreamWriter() override;
     StreamWriter(const StreamWriter&) = delete;
     StreamWriter& operator=(const StreamWriter&) = delete;
 
-    // Each throws std::invalid_argument for a command version 1 cannot carry (e.g. a span
-    // with x1 < x0), std::runtime_error naming the path on a write error (disk full...),
-    // std::logic_error after close().
+    // Each throws std::invalid_argument for a command the format cannot carry (e.g. a span
+    // with x1 < x0, or a depth command in a writer without Commands::Depth),
+    // std::runtime_error naming the path on a write error (disk full...), std::logic_error
+    // after close().
     void frame_begin(const FrameBegin& c) override;
     void fill_rect(const FillRect& c) override;
     void draw_span(const DrawSpan& c) override;
     void marker(const Marker& c) override;
     void frame_end(const FrameEnd& c) override;
+    void depth_clear(const DepthClear& c) override;
+    void depth_span(const DepthSpan& c) override;
+    void face(const Face& c) override;
 
     // Timed streams only, inside a frame (after its FRAME_BEGIN, before its FRAME_END): the
     // frame's commands from here on were sent `ns` nanoseconds after the start of the
@@ -69,7 +82,11 @@ class StreamWriter final : public CommandSink {
     void send_time(int64_t ns);
     void host_end(int64_t ns);
     bool timed() const { return m_timed; }
-    uint16_t version() const { return m_timed ? kTimedVersion : kUntimedVersion; }
+    bool depth() const { return m_depth; }
+    uint16_t version() const {
+        return format_version(m_timed ? Timing::Timed : Timing::Untimed,
+                              m_depth ? Commands::Depth : Commands::Tiling);
+    }
 
     // Writes the frame index and footer, flushes and closes the file. Does nothing if
     // already closed. Throws std::runtime_error naming the path on a write error.
@@ -94,6 +111,7 @@ class StreamWriter final : public CommandSink {
     std::vector<uint8_t> take_bytes() { return std::move(m_buffer); }
 
   private:
+    uint16_t header_flags() const { return m_depth && m_timed ? kFlagTimed : 0; }
     void write_command(const Command& c);
     void write_time(uint8_t opcode, int64_t ns);
     void flush_buffer();
@@ -113,11 +131,12 @@ class StreamWriter final : public CommandSink {
     uint64_t m_commands_flushed = 0;
     FrameIndex m_index;
     bool m_timed = false;
+    bool m_depth = false;
     FrameTimes m_times;  // the time records of the frame being written
 };
 
-// Encodes a whole (version 1) stream in memory: header, commands, and (if with_index) the
-// trailing frame index and footer.
+// Encodes a whole untimed stream in memory (version 1, or 3 when a command needs it): header,
+// commands, and (if with_index) the trailing frame index and footer.
 std::vector<uint8_t> encode_stream(const std::vector<Command>& commands,
                                    const Properties& properties = {}, bool with_index = true);
 

@@ -59,8 +59,31 @@ CommandRow row_of(const protocol::Command& c) {
         }
         case 3:
             return {4, 0, 0, 0, 0, 0, 0, 0, 0};
-        default:
+        case 4:
             return {5, 0, 0, 0, 0, 0, 0, 0, 0};
+        case 5:
+            return {8, 0, 0, 0, 0, 0, 0, 0, 0};
+        case 6: {
+            const auto& s = *std::get_if<protocol::DepthSpan>(&c);
+            return {9,         s.x0,      s.y, static_cast<uint32_t>(s.x1 - s.x0 + 1), 1, s.color.r,
+                    s.color.g, s.color.b, 0};
+        }
+        default: {
+            const auto& f = *std::get_if<protocol::Face>(&c);
+            return {10, f.x_ref,   f.y_ref,   static_cast<uint32_t>(f.points.size()),
+                    0,  f.color.r, f.color.g, f.color.b,
+                    0};
+        }
+    }
+}
+
+// What a depth command carries beside its row.
+void add_beside(CommandRows& rows, std::size_t row, const protocol::Command& c) {
+    if (const auto* s = std::get_if<protocol::DepthSpan>(&c)) {
+        rows.depth.emplace_back(row, DepthFields{s->z, s->dz, 0});
+    } else if (const auto* f = std::get_if<protocol::Face>(&c)) {
+        rows.depth.emplace_back(row, DepthFields{f->z, f->dzdx, f->dzdy});
+        rows.faces.emplace_back(row, f->points);
     }
 }
 
@@ -69,6 +92,7 @@ CommandRow row_of(const protocol::Command& c) {
 void CommandRows::add(const protocol::Command& c) {
     if (const auto* m = std::get_if<protocol::Marker>(&c))
         markers.emplace_back(rows.size(), m->text);
+    add_beside(*this, rows.size(), c);
     rows.push_back(row_of(c));
 }
 
@@ -80,6 +104,7 @@ void CommandRows::add(std::span<const protocol::Command> commands) {
         out[i] = row_of(commands[i]);
         if (out[i].opcode == 4)
             markers.emplace_back(at + i, std::get_if<protocol::Marker>(&commands[i])->text);
+        if (out[i].opcode >= 9) add_beside(*this, at + i, commands[i]);
     }
 }
 
@@ -87,7 +112,9 @@ namespace {
 
 // Row `i` as its command (a MARKER with `text`); std::invalid_argument naming the row for one
 // that is no command the stream format can carry (protocol::check_command's rules).
-protocol::Command row_command(const CommandRow& row, std::size_t i, std::string text) {
+protocol::Command row_command(const CommandRow& row, std::size_t i, std::string text,
+                              const DepthFields& d,
+                              const std::vector<protocol::SnappedPoint>* points) {
     const protocol::Rgb colour{row.r, row.g, row.b};
     protocol::Command c;
     switch (row.opcode) {
@@ -113,10 +140,34 @@ protocol::Command row_command(const CommandRow& row, std::size_t i, std::string 
         case 5:
             c = protocol::FrameEnd{};
             break;
+        case 8:
+            c = protocol::DepthClear{};
+            break;
+        case 9:
+            if (row.w == 0) {
+                throw std::invalid_argument(
+                    "commands: row " + std::to_string(i) +
+                    ": DEPTH_SPAN of width 0 (w is x1 - x0 + 1, at least 1)");
+            }
+            c = protocol::DepthSpan{
+                row.y, row.x,  static_cast<int32_t>(static_cast<uint32_t>(row.x) + row.w - 1u),
+                d.z,   d.dzdx, colour};
+            break;
+        case 10: {
+            protocol::Face f{colour, row.x, row.y, d.z, d.dzdx, d.dzdy, {}};
+            if (points) f.points = *points;
+            if (f.points.size() != row.w)
+                throw std::invalid_argument("commands: row " + std::to_string(i) + ": FACE of " +
+                                            std::to_string(row.w) + " points has " +
+                                            std::to_string(f.points.size()) + " in face_points");
+            c = std::move(f);
+            break;
+        }
         default:
             throw std::invalid_argument(
                 "commands: row " + std::to_string(i) + ": opcode " + std::to_string(row.opcode) +
-                " is none of 1 (FRAME_BEGIN) to 5 (FRAME_END) (docs/PROTOCOL.md)");
+                " is none of 1 (FRAME_BEGIN) to 5 (FRAME_END), 8 (DEPTH_CLEAR), 9 (DEPTH_SPAN) "
+                "and 10 (FACE) (docs/PROTOCOL.md)");
     }
     if (const auto problem = protocol::check_command(c))
         throw std::invalid_argument("commands: row " + std::to_string(i) + " (" +
@@ -126,22 +177,47 @@ protocol::Command row_command(const CommandRow& row, std::size_t i, std::string 
 
 }  // namespace
 
+namespace {
+
+// The entry of (row, value) pairs in row order for row i, moving `at` on; nullptr if none.
+template <class T>
+const T* beside(const std::vector<std::pair<std::size_t, T>>& pairs,
+                typename std::vector<std::pair<std::size_t, T>>::const_iterator& at,
+                std::size_t i) {
+    while (at != pairs.end() && at->first < i)
+        ++at;
+    return at != pairs.end() && at->first == i ? &at->second : nullptr;
+}
+
+}  // namespace
+
 void CommandRows::replay_into(protocol::CommandSink& sink) const {
     auto marker = markers.begin();
+    auto d = depth.begin();
+    auto face = faces.begin();
     for (std::size_t i = 0; i < rows.size(); ++i) {
         std::string text;
-        if (rows[i].opcode == 4) {
-            while (marker != markers.end() && marker->first < i)
-                ++marker;
-            if (marker != markers.end() && marker->first == i) text = marker->second;
-        }
-        sink.submit(row_command(rows[i], i, std::move(text)));
+        if (rows[i].opcode == 4)
+            if (const std::string* t = beside(markers, marker, i)) text = *t;
+        const DepthFields* fields = rows[i].opcode >= 9 ? beside(depth, d, i) : nullptr;
+        const auto* points = rows[i].opcode == 10 ? beside(faces, face, i) : nullptr;
+        sink.submit(
+            row_command(rows[i], i, std::move(text), fields ? *fields : DepthFields{}, points));
     }
 }
 
 void CommandRows::check() const {
-    for (std::size_t i = 0; i < rows.size(); ++i)
-        row_command(rows[i], i, {});
+    auto d = depth.begin();
+    auto face = faces.begin();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const DepthFields* fields = rows[i].opcode >= 9 ? beside(depth, d, i) : nullptr;
+        const auto* points = rows[i].opcode == 10 ? beside(faces, face, i) : nullptr;
+        row_command(rows[i], i, {}, fields ? *fields : DepthFields{}, points);
+    }
+    for (const auto& [row, points] : faces)
+        if (row >= rows.size() || rows[row].opcode != 10)
+            throw std::invalid_argument("face_points: row " + std::to_string(row) +
+                                        " is not a FACE");
     for (const auto& [row, text] : markers) {
         if (row >= rows.size() || rows[row].opcode != 4)
             throw std::invalid_argument("markers: row " + std::to_string(row) + " is not a MARKER");

@@ -177,7 +177,8 @@ std::shared_ptr<RenderOutcome> render(const RenderArgs& a) {
     controller::Controller ctl(out->profile);
     run.commands.replay_into(ctl);
     out->image = ctl.framebuffer();
-    out->ids = experiments::id_framebuffer(out->result.scene, *run.renderer);
+    out->ids =
+        experiments::id_framebuffer(out->result.scene, *run.renderer, ctl.profile().depth_bits);
     out->face_ids = face_ids(out->ids);
     out->stream = std::make_shared<StreamFile>();
     out->stream->header = {{"scene", frontend::scene_display_name(out->scene)},

@@ -38,6 +38,9 @@ class PipelineRows final : public protocol::CommandSink {
     void draw_span(const protocol::DrawSpan& c) override { step(c); }
     void marker(const protocol::Marker& c) override { step(c); }
     void frame_end(const protocol::FrameEnd& c) override { step(c); }
+    void depth_clear(const protocol::DepthClear& c) override { step(c); }
+    void depth_span(const protocol::DepthSpan& c) override { step(c); }
+    void face(const protocol::Face& c) override { step(c); }
 
   private:
     void step(const protocol::Command& c) {

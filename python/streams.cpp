@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <algorithm>
 
 #include <array>
 #include <chrono>
@@ -173,6 +174,9 @@ class TimedRows final : public protocol::CommandSink {
     void fill_rect(const protocol::FillRect& c) override { timed(c); }
     void draw_span(const protocol::DrawSpan& c) override { timed(c); }
     void marker(const protocol::Marker& c) override { timed(c); }
+    void depth_clear(const protocol::DepthClear& c) override { timed(c); }
+    void depth_span(const protocol::DepthSpan& c) override { timed(c); }
+    void face(const protocol::Face& c) override { timed(c); }
     void frame_end(const protocol::FrameEnd& c) override {
         if (m_in_frame) {
             m_writer.send_time(m_s.send_ns.at(m_row));
@@ -210,8 +214,11 @@ std::vector<uint8_t> encode_rows(const StreamFile& s) {
         throw std::invalid_argument("header: " + *problem);
     s.commands.check();  // the rows may have changed since: they are a writable view
     const bool timed = !s.send_ns.empty();
+    const bool depth = std::any_of(s.commands.rows.begin(), s.commands.rows.end(),
+                                   [](const CommandRow& r) { return r.opcode >= 8; });
     protocol::StreamWriter writer(s.header,
-                                  timed ? protocol::Timing::Timed : protocol::Timing::Untimed);
+                                  timed ? protocol::Timing::Timed : protocol::Timing::Untimed,
+                                  depth ? protocol::Commands::Depth : protocol::Commands::Tiling);
     if (timed) {
         TimedRows rows(s, writer);
         s.commands.replay_into(rows);
@@ -284,6 +291,35 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
         .def_property_readonly(
             "markers", [](const StreamFile& s) { return s.commands.markers; },
             "The MARKER commands: (row, text) pairs.")
+        .def_property_readonly(
+            "depth",
+            [](const StreamFile& s) {
+                py::list out;
+                for (const auto& [row, d] : s.commands.depth)
+                    out.append(py::make_tuple(row, d.z, d.dzdx, d.dzdy));
+                return out;
+            },
+            "The depth commands' depth (format version 3): (row, z, dzdx, dzdy) of each "
+            "DEPTH_SPAN (its dz as dzdx, dzdy 0) and FACE, z in units of 1/268427264 "
+            "(protocol/depth_fixed.h).")
+        .def_property_readonly(
+            "face_points",
+            [](const StreamFile& s) {
+                py::list out;
+                for (const auto& [row, points] : s.commands.faces) {
+                    py::array_t<int64_t> a(
+                        {static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
+                    auto v = a.mutable_unchecked<2>();
+                    for (std::size_t i = 0; i < points.size(); ++i) {
+                        v(i, 0) = points[i].x;
+                        v(i, 1) = points[i].y;
+                    }
+                    out.append(py::make_tuple(row, a));
+                }
+                return out;
+            },
+            "The FACE commands' points (format version 3): (row, array of n x 2 int64 in 1/256 "
+            "pixel) pairs.")
         .def_property_readonly(
             "send_times",
             [](const py::object& self) -> py::object {

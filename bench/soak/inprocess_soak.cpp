@@ -32,8 +32,12 @@ Frames record_and_replay(const Pair& pair, host::Renderer& renderer,
                          bool batched, controller::Controller& replayed) {
     Frames f;
     {
-        protocol::StreamWriter writer(stream.string(),
-                                      {{"scene", pair.scene.string()}, {"method", pair.method}});
+        protocol::StreamWriter writer(
+            stream.string(), {{"scene", pair.scene.string()}, {"method", pair.method}},
+            protocol::Timing::Untimed,
+            host::method_info(host::method_named(pair.method)).depth_commands
+                ? protocol::Commands::Depth
+                : protocol::Commands::Tiling);
         host::HostStats stats;
         host::render_frame(renderer, screen, writer, stats);
         writer.close();

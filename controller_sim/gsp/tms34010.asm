@@ -17,12 +17,22 @@
 ;   A0  the ring's read pointer (a bit address)     A1  the host's write pointer, last read
 ;   A2  the ring's end                              A3  the ring's start
 ;   A4  the dispatch table                          A5-A8  scratch
+; and in the depth commands' pixel loop
+;   A8  the depth word's address    A10 the pixel's address    A11 Z    A12 Z's step
+;   A13 the pixels left             A14 the colour word        A7  where the loop returns
+; The depth buffer (ZBASE) is a row of 2^ZPITCH bits a row, the board's depth word wide
+; (ZSHIFT = 0 for 16 bits, 1 for 32), set with it at start-up; the window (WSTART, WEND) is
+; the frame.
 ;
 ; The host writes each command as 16-bit words (docs/COST_MODEL.md, "Modelled bytes"):
 ;   FRAME_BEGIN  opcode, frame, width, height, background
 ;   FILL_RECT    opcode, x, y, w, h, colour
 ;   DRAW_SPAN    opcode, x0, y, x1, colour
 ;   FRAME_END    opcode
+;   DEPTH_CLEAR  opcode
+;   DEPTH_SPAN   opcode, x0, y, x1, z (2 words), dz (2 words), colour
+;   FACE         opcode, count, colour, x_ref, y_ref, z (2), dzdx (2), dzdy (2), then each
+;                point's x (2 words) and y (2 words), in 1/256 pixel
 ; x before y, so that one 32-bit field read makes an XY address (X in the low half).
 ; A colour word holds the pixel repeated to 16 bits.
 
@@ -30,6 +40,17 @@ HOST_WP   .equ  00001000h        ; where the host writes its write pointer
 FRAME_NO  .equ  00001020h        ; the frame being drawn, for the host to read
 HSTCTLL   .equ  0C00000F0h       ; host control, low byte: the message to the host
 MSG_FRAME .equ  0010h            ; MSGOUT = 1: a frame is done
+PSIZE     .equ  0C0000150h       ; the pixel size
+ZBASE     .equ  00400000h        ; the depth buffer, above the frame
+ZSHIFT    .equ  00001040h        ; the depth word: 0 for 16 bits, 1 for 32
+ZPITCH    .equ  00001060h        ; log2 of the depth buffer's row, in bits
+FACE_REF  .equ  00001080h        ; a FACE's reference pixel, y:x
+FACE_Z    .equ  000010A0h        ; its Z at the current row's reference column
+FACE_DZDY .equ  000010C0h        ; its Z step a row
+FACE_ROW  .equ  000010E0h        ; the row being drawn, and the last
+FACE_END  .equ  00001100h
+FACE_N    .equ  00001120h        ; its edge count
+EDGES     .equ  00002000h        ; its edges, 4 longs each: x, remainder, x step, divisor
 
 ;@path COMMON next
 ;@path FRAME_BEGIN frame_begin
@@ -37,6 +58,23 @@ MSG_FRAME .equ  0010h            ; MSGOUT = 1: a frame is done
 ;@path DRAW_SPAN:line span_line
 ;@path DRAW_SPAN:fill span_fill
 ;@path FRAME_END frame_end
+;@path DEPTH_CLEAR depth_clear
+;@path DEPTH_SPAN depth_span zloop16
+;@path DEPTH_SPAN:clip zclip zleft
+;@path DEPTH_SPAN:outside depth_span take zout
+;@path ZPIXEL16:nearer zloop16 zloop16
+;@path ZPIXEL16:farther zloop16 zloop16 take zfar16
+;@path ZPIXEL32:nearer zloop32 zloop32
+;@path ZPIXEL32:farther zloop32 zloop32 take zfar32
+;@path ZSPAN_EXIT zdone
+;@path FACE face face_point
+;@path FACE:point face_point face_point
+;@path FACE:last face_close face_row
+;@path FACE:row face_row face_edge
+;@path FACE:edge face_edge face_edge
+;@path FACE:span face_test zloop16
+;@path FACE:empty face_test face_row take face_empty
+;@path FACE:done face_row take face_done
 
 next:     CMP    A1,A0           ; at the host's last known write pointer?
           JRNE   more            ; taken: a command is waiting
@@ -120,6 +158,276 @@ frame_end:
           MOVE   A5,@HSTCTLL,0   ; tell the host the frame is done (an I/O register)
           JRUC   next
 
-; by opcode (MARKER, 4, is never sent); DRAW_SPAN's entry is span_fill when the profile
-; draws spans as one-row fills
-table:    .long  0, frame_begin, fill_rect, span_line, 0, frame_end
+;--- the depth commands (stream format version 3) ------------------------------------------
+; A depth buffer holds Z >> 12 in 16 bits, or Z in 32; it is cleared to all ones, farther
+; than any depth. The pixel loops are the 16-bit word's (ZPIXEL16) and the 32-bit word's
+; (ZPIXEL32); a path through a loop is one pixel. A set-up's path ends where it reaches its
+; loop; where a set-up's branch goes one way for one depth word and the other for the other,
+; the path takes the 16-bit word's way (the 32-bit word's is a state cheaper).
+
+depth_clear:
+          MOVE   DPTCH,A6        ; the frame's pitch and offset, kept
+          MOVE   OFFSET,A7
+          MOVE   @ZPITCH,A5,0
+          MOVK   1,A8
+          SLL    A5,A8           ; the depth buffer's pitch
+          MOVE   A8,DPTCH
+          MOVI   ZBASE,A5
+          MOVE   A5,OFFSET
+          MOVK   16,A5
+          MOVE   A5,@PSIZE,0     ; 16-bit pixels: the words themselves
+          MOVE   WEND,A5         ; the frame's last row and column
+          ADDI   10001h,A5       ; its height and width
+          MOVE   @ZSHIFT,A8,0
+          MOVE   A5,A9
+          SLL    16,A9
+          SRL    16,A9           ; the width
+          SLL    A8,A9           ; in 16-bit words
+          SRL    16,A5
+          SLL    16,A5
+          OR     A9,A5
+          MOVE   A5,DYDX         ; DYDX = height:words
+          CLR    DADDR
+          MOVK   1,A5
+          NEG    A5              ; all ones
+          MOVE   A5,COLOR1
+          FILL   XY              ; the clear
+          MOVE   A6,DPTCH        ; the frame's pitch, offset and pixel size back
+          MOVE   A7,OFFSET
+          MOVK   8,A5
+          MOVE   A5,@PSIZE,0
+          JRUC   next
+
+depth_span:
+          MOVE   *A0+,A6,1       ; y:x0
+          MOVE   *A0+,A9,0       ; x1
+          MOVE   *A0+,A11,1      ; Z at x0
+          MOVE   *A0+,A12,1      ; its step
+          MOVE   *A0+,A14,0      ; the colour word
+          MOVI   next,A7         ; where the pixel loop returns
+dspan:    MOVE   A6,A10          ; (a FACE's row joins here with the same registers)
+          SRA    16,A10          ; y
+          JRN    zout            ; not taken: a row above the frame is outside
+          MOVE   WEND,A5
+          SRA    16,A5           ; the frame's last row
+          CMP    A5,A10
+          JRGT   zout            ; not taken: a row below it is outside
+          MOVE   WEND,A5
+          SLL    16,A5
+          SRL    16,A5           ; the frame's last column
+          CMP    A5,A9
+          JRLE   zright          ; taken: x1 is inside (else it is cut to the last column)
+          MOVE   A5,A9
+zright:   MOVE   A6,A5
+          SLL    16,A5
+          SRA    16,A5           ; x0
+          JRN    zclip           ; not taken: x0 is inside (DEPTH_SPAN:clip when not)
+zleft:    SUB    A5,A9
+          JRN    zout            ; not taken: something is left of the span
+          ADDK   1,A9
+          MOVE   A9,A13          ; the pixels
+          MOVE   A6,A8
+          CVXYL  A8,A10          ; the pixel's address
+          SRA    16,A8           ; y
+          MOVE   @ZPITCH,A9,0
+          SLL    A9,A8           ; the row's offset in the depth buffer
+          MOVE   @ZSHIFT,A9,0
+          ADDK   4,A9            ; log2 of the depth word's bits
+          SLL    A9,A5           ; x0's offset in the row
+          ADD    A5,A8
+          ADDI   ZBASE,A8        ; the depth word's address
+          MOVE   @ZSHIFT,A9,0    ; the depth word (sets Z)
+          JRNE   zloop32         ; not taken: a 16-bit word
+          JRUC   zloop16
+
+zclip:    MOVE   A5,A13
+          NEG    A13             ; the pixels cut on the left
+          MPYS   A12,A13         ; their steps of Z (A13 odd: 32 bits of product)
+          ADD    A13,A11         ; Z at column 0
+          SRL    16,A6
+          SLL    16,A6           ; x0 = 0
+          CLR    A5
+          JRUC   zleft
+
+zout:     JUMP   A7              ; nothing to draw
+
+zloop16:  MOVE   *A8,A5,0        ; the depth word here
+          MOVE   A11,A9
+          SRL    12,A9           ; Z's top 16 of its 28 bits
+          CMP    A5,A9
+          JRHS   zfar16          ; not taken: nearer (taken: as near or farther)
+          MOVE   A9,*A8,0        ; the new depth
+          PIXT   A14,*A10        ; the pixel
+zfar16:   ADDK   16,A8           ; the next depth word
+          ADDK   8,A10           ; the next pixel
+          ADD    A12,A11         ; Z's step
+          DSJ    A13,zloop16     ; taken: more pixels (the last is a state cheaper)
+zdone:    JUMP   A7              ; to the next command, or a FACE's next row
+
+zloop32:  MOVE   *A8,A5,1        ; the depth word here
+          CMP    A5,A11
+          JRHS   zfar32          ; not taken: nearer (taken: as near or farther)
+          MOVE   A11,*A8,1       ; the new depth
+          PIXT   A14,*A10        ; the pixel
+zfar32:   ADDK   32,A8           ; the next depth word
+          ADDK   8,A10           ; the next pixel
+          ADD    A12,A11         ; Z's step
+          DSJ    A13,zloop32     ; taken: more pixels
+          JUMP   A7
+
+; FACE: each edge is set up once with its x where it meets the first row (an exact
+; division, as protocol/coverage.h's row_span makes) and its step a row as a quotient and
+; remainder, so that each row steps every edge by additions alone and gets the integers the
+; division would; the row's covered run, from the nearest left edge to the nearest right
+; one, goes to the depth loop as a span. (The edge arithmetic is written at the length of
+; its 32-bit form, one MPYS and two DIVS an edge; the 64-bit corrections a coordinate over
+; 2^15 grid units would need are left out.)
+face:     MOVE   *A0+,A13,0      ; the point count
+          MOVE   A13,@FACE_N,0
+          MOVE   A13,PATTRN      ; (and in the B file, for the rows: no pattern is drawn)
+          SUBK   1,A13           ; the points before the last
+          MOVE   *A0+,A14,0      ; the colour word
+          MOVE   *A0+,A6,1       ; y_ref:x_ref
+          MOVE   A6,@FACE_REF,1
+          MOVE   A6,A5
+          SLL    16,A5
+          SRA    16,A5
+          MOVE   A5,COLOR0       ; x_ref, in the B file for the rows (FILL's COLOR0 is unused)
+          MOVE   *A0+,A11,1      ; Z at the reference
+          MOVE   *A0+,A12,1      ; its step a column
+          MOVE   *A0+,A9,1       ; its step a row
+          MOVE   A9,@FACE_DZDY,1
+          MOVE   A11,@FACE_Z,1
+          MOVI   EDGES,A8        ; the edge table
+          CLR    A7              ; the top row so far
+          JRUC   face_point
+
+face_point:
+          MOVE   *A0+,A5,1       ; an edge from this point
+          MOVE   *A0+,A6,1
+          MOVE   *A0,A9,1        ; to the next
+          MOVE   A0,A10
+          ADDK   32,A10
+          MOVE   *A10,A10,1
+          SUB    A6,A10          ; dy
+          SUB    A5,A9           ; dx
+          MOVE   A10,A5
+          MPYS   A6,A5           ; the edge function at the first row's centres
+          DIVS   A10,A5          ; its x there: quotient and remainder
+          MOVE   A5,*A8+,1       ; x
+          MOVE   A6,*A8+,1       ; remainder
+          SLL    8,A9            ; a row is 256 grid units
+          DIVS   A10,A9          ; its step a row: quotient and remainder
+          MOVE   A9,*A8+,1       ; x step
+          MOVE   A10,*A8+,1      ; divisor, negative for a right edge
+          CMP    A6,A7
+          JRGE   face_bot        ; taken: not a new top row
+          MOVE   A6,A7
+face_bot: DSJ    A13,face_point  ; taken: more points
+
+face_close:
+          MOVE   *A0+,A5,1       ; the last point's edge back to the first (as FACE:point)
+          MOVE   *A0+,A6,1
+          MOVE   A0,A10
+          MOVE   @FACE_N,A9,0
+          SLL    6,A9
+          SUB    A9,A10          ; the first point, kept in the ring
+          MOVE   *A10,A9,1
+          SUB    A6,A10
+          SUB    A5,A9
+          MOVE   A10,A5
+          MPYS   A6,A5
+          DIVS   A10,A5
+          MOVE   A5,*A8+,1
+          MOVE   A6,*A8+,1
+          SLL    8,A9
+          DIVS   A10,A9
+          MOVE   A9,*A8+,1
+          MOVE   A10,*A8+,1
+          MOVE   @FACE_DZDY,A5,1 ; Z at the reference column, a row above the first
+          MOVE   @FACE_REF,A9,1
+          SRA    16,A9
+          SUB    A7,A9
+          ADDK   1,A9
+          NEG    A9
+          MPYS   A9,A5
+          MOVE   @FACE_Z,A11,1
+          ADD    A5,A11
+          MOVE   A11,@FACE_Z,1
+          MOVE   A7,@FACE_ROW,1  ; the first row and the last, clipped to the frame
+          MOVE   A6,@FACE_END,1
+          JRUC   face_row
+
+face_row: MOVE   @FACE_ROW,A6,1  ; the row
+          MOVE   @FACE_END,A5,1
+          CMP    A5,A6
+          JRGT   face_done       ; not taken: a row to draw
+          ADDK   1,A6
+          MOVE   A6,@FACE_ROW,1
+          MOVE   @FACE_Z,A11,1   ; Z at the reference column of this row
+          MOVE   @FACE_DZDY,A5,1
+          ADD    A5,A11
+          MOVE   A11,@FACE_Z,1
+          MOVE   WEND,A9         ; the run so far: the whole row
+          SLL    16,A9
+          SRL    16,A9
+          CLR    A10
+          MOVI   EDGES,A8
+          MOVE   PATTRN,A13      ; the edges
+          JRUC   face_edge
+
+face_edge:
+          MOVE   *A8+,A5,1       ; x
+          MOVE   *A8+,A6,1       ; remainder
+          MOVE   *A8+,A7,1       ; x step
+          MOVE   *A8+,A11,1      ; divisor, negative for a right edge
+          ADD    A7,A5           ; this row's x
+          SUB    A11,A6          ; the remainder's step
+          JRNN   face_keep       ; not taken: counted with a carry (a row without is cheaper)
+          ADDK   1,A5
+          ADD    A11,A6
+face_keep:
+          SUBI   128,A8
+          MOVE   A5,*A8+,1
+          MOVE   A6,*A8+,1
+          ADDK   32,A8
+          ADDK   32,A8
+          MOVE   A11,A11         ; a right edge? (sets N)
+          JRN    face_right      ; not taken: counted as a left edge (a right one is as dear)
+          CMP    A5,A10
+          JRGE   face_next       ; taken: not a nearer bound
+          MOVE   A5,A10
+          JRUC   face_next
+face_right:
+          CMP    A5,A9
+          JRLE   face_next
+          MOVE   A5,A9
+face_next:
+          DSJ    A13,face_edge   ; taken: more edges
+
+face_test:
+          CMP    A10,A9
+          JRLT   face_empty      ; not taken: the run is not empty (FACE:empty when it is)
+          MOVE   COLOR0,A5       ; x_ref: Z at the run's first pixel
+          MOVE   A10,A6
+          SUB    A5,A6           ; the columns from it
+          MOVE   A12,A5
+          MPYS   A6,A5
+          MOVE   @FACE_Z,A11,1
+          ADD    A5,A11
+          MOVE   @FACE_ROW,A6,1  ; y:x_begin
+          SLL    16,A6
+          MOVX   A10,A6
+          MOVI   face_row,A7     ; the pixel loop returns to the next row
+          JRUC   dspan
+
+face_empty:
+          JRUC   face_row
+
+face_done:
+          JRUC   next
+
+; by opcode (MARKER, 4, is never sent; 6 and 7 are the stream's time records); DRAW_SPAN's
+; entry is span_fill when the profile draws spans as one-row fills
+table:    .long  0, frame_begin, fill_rect, span_line, 0, frame_end, 0, 0, depth_clear
+          .long  depth_span, face

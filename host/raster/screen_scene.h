@@ -13,26 +13,17 @@
 
 #include "host/scene/projection.h"
 #include "protocol/command.h"
+#include "protocol/coverage.h"
 
 namespace fb89::host {
 
 struct Scene;
 
-inline constexpr int kSubpixelBits = 8;  // vertices on the 1/256-pixel grid
-inline constexpr int64_t kSubpixel = int64_t{1} << kSubpixelBits;
-
-struct SnappedPoint {
-    int64_t x = 0, y = 0;  // in 1/256 pixel
-};
-
-// The edge function of one polygon edge, evaluated at pixel centres:
-// E(x, y) = nx * 256 * x + ny * 256 * y + k0 for pixel (x, y); the centre is covered when
-// E >= bias, where bias is 0 for an edge the top-left rule gives the ties to, else 1.
-struct EdgeFunction {
-    int64_t nx = 0, ny = 0;
-    int64_t k0 = 0;
-    int64_t bias = 0;
-};
+// The raster rule's integers (protocol/coverage.h, shared with the controller's FACE).
+using protocol::EdgeFunction;
+using protocol::kSubpixel;
+using protocol::kSubpixelBits;
+using protocol::SnappedPoint;
 
 // Pixel rectangle [x0, x1) x [y0, y1).
 struct PixelRect {

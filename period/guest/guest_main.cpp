@@ -116,10 +116,15 @@ int run(const GuestArgs& a) {
 
     mark(Phase::Output);
     protocol::StreamWriter writer(
-        a.stream, {{"scene", a.scene},
-                   {"method", a.method},
-                   {"resolution", fmt::format("{}x{}", screen.width, screen.height)},
-                   {"tool", std::string("fb89_guest ") + FB89_VERSION}});
+        a.stream,
+        {{"scene", a.scene},
+         {"method", a.method},
+         {"resolution", fmt::format("{}x{}", screen.width, screen.height)},
+         {"tool", std::string("fb89_guest ") + FB89_VERSION}},
+        protocol::Timing::Untimed,
+        host::method_info(host::method_named(a.method)).depth_commands
+            ? protocol::Commands::Depth
+            : protocol::Commands::Tiling);
     commands.replay_into(writer);
     writer.close();
     return 0;

@@ -53,6 +53,8 @@ __all__ = [
 
 # Opcodes of COMMAND_DTYPE's "opcode" field (docs/PROTOCOL.md).
 FRAME_BEGIN, FILL_RECT, DRAW_SPAN, MARKER, FRAME_END = 1, 2, 3, 4, 5
+# version 3's depth commands (their depth in Stream.depth, a FACE's points in Stream.face_points)
+DEPTH_CLEAR, DEPTH_SPAN, FACE = 8, 9, 10
 
 DEFAULT_CONTROLLER = "tms34010-50mhz"
 

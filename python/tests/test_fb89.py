@@ -388,8 +388,8 @@ def test_a_stream_from_an_array_saves_and_replays(tmp_path):
     dump = cli("dump", str(path))
     assert dump.returncode == 0 and "half" in dump.stdout and "DRAW_SPAN" in dump.stdout
     bad = rows.copy()
-    bad[1]["opcode"] = 9
-    with pytest.raises(fb89.OptionError, match="commands: row 1: opcode 9"):
+    bad[1]["opcode"] = 11
+    with pytest.raises(fb89.OptionError, match="commands: row 1: opcode 11"):
         fb89.Stream(bad)  # refused when built, before any save
     with pytest.raises(fb89.OptionError, match="not a MARKER"):
         fb89.Stream(rows, markers=[(1, "x")])
@@ -504,3 +504,23 @@ def test_an_unknown_method_host_profile_or_scene_gets_the_nearest_name():
         assert said in str(e.value), str(e.value)
     with pytest.raises(fb89.SceneError, match="did you mean 'demo'"):
         fb89.render("demoo")
+
+
+# ---- depth commands (stream format version 3) ----
+
+def test_a_face_streams_depth_and_points_beside_its_rows(tmp_path):
+    path = tmp_path / "f.fb89"
+    fb89.render("A", method="faces", size=(64, 48)).stream.save(path)
+    s = fb89.Stream.open(path)
+    assert s.version == 3
+    ops = set(s.commands["opcode"].tolist())
+    assert fb89.DEPTH_CLEAR in ops and fb89.FACE in ops
+    faces = [i for i, op in enumerate(s.commands["opcode"]) if op == fb89.FACE]
+    assert [row for row, *_ in s.depth] == faces
+    assert [row for row, _ in s.face_points] == faces
+    for (row, points) in s.face_points:
+        assert points.shape == (s.commands[row]["w"], 2)
+    # and back: the rows, their depth and points make the same stream
+    again = tmp_path / "again.fb89"
+    s.save(again)
+    assert fb89.Stream.open(again).commands.tobytes() == s.commands.tobytes()

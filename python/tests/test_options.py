@@ -215,7 +215,7 @@ def frame_rows(n_spans=1):
 
 
 @pytest.mark.parametrize("row,field,value,says", [
-    (1, "opcode", 9, "row 1: opcode 9 is none of 1"),
+    (1, "opcode", 11, "row 1: opcode 11 is none of 1"),
     (1, "opcode", 0, "row 1: opcode 0 is none of 1"),
     (1, "w", 0, "row 1: DRAW_SPAN of width 0"),
     (0, "w", 0, r"row 0 \(FRAME_BEGIN\): width 0 is outside 1..16384"),

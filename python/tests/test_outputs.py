@@ -58,13 +58,13 @@ def inputs(tmp_path_factory):
 
 def save_a_row_gone_bad(i, out):
     s = fb89.Stream(rows_of_frames(3))
-    s.commands[len(s) - 2]["opcode"] = 9  # found late: the last span
+    s.commands[len(s) - 2]["opcode"] = 11  # found late: the last span
     s.save(out["out.fb89"])
 
 
 def replay_a_row_gone_bad(i, out):
     s = fb89.Stream(rows_of_frames(3))
-    s.commands[len(s) - 2]["opcode"] = 9
+    s.commands[len(s) - 2]["opcode"] = 11
     fb89.replay(s, timeline=out["timeline.json"])
 
 

@@ -53,7 +53,7 @@ std::vector<uint8_t> bare_header() {
 
 TEST(BadInputStream, NewerVersionsAreRefusedNamingBothVersions) {
     ASSERT_EQ(two_frames().size(), kStreamSize);
-    for (const uint16_t version : {uint16_t{3}, uint16_t{7}, uint16_t{65535}}) {
+    for (const uint16_t version : {uint16_t{4}, uint16_t{7}, uint16_t{65535}}) {
         std::vector<uint8_t> b = two_frames();
         put_u16(b, 4, version);
         const std::string path = write_bytes("v.fb89", b);
@@ -62,7 +62,7 @@ TEST(BadInputStream, NewerVersionsAreRefusedNamingBothVersions) {
             const std::string extra =
                 std::string(tool) == "trim" ? " --calls 0- -o " + scratch("t.fb89") : "";
             expect_refused(fb89(std::string(tool) + " " + path + extra), "v.fb89",
-                           {"version " + std::to_string(version), "up to 2"});
+                           {"version " + std::to_string(version), "up to 3"});
         }
     }
 }

@@ -19,7 +19,8 @@ TEST(ControllerValidate, PrintsEveryFigureWithItsSourceBeforeAndNow) {
     for (const char* text :
          {"tms34010-50mhz now", "a pixel of LINE at 8 bpp (states)", "[DS] SPVS002C p. 34",
           "before 2 (missed), now 4  ok", "before 8 (missed), now 6.25  ok",
-          "the command loop's length", "BYTE, September 1988", "C_cmd: the loop's fetch"})
+          "the tiling commands' executive: its length", "BYTE, September 1988",
+          "C_cmd: the loop's fetch"})
         EXPECT_NE(r.out.find(text), std::string::npos) << text << " not in\n" << r.out;
     EXPECT_EQ(r.out.find("MISSED"), std::string::npos) << r.out;
 }

@@ -418,16 +418,16 @@ TEST(InfoCommand, TextShowsHeaderAndOneRowPerFrame) {
 
 TEST(InfoCommand, NewerVersionNamesBothVersions) {
     auto bytes = pr::encode_stream(three_frames());
-    bytes[4] = 3;
-    const std::string path = scratch("v3.fb89");
+    bytes[4] = 4;
+    const std::string path = scratch("v4.fb89");
     std::ofstream(path, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));
     CliRun r = fb89("info " + path);
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("v3.fb89"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("version 3"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("up to 2"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("v4.fb89"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("version 4"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("up to 3"), std::string::npos) << r.err;
 }
 
 TEST(TrimCommand, WholeFramesKeepTheirChecksums) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "experiments/experiments.h"
+#include "host/methods.h"
 
 namespace fb89::experiments {
 namespace {
@@ -17,7 +18,7 @@ TEST(SplitExperiment, ThePipelineAndTheBandLieWhereTheModelPutsThem) {
     s.size = {256, 195};
     s.repeat = 1;
     const Table table = experiment_split(s);
-    ASSERT_EQ(table.rows().size(), 6u);  // one row a method
+    ASSERT_EQ(table.rows().size(), host::methods().size());  // one row a method
     for (const auto& row : table.rows()) {
         ASSERT_EQ(row.size(), table.columns().size());
         std::map<std::string, double> v;
@@ -47,10 +48,14 @@ TEST(SplitExperiment, ThePipelineAndTheBandLieWhereTheModelPutsThem) {
         EXPECT_GE(v["pipeline_ms_high"], v["pipeline_ms"] - 1e-3);
         EXPECT_GE(v["pipeline_ms_low"], v["controller_ms_low"] - 1e-3);
         // host over controller at the band's ends, to three figures even when far below 1
+        // (the host's time is printed to a thousandth of a ms: a host of a few hundredths, as a
+        // face method's, carries that rounding into the ratio)
         const double ratio = host / ctl;
         EXPECT_GT(v["ratio_low"], 0);
-        EXPECT_NEAR(v["ratio_low"], host / v["controller_ms_high"], ratio * 0.01);
-        EXPECT_NEAR(v["ratio_high"], host / v["controller_ms_low"], ratio * 0.01);
+        EXPECT_NEAR(v["ratio_low"], host / v["controller_ms_high"],
+                    ratio * 0.01 + 5e-4 / v["controller_ms_high"]);
+        EXPECT_NEAR(v["ratio_high"], host / v["controller_ms_low"],
+                    ratio * 0.01 + 5e-4 / v["controller_ms_low"]);
         EXPECT_LE(v["ratio_low"], ratio * 1.01);
         EXPECT_GE(v["ratio_high"], ratio * 0.99);
     }

@@ -89,7 +89,11 @@ TEST(CallSet, OpcodeFiltersRestrictAndCombine) {
     EXPECT_FALSE(both.contains(21, kSpan));
     const CallSet draw = CallSet::parse("*/draw");
     EXPECT_TRUE(draw.contains(1, kFill) && draw.contains(1, kSpan));
-    EXPECT_EQ(draw.to_string(), "*/fill/span");
+    EXPECT_EQ(draw.to_string(), "*/fill/span/zspan/face");
+    const CallSet depth = CallSet::parse("/depth");
+    EXPECT_TRUE(depth.contains(3, Opcode::DepthClear) && depth.contains(3, Opcode::Face));
+    EXPECT_FALSE(depth.contains(3, kSpan));
+    EXPECT_EQ(depth.to_string(), "*/zspan/face/zclear");
     const CallSet framing = CallSet::parse("/frame,/marker");
     EXPECT_TRUE(framing.contains(0, Opcode::FrameBegin));
     EXPECT_TRUE(framing.contains(0, Opcode::FrameEnd));

@@ -28,7 +28,14 @@ TEST(Command, OpcodeValuesAreFixedByVersion1) {
     EXPECT_EQ(static_cast<int>(Opcode::Marker), 4);
     EXPECT_EQ(static_cast<int>(Opcode::FrameEnd), 5);
     EXPECT_EQ(opcode_index(Opcode::FrameBegin), 0);
-    EXPECT_EQ(opcode_index(Opcode::FrameEnd), kOpcodeCount - 1);
+    EXPECT_EQ(opcode_index(Opcode::FrameEnd), 4);
+    // version 3's, after version 2's time records 0x06 and 0x07
+    EXPECT_EQ(static_cast<int>(Opcode::DepthClear), 8);
+    EXPECT_EQ(static_cast<int>(Opcode::DepthSpan), 9);
+    EXPECT_EQ(static_cast<int>(Opcode::Face), 10);
+    for (int i = 0; i < kOpcodeCount; ++i)
+        EXPECT_EQ(opcode_index(kOpcodes[i]), i);
+    EXPECT_EQ(opcode_index(Opcode::Face), kOpcodeCount - 1);
 }
 
 TEST(Command, OpcodeOfFollowsTheVariantAlternative) {

@@ -74,32 +74,41 @@ std::vector<Read> read_with_batches(StreamReader& reader, std::size_t batch) {
 TEST(StreamReaderFastPath, DecodesCommonRecordsAsTheGeneralDecoderDoes) {
     std::vector<Command> records = many_commands();
     records.push_back(DrawSpan{0, std::numeric_limits<int32_t>::min(), 0, Rgb{}});
-    for (const Command& c : records) {
-        Bytes bytes;
-        encode_command(bytes, c);
-        bytes.resize(kFillRectRecordSize + 4);  // the fast path reads only what it decodes
-        Command out = Marker{"before"};
-        const std::size_t size = decode_common_record(bytes.data(), out);
-        const Opcode op = opcode_of(c);
-        if (op == Opcode::FillRect || op == Opcode::DrawSpan || op == Opcode::FrameEnd) {
-            EXPECT_EQ(size, 1 + *payload_size(bytes[0])) << to_string(c);
-            EXPECT_EQ(out, decode_fixed_payload(op, bytes.data() + 1)) << to_string(c);
-        } else {
-            EXPECT_EQ(size, 0u) << to_string(c);
-            EXPECT_EQ(out, Command{Marker{"before"}}) << to_string(c);
+    records.push_back(DepthSpan{3, -2, 7, 0x0FFFE000u, -5, Rgb{1, 2, 3}});
+    records.push_back(DepthClear{});
+    records.push_back(Face{Rgb{4, 5, 6}, 1, 2, 99, -3, 4, {{0, 0}, {512, 0}, {0, 512}}});
+    for (const bool depth : {false, true})
+        for (const Command& c : records) {
+            Bytes bytes;
+            encode_command(bytes, c);
+            bytes.resize(std::max(bytes.size(), kDepthSpanRecordSize));  // what it may read
+            Command out = Marker{"before"};
+            const std::size_t size = decode_common_record(bytes.data(), out, depth);
+            const Opcode op = opcode_of(c);
+            if (op == Opcode::FillRect || op == Opcode::DrawSpan || op == Opcode::FrameEnd ||
+                (depth && op == Opcode::DepthSpan)) {
+                EXPECT_EQ(size, 1 + *payload_size(bytes[0])) << to_string(c);
+                EXPECT_EQ(out, decode_fixed_payload(op, bytes.data() + 1)) << to_string(c);
+            } else {
+                EXPECT_EQ(size, 0u) << to_string(c);
+                EXPECT_EQ(out, Command{Marker{"before"}}) << to_string(c);
+            }
         }
-    }
 }
 
 TEST(StreamReaderFastPath, LeavesWhatTheGeneralPathRefusesToIt) {
     Bytes span;
     encode_command(span, DrawSpan{1, 5, 9, Rgb{}});
     span[9] = 4;  // x1 = 4 < x0 = 5
-    span.resize(kFillRectRecordSize);
-    for (Bytes bytes : {span, Bytes(kFillRectRecordSize, 0x00), Bytes(kFillRectRecordSize, 0x06),
-                        Bytes(kFillRectRecordSize, kIndexOpcode)}) {
+    span.resize(kDepthSpanRecordSize);
+    Bytes zspan;
+    encode_command(zspan, DepthSpan{1, 5, 9, 0, 0, Rgb{}});
+    zspan[9] = 4;  // x1 = 4 < x0 = 5
+    for (Bytes bytes :
+         {span, zspan, Bytes(kDepthSpanRecordSize, 0x00), Bytes(kDepthSpanRecordSize, 0x06),
+          Bytes(kDepthSpanRecordSize, kIndexOpcode)}) {
         Command out = FrameEnd{};
-        EXPECT_EQ(decode_common_record(bytes.data(), out), 0u) << int{bytes[0]};
+        EXPECT_EQ(decode_common_record(bytes.data(), out, true), 0u) << int{bytes[0]};
         EXPECT_EQ(out, Command{FrameEnd{}});
     }
 }

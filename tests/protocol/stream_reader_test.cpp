@@ -106,16 +106,16 @@ TEST(StreamReader, TruncationAtEveryByteDeliversExactlyTheCompleteCommands) {
 
 TEST(StreamReader, RefusesANewerVersionNamingBothVersions) {
     Bytes bytes = encode_stream(testing::two_frames());
-    bytes[4] = 3;
+    bytes[4] = 4;
     const ReadResult r = read_all(bytes);
     ASSERT_TRUE(r.error);
     EXPECT_STREQ(r.error->what(),
-                 "stream.fb89: stream is format version 3; this fb89 reads versions up to 2");
+                 "stream.fb89: stream is format version 4; this fb89 reads versions up to 3");
     // a newer version may lay out everything after the version differently
     const ReadResult short_header = read_all(Bytes{'F', 'B', '8', '9', 0x00, 0x01});
     ASSERT_TRUE(short_header.error);
     EXPECT_STREQ(short_header.error->what(),
-                 "stream.fb89: stream is format version 256; this fb89 reads versions up to 2");
+                 "stream.fb89: stream is format version 256; this fb89 reads versions up to 3");
 }
 
 TEST(StreamReader, RefusesVersionZeroAndNonZeroFlags) {

@@ -1,6 +1,6 @@
-#include "host/raster/coverage.h"
+#include "protocol/coverage.h"
 
-namespace fb89::host {
+namespace fb89::protocol {
 
 void setup_edges(const SnappedPoint* p, uint32_t count, EdgeFunction* edges) {
     const int64_t half = kSubpixel / 2;  // pixel centres sit at +0.5
@@ -28,4 +28,4 @@ bool covers(const EdgeFunction* edges, uint32_t count, int x, int y) {
     return true;
 }
 
-}  // namespace fb89::host
+}  // namespace fb89::protocol
