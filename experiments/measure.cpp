@@ -157,6 +157,7 @@ ControllerFigures controller_figures(const controller::Controller& ctl) {
     const auto& frame = ctl.frames().at(0);
     ControllerFigures f;
     f.commands = frame.total().commands;
+    f.bus_bytes = frame.total().bytes;
     f.fills = frame.ops[protocol::opcode_index(protocol::Opcode::FillRect)].commands;
     f.spans = frame.ops[protocol::opcode_index(protocol::Opcode::DrawSpan)].commands;
     f.controller_ms = frame.controller_busy_us / 1e3;

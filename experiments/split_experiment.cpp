@@ -43,7 +43,8 @@ Table experiment_split(const ExperimentSettings& s) {
                  "pipeline_ms_low",
                  "pipeline_ms_high",
                  "ratio_low",
-                 "ratio_high"});
+                 "ratio_high",
+                 "bus_bytes"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
     // the controller's estimated figures at the ends of their bands (the profile's "bands")
     const controller::CostProfile cheap = controller::band_end(profile, false);
@@ -113,7 +114,8 @@ Table experiment_split(const ExperimentSettings& s) {
                 return fixed(v, std::max(2, digits));
             };
             row.insert(row.end(), {high.frame_ms > 0 ? ratio_text(host_ms / high.frame_ms) : "",
-                                   low.frame_ms > 0 ? ratio_text(host_ms / low.frame_ms) : ""});
+                                   low.frame_ms > 0 ? ratio_text(host_ms / low.frame_ms) : "",
+                                   std::to_string(ctl.bus_bytes)});
             table.add(std::move(row));
         }
     }

@@ -392,6 +392,89 @@ def split_hosts(root):
     save(fig, os.path.join(root, "split_hosts.png"))
 
 
+BOUNDARY_HOSTS = ("sun3-60", "sun4-260", "sparcstation-2", "pc-386-25", "native")
+BOUNDARIES = {"zbuffer": "host decides visibility (zbuffer)",
+              "zspans": "host scan-converts (zspans)",
+              "faces": "host projects only (faces)"}
+
+
+def boundary(root):
+    """Moving the split: the three boundaries (experiment split --methods zbuffer zspans faces)
+    on each host, from ROOT/boundary/split_HOST.csv. Writes ROOT/boundary.csv -- per host and
+    boundary the medians over the scenes of the host's time, the controller's (and its band),
+    the pipeline's frame, both utilizations and the bus bytes, and on how many scenes that
+    boundary gives the shortest frame -- and ROOT/boundary.png, the median frame against the
+    host's speed (the Z-buffer's host time on the Sun-3/60 over its own), one line per
+    boundary."""
+    tables = {h: read(os.path.join(root, "boundary", f"split_{h}.csv")) for h in BOUNDARY_HOSTS
+              if os.path.exists(os.path.join(root, "boundary", f"split_{h}.csv"))}
+    if "sun3-60" not in tables:
+        return
+    median = lambda v: sorted(v)[len(v) // 2] if v else float("nan")  # noqa: E731
+    frame = lambda r: float(r["pipeline_ms"] or r["frame_ms"])  # noqa: E731
+    zb = lambda h: {scene_label(r["scene"]): float(r["host_frame_ms"])  # noqa: E731
+                    for r in tables[h] if r["method"] == "zbuffer"}
+    base = zb("sun3-60")
+    rows, speeds = [], {}
+    for host, table in tables.items():
+        mine = zb(host)
+        speeds[host] = median([base[k] / v for k, v in mine.items() if k in base and v > 0])
+        by_scene = {}
+        for r in table:
+            by_scene.setdefault(scene_label(r["scene"]), []).append(r)
+        best = {k: min(v, key=frame)["method"] for k, v in by_scene.items()}
+        for method in BOUNDARIES:
+            rs = [r for r in table if r["method"] == method]
+            if not rs:
+                continue
+            col = lambda c: median([float(r[c]) for r in rs if r.get(c)])  # noqa: E731
+            rows.append({
+                "host": host, "boundary": method, "scenes": len(rs),
+                "host_speed": f"{speeds[host]:.3g}",
+                "host_ms": f"{col('host_frame_ms'):.4g}",
+                "controller_ms": f"{col('controller_ms'):.4g}",
+                "controller_ms_low": f"{col('controller_ms_low'):.4g}",
+                "controller_ms_high": f"{col('controller_ms_high'):.4g}",
+                "frame_ms": f"{median([frame(r) for r in rs]):.4g}",
+                "host_util": f"{col('host_util'):.3g}" if rs[0].get("host_util") else "",
+                "controller_util": f"{col('controller_util'):.3g}"
+                if rs[0].get("controller_util") else "",
+                "bus_bytes": f"{col('bus_bytes'):.0f}",
+                "bound_by_host": sum(r["bound_by"] == "host" for r in rs),
+                "shortest_frame": sum(best[scene_label(r["scene"])] == method for r in rs)})
+    fields = list(rows[0])
+    write_text(os.path.join(root, "boundary.csv"), ",".join(fields) + "\n" + "".join(
+        ",".join(str(r[f]) for f in fields) + "\n" for r in rows))
+
+    order = sorted(tables, key=lambda h: speeds[h])
+    fig, ax = plt.subplots(figsize=(8.5, 5.5))
+    for i, method in enumerate(BOUNDARIES):
+        pts = [(speeds[h], float(r["frame_ms"]), float(r["host_ms"]), float(r["controller_ms"]))
+               for h in order for r in rows if r["host"] == h and r["boundary"] == method]
+        if not pts:
+            continue
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", color=f"C{i}",
+                label=BOUNDARIES[method])
+        ax.plot([p[0] for p in pts], [p[3] for p in pts], ls=":", lw=0.8, color=f"C{i}")
+    for h in order:  # each host named at its Z-buffer's point
+        z = [float(r["frame_ms"]) for r in rows if r["host"] == h and r["boundary"] == "zbuffer"]
+        if z:
+            ax.annotate(HOST_LABELS.get(h, h).replace("\n", " "), (speeds[h], z[0]),
+                        textcoords="offset points", xytext=(4, 6), fontsize=7)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("host speed: the Sun-3/60's Z-buffer time over this host's (median of the scenes)")
+    ax.set_ylabel("frame time, ms (the pipeline's; median of the scenes)\n"
+                  "dotted: the controller alone")
+    ax.set_title("Moving the split: where the host/controller boundary should sit\n"
+                 "every bundled scene at 1024x780; TMS34010 board (ISA board on the PC)",
+                 fontsize=10)
+    ax.grid(which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    save(fig, os.path.join(root, "boundary.png"))
+
+
 def timeline_png(json_path, png_path):
     """One frame through the pipeline in time (fb89 render --timeline): the host's, the bus's
     and the controller's lanes in time, host stalls in red, the command buffer's fill below,
@@ -462,6 +545,9 @@ def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else "docs/figures"
     if "--split-hosts" in sys.argv:
         split_hosts(folder)
+        return
+    if "--boundary" in sys.argv:
+        boundary(folder)
         return
     if "--timelines" in sys.argv:
         timelines(folder)

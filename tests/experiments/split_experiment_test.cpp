@@ -58,6 +58,7 @@ TEST(SplitExperiment, ThePipelineAndTheBandLieWhereTheModelPutsThem) {
                     ratio * 0.01 + 5e-4 / v["controller_ms_low"]);
         EXPECT_LE(v["ratio_low"], ratio * 1.01);
         EXPECT_GE(v["ratio_high"], ratio * 0.99);
+        EXPECT_GT(v["bus_bytes"], 0);
     }
 }
 
