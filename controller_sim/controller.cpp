@@ -279,22 +279,36 @@ void Controller::check_depth(Opcode op, bool needs_buffer) const {
 void Controller::depth_run(uint32_t y, uint32_t x, uint32_t n, int64_t z, int64_t dz,
                            protocol::Rgb color, DepthCounters& counts) {
     const uint32_t bits = profile().depth_bits;
-    uint32_t* word = m_depth.data() + std::size_t{y} * m_fb.width() + x;
-    counts.tests += n;
+    uint32_t* const word = m_depth.data() + std::size_t{y} * m_fb.width() + x;
+    // nearer and as-near pixels counted in locals: the framebuffer's byte stores may alias
+    // anything, the counters then stay in registers
+    uint64_t nearer = 0, equal = 0;
     uint32_t run = 0;  // nearer pixels not yet drawn, ending at i
-    for (uint32_t i = 0; i < n; ++i, z += dz) {
-        const uint32_t stored = protocol::stored_depth(z, bits);
+    const auto test = [&](uint32_t i, uint32_t stored) {
         if (stored < word[i]) {
             word[i] = stored;
-            ++counts.nearer;
+            ++nearer;
             ++run;
-            continue;
+            return;
         }
-        counts.equal += stored == word[i] ? 1 : 0;
+        equal += stored == word[i] ? 1 : 0;
         if (run) m_fb.draw_span(y, x + i - run, run, color);
         run = 0;
+    };
+    const int64_t last = z + dz * (int64_t{n} - 1);
+    if (std::min(z, last) >= 0 && std::max(z, last) <= protocol::kDepthOne) {
+        // the common case: every depth in range, no clamp (the same words stored_depth gives)
+        const int shift = bits == 16 ? protocol::kDepth16Shift : 0;
+        for (uint32_t i = 0; i < n; ++i, z += dz)
+            test(i, static_cast<uint32_t>(z >> shift));
+    } else {
+        for (uint32_t i = 0; i < n; ++i, z += dz)
+            test(i, protocol::stored_depth(z, bits));
     }
     if (run) m_fb.draw_span(y, x + n - run, run, color);
+    counts.tests += n;
+    counts.nearer += nearer;
+    counts.equal += equal;
 }
 
 // DEPTH_CLEAR: the frame's depth buffer, every word far; charged as the FILL that clears it.
@@ -420,16 +434,21 @@ void Controller::account(Opcode opcode, const Executed& x) {
     ++m_next_command;
 }
 
-// The batch path's fast path. Counter deltas of this run of drawing commands build up in
-// locals and are added to the frame and the totals once at the end (integer sums: the order
-// does not matter). The clocks are copied into locals and written back: the same
-// floating-point additions as account(), in the same order, only kept in registers.
+// The batch path's fast path: FILL_RECT, DRAW_SPAN and DEPTH_SPAN. Counter deltas of this run of
+// drawing commands build up in locals and are added to the frame and the totals once at the end
+// (integer sums: the order does not matter). The clocks are copied into locals and written back:
+// the same floating-point additions as account(), in the same order, only kept in registers.
 std::size_t Controller::execute_drawing(std::span<const Command> commands, std::size_t i,
                                         CommandCost* costs) {
-    const int fill_op = opcode_index(Opcode::FillRect), span_op = opcode_index(Opcode::DrawSpan);
+    const int fill_op = opcode_index(Opcode::FillRect), span_op = opcode_index(Opcode::DrawSpan),
+              zspan_op = opcode_index(Opcode::DepthSpan);
     const OpcodeEntry& fill_entry = m_opcodes[fill_op];
     const OpcodeEntry& span_entry = m_opcodes[span_op];
-    OpcodeCounters fills, spans;
+    const OpcodeEntry& zspan_entry = m_opcodes[zspan_op];
+    OpcodeCounters fills, spans, zspans;
+    // DEPTH_SPANs too once the frame has its depth buffer (they cannot fail then; before it,
+    // the general path reports them with their number)
+    const bool depth_ok = !m_depth.empty() && profile().depth_priced;
     Pipeline pipe = m_frame_pipe;
     double bus_busy_us = m_stats.bus_busy_us, controller_busy_us = m_stats.controller_busy_us;
     // account() for the open frame, on the locals
@@ -449,6 +468,8 @@ std::size_t Controller::execute_drawing(std::span<const Command> commands, std::
             account_local(span_entry, spans, exec_draw_span(*s));
         } else if (const auto* f = std::get_if<FillRect>(&c)) {
             account_local(fill_entry, fills, exec_fill_rect(*f));
+        } else if (const auto* z = depth_ok ? std::get_if<DepthSpan>(&c) : nullptr) {
+            account_local(zspan_entry, zspans, exec_depth_span(*z));
         } else {
             break;
         }
@@ -457,12 +478,14 @@ std::size_t Controller::execute_drawing(std::span<const Command> commands, std::
     // write back
     m_frame.ops[fill_op] += fills;
     m_frame.ops[span_op] += spans;
+    m_frame.ops[zspan_op] += zspans;
     m_stats.totals[fill_op] += fills;
     m_stats.totals[span_op] += spans;
+    m_stats.totals[zspan_op] += zspans;
     m_frame_pipe = pipe;
     m_stats.bus_busy_us = bus_busy_us;
     m_stats.controller_busy_us = controller_busy_us;
-    m_next_command += fills.commands + spans.commands;
+    m_next_command += fills.commands + spans.commands + zspans.commands;
     return i;
 }
 

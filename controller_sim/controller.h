@@ -114,7 +114,8 @@ class Controller final : public protocol::CommandSink {
     // Executes any command through the opcode table.
     void execute(const protocol::Command& c);
     // Executes commands in order: the same framebuffer, counters and times as execute() on
-    // each, faster. The open frame's FILL_RECTs and DRAW_SPANs take a fast path that keeps
+    // each, faster. The open frame's FILL_RECTs, DRAW_SPANs and (once it has its depth
+    // buffer) DEPTH_SPANs take a fast path that keeps
     // their counters and clocks in locals (execute_drawing); every other command goes
     // through execute(c). With an observer set, every command does. With `costs` (at least
     // as long as commands), each command's cost goes beside it, as last_cost() would give it.
