@@ -74,11 +74,9 @@ int run_controller_validate(const ControllerValidateArgs& a) {
     if (!a.quiet && a.csv != "-") {
         std::cout << table;
         if (a.listing) {
-            const uint32_t m = after.memory_cycle_states + after.wait_states;
             std::cout << "\n"
-                      << controller::annotated_listing(
-                             controller::builtin_listing(after.gsp),
-                             controller::MemoryTiming{m, after.memory_cycle_states});
+                      << controller::annotated_listing(controller::builtin_listing(after.gsp),
+                                                       controller::memory_timing(after));
         }
     }
     return a.check && !all_pass ? kCheckFailed : kSuccess;

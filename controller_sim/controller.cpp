@@ -276,36 +276,59 @@ void Controller::check_depth(Opcode op, bool needs_buffer) const {
             m_next_command, protocol::to_string(op)));
 }
 
+namespace {
+
+// The depth test of n words against Z stepped from z by dz (uint32 wrap: every Z of the run
+// lies in [0, kDepthOne], so the sum mod 2^32 is Z itself), stored as Z >> shift: a word
+// nearer takes the new depth and its flag is 1, else its flag is 0. Branch-free, so that it
+// vectorises. Returns the nearer count; adds the as-near ones to `equal`.
+template <int Shift>
+uint32_t depth_test_in_range(uint32_t* word, uint8_t* flags, uint32_t n, uint32_t z, uint32_t dz,
+                             uint64_t& equal) {
+    uint32_t nearer = 0, same = 0;
+    for (uint32_t i = 0; i < n; ++i, z += dz) {
+        const uint32_t s = z >> Shift;
+        const uint32_t old = word[i];
+        const uint32_t now = s < old ? s : old;
+        word[i] = now;
+        const uint32_t taken = now != old ? 1u : 0u;
+        flags[i] = static_cast<uint8_t>(taken);
+        nearer += taken;
+        same += s == old ? 1u : 0u;
+    }
+    equal += same;
+    return nearer;
+}
+
+}  // namespace
+
 void Controller::depth_run(uint32_t y, uint32_t x, uint32_t n, int64_t z, int64_t dz,
                            protocol::Rgb color, DepthCounters& counts) {
     const uint32_t bits = profile().depth_bits;
     uint32_t* const word = m_depth.data() + std::size_t{y} * m_fb.width() + x;
-    // nearer and as-near pixels counted in locals: the framebuffer's byte stores may alias
-    // anything, the counters then stay in registers
+    uint8_t* const flags = m_nearer.data();
     uint64_t nearer = 0, equal = 0;
-    uint32_t run = 0;  // nearer pixels not yet drawn, ending at i
-    const auto test = [&](uint32_t i, uint32_t stored) {
-        if (stored < word[i]) {
-            word[i] = stored;
-            ++nearer;
-            ++run;
-            return;
-        }
-        equal += stored == word[i] ? 1 : 0;
-        if (run) m_fb.draw_span(y, x + i - run, run, color);
-        run = 0;
-    };
     const int64_t last = z + dz * (int64_t{n} - 1);
     if (std::min(z, last) >= 0 && std::max(z, last) <= protocol::kDepthOne) {
-        // the common case: every depth in range, no clamp (the same words stored_depth gives)
-        const int shift = bits == 16 ? protocol::kDepth16Shift : 0;
-        for (uint32_t i = 0; i < n; ++i, z += dz)
-            test(i, static_cast<uint32_t>(z >> shift));
+        // the common case: every depth in range, tested without the hold
+        const auto z32 = static_cast<uint32_t>(z), dz32 = static_cast<uint32_t>(dz);
+        nearer = bits == 16 ? depth_test_in_range<protocol::kDepth16Shift>(word, flags, n, z32,
+                                                                           dz32, equal)
+                            : depth_test_in_range<0>(word, flags, n, z32, dz32, equal);
     } else {
-        for (uint32_t i = 0; i < n; ++i, z += dz)
-            test(i, protocol::stored_depth(z, bits));
+        for (uint32_t i = 0; i < n; ++i, z += dz) {
+            const uint32_t s = protocol::stored_depth(z, bits);
+            const bool taken = s < word[i];
+            equal += s == word[i] ? 1 : 0;
+            word[i] = taken ? s : word[i];
+            flags[i] = taken ? 1 : 0;
+            nearer += taken ? 1 : 0;
+        }
     }
-    if (run) m_fb.draw_span(y, x + n - run, run, color);
+    if (nearer == n)
+        m_fb.draw_span(y, x, n, color);
+    else if (nearer)
+        m_fb.draw_flagged(y, x, n, flags, color);
     counts.tests += n;
     counts.nearer += nearer;
     counts.equal += equal;
@@ -317,6 +340,7 @@ Controller::Executed Controller::exec_depth_clear(const DepthClear& c) {
     if (!m_in_frame) return Executed{outside_cycles(profile(), Opcode::DepthClear), 0, false, true};
     m_depth.assign(std::size_t{m_fb.width()} * m_fb.height(),
                    protocol::depth_clear_value(profile().depth_bits));
+    m_nearer.resize(m_fb.width());
     m_frame.depth_bits = profile().depth_bits;
     return Executed{depth_clear_cycles(profile(), m_fb.width(), m_fb.height()), 0, false, false};
 }
@@ -327,7 +351,7 @@ Controller::Executed Controller::exec_depth_span(const DepthSpan& s) {
     check_depth(Opcode::DepthSpan, true);
     const int64_t w = m_fb.width(), h = m_fb.height();
     if (!m_in_frame || s.y < 0 || s.y >= h || s.x1 < 0 || s.x0 >= w || s.x1 < s.x0)
-        return Executed{depth_span_outside_cycles(profile()), 0, false, true};
+        return Executed{m_costs.depth_span_outside(), 0, false, true};
     const int64_t x0 = std::max<int64_t>(s.x0, 0), x1 = std::min<int64_t>(s.x1, w - 1);
     const bool cut_left = x0 > s.x0;
     const int64_t z = int64_t{s.z} + int64_t{s.dz} * (x0 - s.x0);
@@ -336,9 +360,8 @@ Controller::Executed Controller::exec_depth_span(const DepthSpan& s) {
               static_cast<uint32_t>(x1 - x0 + 1), z, s.dz, s.color, counts);
     m_frame.depth += counts;
     m_stats.depth += counts;
-    return Executed{
-        depth_span_cycles(profile(), cut_left, counts.nearer, counts.tests - counts.nearer),
-        counts.nearer, cut_left || x1 < s.x1, false};
+    return Executed{m_costs.depth_span(cut_left, counts.nearer, counts.tests - counts.nearer),
+                    counts.nearer, cut_left || x1 < s.x1, false};
 }
 
 // FACE: its edges by the coverage rule (protocol/coverage.h), its rows clipped to the frame,
@@ -368,12 +391,10 @@ Controller::Executed Controller::exec_face(const Face& f) {
     }
     const int64_t half = protocol::kSubpixel / 2;
     const int64_t h = m_fb.height(), w = m_fb.width();
-    const int64_t first =
-        std::max<int64_t>(0, protocol::detail::ceil_div(lo - half, protocol::kSubpixel));
-    const int64_t last =
-        std::min<int64_t>(h - 1, protocol::detail::floor_div(hi - half, protocol::kSubpixel));
-    const bool clipped = first > protocol::detail::ceil_div(lo - half, protocol::kSubpixel) ||
-                         last < protocol::detail::floor_div(hi - half, protocol::kSubpixel);
+    const int64_t top = protocol::detail::ceil_div(lo - half, protocol::kSubpixel);
+    const int64_t bottom = protocol::detail::floor_div(hi - half, protocol::kSubpixel);
+    const int64_t first = std::max<int64_t>(0, top), last = std::min<int64_t>(h - 1, bottom);
+    const bool clipped = first > top || last < bottom;
     DepthCounters counts;
     bool cut_sides = false;
     for (int64_t y = first; y <= last; ++y) {

@@ -208,6 +208,7 @@ class Controller final : public protocol::CommandSink {
     double m_us_per_cycle;
     Framebuffer m_fb;
     std::vector<uint32_t> m_depth;  // the open frame's depth buffer, after its DEPTH_CLEAR
+    std::vector<uint8_t> m_nearer;  // a row's depth test: 1 where nearer (depth_run's)
     ControllerStats m_stats;
     bool m_in_frame = false;
     FrameResult m_frame;  // the open frame's counters

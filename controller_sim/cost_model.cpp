@@ -91,6 +91,11 @@ CycleCosts::CycleCosts(const CostProfile& p)
       m_op(p.c_op),
       m_op_partial(p.c_op_partial),
       m_line_pix(p.c_line_pix),
+      m_zspan_base(depth_span_cycles(p, false, 0, 0)),
+      m_zspan_outside(depth_span_outside_cycles(p)),
+      m_zclip(p.c_zclip),
+      m_zpass(p.c_zpass),
+      m_zfail(p.c_zfail),
       m_span_as_fill(p.span_as == SpanAs::Fill) {
     if (p.bpp == 0 || p.bus_bits % p.bpp != 0 || !std::has_single_bit(p.bpp))
         throw std::invalid_argument(

@@ -67,7 +67,7 @@ inline uint32_t face_bytes(std::size_t points) {
 // The formulas above, for the controller's per-command path: the profile's figures widened
 // to 64 bits once, each command's constant part summed, and the division by P a shift (P is
 // a power of two). Same results as fill_rect_cycles / draw_span_cycles / outside_cycles /
-// frame_end_cycles for every input.
+// frame_end_cycles / depth_span_cycles / depth_span_outside_cycles for every input.
 class CycleCosts {
   public:
     // Throws std::invalid_argument unless bpp is 1, 2, 4, 8 or 16 (as load_profile checks).
@@ -82,6 +82,11 @@ class CycleCosts {
     }
     uint64_t fill_outside() const { return m_fill_outside; }
     uint64_t span_outside() const { return m_span_outside; }
+    // depth_span_cycles and depth_span_outside_cycles
+    uint64_t depth_span(bool cut_left, uint64_t nearer, uint64_t farther) const {
+        return m_zspan_base + (cut_left ? m_zclip : 0) + nearer * m_zpass + farther * m_zfail;
+    }
+    uint64_t depth_span_outside() const { return m_zspan_outside; }
     uint64_t frame_end() const { return m_frame_end; }
 
   private:
@@ -96,6 +101,7 @@ class CycleCosts {
 
     uint64_t m_fill_base, m_span_fill_base, m_line_base, m_fill_outside, m_span_outside,
         m_frame_end, m_row, m_op, m_op_partial, m_line_pix;
+    uint64_t m_zspan_base, m_zspan_outside, m_zclip, m_zpass, m_zfail;
     uint32_t m_word_shift = 0;  // log2 P
     uint64_t m_word_mask = 0;   // P - 1
     bool m_span_as_fill;

@@ -5,6 +5,8 @@
 // once per command; clear fills the whole framebuffer as one run, as its rows touch.
 #include "controller_sim/framebuffer.h"
 
+#include <bit>
+#include <cstring>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -42,6 +44,39 @@ void Framebuffer::resize(uint32_t width, uint32_t height) {
 void Framebuffer::clear(protocol::Rgb c) {
     // rows are contiguous: one run over the whole framebuffer
     fill_run(m_pixels.data(), std::size_t{m_width} * m_height, rgb_pattern(c));
+}
+
+namespace {
+
+// The first i in [from, n) whose flag is not `flag` (0 or 1), or n: eight flags a load.
+uint32_t next_change(const uint8_t* flags, uint32_t from, uint32_t n, uint8_t flag) {
+    const uint64_t same = flag ? 0x0101010101010101ULL : 0;
+    uint32_t i = from;
+    for (; i + 8 <= n; i += 8) {
+        uint64_t v;
+        std::memcpy(&v, flags + i, 8);
+        if (const uint64_t d = v ^ same; d != 0) {
+            const int byte = std::endian::native == std::endian::little ? std::countr_zero(d) / 8
+                                                                        : std::countl_zero(d) / 8;
+            return i + static_cast<uint32_t>(byte);
+        }
+    }
+    while (i < n && flags[i] == flag)
+        ++i;
+    return i;
+}
+
+}  // namespace
+
+void Framebuffer::draw_flagged(uint32_t y, uint32_t x, uint32_t n, const uint8_t* flags,
+                               protocol::Rgb c) {
+    uint8_t* const row = m_pixels.data() + row_offset(y) + std::size_t{x} * 3;
+    const RgbPattern pattern = rgb_pattern(c);
+    for (uint32_t i = next_change(flags, 0, n, 0); i < n;) {
+        const uint32_t end = next_change(flags, i, n, 1);
+        fill_run(row + std::size_t{i} * 3, end - i, pattern);
+        i = next_change(flags, end, n, 0);
+    }
 }
 
 void Framebuffer::fill_rect(const PixelRect& r, protocol::Rgb c) {

@@ -62,6 +62,10 @@ class Framebuffer {
         fill_run(m_pixels.data() + row_offset(y) + std::size_t{x} * 3, n, rgb_pattern(c));
     }
 
+    // Pixels x + i of row y for each i < n whose flags[i] is 1 (every flag 0 or 1), the
+    // runs of them each filled at once; the n pixels must lie inside the framebuffer.
+    void draw_flagged(uint32_t y, uint32_t x, uint32_t n, const uint8_t* flags, protocol::Rgb c);
+
     protocol::Rgb pixel(uint32_t x, uint32_t y) const;  // (x, y) must be inside
     void set_pixel(uint32_t x, uint32_t y, protocol::Rgb c);
 

@@ -120,7 +120,17 @@ struct Price {
 class Pricer {
   public:
     Pricer(const Listing& listing, const Parsed& parsed, const MemoryTiming& memory, TimingEnd end)
-        : m_listing(listing), m_parsed(parsed), m_memory(memory), m_end(end) {}
+        : m_listing(listing), m_parsed(parsed), m_memory(memory), m_end(end) {
+        if (m_memory.chip != Chip::Tms34020) return;
+        // each instruction's address in words, the listing loaded at a long word (its words
+        // do not depend on the chip): the 34020 prices a long immediate by its alignment
+        const Pricer words(listing, parsed, MemoryTiming{}, TimingEnd::Estimate);
+        uint32_t at = 0;
+        for (const Instruction& in : parsed.code) {
+            m_word_at[in.line] = at;
+            at += words.price(in).words;
+        }
+    }
 
     [[noreturn]] void fail(const Instruction& in, std::string_view what) const {
         throw std::runtime_error(
@@ -132,63 +142,112 @@ class Pricer {
         const auto& ops = in.operands;
         const auto n = ops.size();
         const auto reg = [&](std::size_t i) { return i < n && is_register(ops[i]); };
+        // The TMS34020's figures (User's Guide SPVU019 as [UG20], the cycles of a cached
+        // instruction with no wait states, p. 15-1) where its pages give them; its form's
+        // 34010 figure otherwise, said in the source.
+        const bool c20 = m_memory.chip == Chip::Tms34020;
+        const auto by_chip = [&](uint32_t words, uint32_t c10, std::string s10, uint32_t c20_cycles,
+                                 std::string s20) {
+            return c20 ? simple(words, c20_cycles, std::move(s20))
+                       : simple(words, c10, std::move(s10));
+        };
 
         if (m == "MOVE" && n == 2 && reg(0) && reg(1))
-            return simple(1, 1, "[DS] p. 12, MOVE Rs,Rd");
-        if (m == "MOVE" && (n == 2 || n == 3)) return memory_move(in);
+            return by_chip(1, 1, "[DS] p. 12, MOVE Rs,Rd", 1, "[UG20] p. 13-158, MOVE Rs,Rd");
+        if (m == "MOVE" && (n == 2 || n == 3)) return c20 ? memory_move_34020(in) : memory_move(in);
         if (m == "MOVI" && n == 2 && reg(1)) {
             const bool is_short = fits_word(in, ops[0]);
+            if (c20)
+                return is_short ? simple(2, 2, "[UG20] pp. 13-167, 15-6, MOVI IW,Rd")
+                                : long_immediate(in, "MOVI", "pp. 13-168, 15-6");
             return is_short ? simple(2, 2, "[DS] p. 13, MOVI IW,Rd")
                             : simple(3, 3, "[DS] p. 13, MOVI IL,Rd");
         }
         if ((m == "ADDI" || m == "SUBI" || m == "CMPI") && n == 2 && reg(1)) {
             const bool is_short = fits_word(in, ops[0]);
+            if (c20)
+                return is_short ? simple(2, 2, fmt::format("[UG20] pp. 15-3 to 15-9, {} IW,Rd", m))
+                                : long_immediate(in, m, "pp. 15-3 to 15-9");
             return is_short ? simple(2, 2, fmt::format("[DS] pp. 13-14, {} IW,Rd", m))
                             : simple(3, 3, fmt::format("[DS] pp. 13-14, {} IL,Rd", m));
         }
         if ((m == "ANDI" || m == "ORI" || m == "XORI") && n == 2 && reg(1))
-            return simple(3, 3, fmt::format("[DS] pp. 13-14, {} IL,Rd", m));
+            return c20 ? long_immediate(in, m, "pp. 15-3 to 15-9")
+                       : simple(3, 3, fmt::format("[DS] pp. 13-14, {} IL,Rd", m));
         if ((m == "MOVK" || m == "ADDK" || m == "SUBK") && n == 2 && reg(1) && constant(in, ops[0]))
-            return simple(1, 1, fmt::format("[DS] pp. 13-14, {} K,Rd", m));
+            return by_chip(1, 1, fmt::format("[DS] pp. 13-14, {} K,Rd", m), 1,
+                           fmt::format("[UG20] pp. 13-37, 13-169, 13-245, {} K,Rd", m));
         if ((m == "SLL" || m == "SRL" || m == "SRA" || m == "RL") && n == 2 && reg(1) &&
             (reg(0) || constant(in, ops[0])))
-            return simple(1, 1, fmt::format("[DS] pp. 13-14, {}", m));
+            return by_chip(1, 1, fmt::format("[DS] pp. 13-14, {}", m), 1,
+                           fmt::format("[UG20] pp. 13-222 to 13-240, 15-8, {}", m));
         if ((m == "ADD" || m == "ADDC" || m == "SUB" || m == "SUBB" || m == "CMP" || m == "AND" ||
              m == "ANDN" || m == "OR" || m == "XOR" || m == "ADDXY" || m == "SUBXY") &&
             n == 2 && reg(0) && reg(1)) {
             same_file(in);
-            return simple(1, 1, fmt::format("[DS] pp. 11, 13-14, {} Rs,Rd", m));
+            return by_chip(1, 1, fmt::format("[DS] pp. 11, 13-14, {} Rs,Rd", m), 1,
+                           fmt::format("[UG20] ch. 13, pp. 15-2 to 15-9, {} Rs,Rd", m));
         }
-        if (m == "CMPXY" && n == 2 && reg(0) && reg(1)) return simple(1, 3, "[DS] p. 11, CMPXY");
+        if (m == "CMPXY" && n == 2 && reg(0) && reg(1))
+            return by_chip(1, 3, "[DS] p. 11, CMPXY", 1, "[UG20] p. 13-84, CMPXY");
         if ((m == "NEG" || m == "NEGB" || m == "NOT" || m == "CLR" || m == "INC" || m == "DEC" ||
              m == "ABS") &&
             n == 1 && reg(0))
-            return simple(1, 1, fmt::format("[DS] p. 13, {} Rd", m));
+            return by_chip(1, 1, fmt::format("[DS] p. 13, {} Rd", m), 1,
+                           fmt::format("[UG20] ch. 13, {} Rd", m));
         if (m.size() >= 3 && m.rfind("JR", 0) == 0 && n == 1) {
             const std::string code = m.substr(2);
             if (std::find(std::begin(kConditions), std::end(kConditions), code) ==
                 std::end(kConditions))
                 fail(in, "not a condition code");
-            Price p = simple(1, 2, "[DS] p. 14, JRcc short: 2 taken, 1 not");
+            Price p = by_chip(1, 2, "[DS] p. 14, JRcc short: 2 taken, 1 not", 2,
+                              "[EMU] JRcc short: 2 taken, 1 not, as the 34010's (the User's "
+                              "Guide pages read give the long form only, 3/2: [UG20] p. 15-5)");
             p.kind = code == "UC" ? Kind::Jump : Kind::Branch;
             p.cycles_not_taken = 1;
             p.target = ops[0];
             return p;
         }
         if (m == "DSJ" && n == 2 && reg(0)) {
-            Price p = simple(2, 3, "[DS] p. 14, DSJ Rd,Address: 3 taken, 2 not");
+            Price p = by_chip(2, 3, "[DS] p. 14, DSJ Rd,Address: 3 taken, 2 not", 3,
+                              "[UG20] pp. 13-103, 15-4, DSJ Rd,Address: 3 taken, 2 not");
             p.kind = Kind::Branch;
             p.cycles_not_taken = 2;
             p.target = ops[1];
             return p;
         }
         if (m == "MPYS" && n == 2 && reg(0) && reg(1))
-            return simple(1, 5 + kFieldBits[1] / 2, "[DS] p. 13, MPYS Rs,Rd: 5 + FS1/2, FS1 = 32");
+            return by_chip(1, 5 + kFieldBits[1] / 2, "[DS] p. 13, MPYS Rs,Rd: 5 + FS1/2, FS1 = 32",
+                           5 + kFieldBits[1] / 2 + (m_end == TimingEnd::High ? 1 : 0),
+                           m_end == TimingEnd::High
+                               ? "[UG20] p. 15-6, MPYS Rs,Rd: 6 + FS1/2 for a positive Rs, FS1 "
+                                 "= 32 (the band's dear end: p. 13-173 reads 5 + FS1/2)"
+                               : "[UG20] p. 13-173, MPYS Rs,Rd: 5 + FS1/2, FS1 = 32 (band "
+                                 "21-22: p. 15-6 reads 6 + FS1/2 for a positive Rs)");
         if (m == "DIVS" && n == 2 && reg(0) && reg(1))
-            return simple(1, 40, "[DS] p. 13, DIVS Rs,Rd");
-        if (m == "CVXYL" && n == 2 && reg(0) && reg(1)) return simple(1, 3, "[DS] p. 11, CVXYL");
+            return by_chip(1, 40, "[DS] p. 13, DIVS Rs,Rd", 40,
+                           "[UG20] pp. 13-96, 15-4, DIVS Rs,Rd: 40, the form with a remainder "
+                           "(64 by 32 bits; 39 for the quotient alone)");
+        if (m == "CVXYL" && n == 2 && reg(0) && reg(1))
+            return by_chip(1, 3, "[DS] p. 11, CVXYL", 3,
+                           "[UG20] pp. 13-92, 15-4, CVXYL at a power-of-two pitch");
         if ((m == "MOVX" || m == "MOVY") && n == 2 && reg(0) && reg(1))
-            return simple(1, 1, fmt::format("[DS] p. 11, {} Rs,Rd", m));
+            return by_chip(1, 1, fmt::format("[DS] p. 11, {} Rs,Rd", m), 1,
+                           fmt::format("[UG20] pp. 13-170, 15-6, {} Rs,Rd", m));
+        if (c20 && m == "PIXT" && n == 2 && reg(0) && ops[1].starts_with("*") &&
+            is_register(std::string_view(ops[1]).substr(1))) {
+            const uint32_t issue = m_end == TimingEnd::Low ? 1 : 2;
+            Price p = simple(
+                1, issue,
+                fmt::format("[EMU] PIXT Rs,*Rd: {} state{} to issue (MAME's 2, band 1-2; the "
+                            "User's Guide pages read do not give it) + the pixel's hidden write, "
+                            "{} state{} ([UG20] Table 15-2, p. 15-10: case 1 with byte strobes)",
+                            issue, issue == 1 ? "" : "s", m_memory.pixel_write_states,
+                            m_memory.pixel_write_states == 1 ? "" : "s"));
+            p.kind = Kind::MemoryWrite;
+            p.queued = m_memory.pixel_write_states;
+            return p;
+        }
         if (m == "PIXT" && n == 2 && reg(0) && ops[1].starts_with("*") &&
             is_register(std::string_view(ops[1]).substr(1))) {
             // PIXT Rs,*Rd: the data sheet defers it to the User's Guide (p. 11, "T"); priced
@@ -206,14 +265,18 @@ class Pricer {
             return p;
         }
         if (m == "JUMP" && n == 1 && reg(0)) {
-            Price p = simple(1, 2, "[DS] p. 14, JUMP Rs");
+            Price p = by_chip(1, 2, "[DS] p. 14, JUMP Rs", 2, "[UG20] p. 13-141, JUMP Rs");
             p.kind = Kind::Dispatch;
             return p;
         }
         if (m == "FILL" && n == 1 && upper(ops[0]) == "XY") {
             Price p = simple(1, 8,
-                             "[EMU] FILL XY's own set-up, MAME's fill(): 4 + 2 (XY) + 2; its "
-                             "pixels are the memory model's");
+                             c20 ? "[EMU] FILL XY's own set-up, MAME's fill(): 4 + 2 (XY) + 2 "
+                                   "(the 34020's User's Guide calls FILL a complex instruction "
+                                   "and gives no count, p. 15-5); its pixels are the memory "
+                                   "model's"
+                                 : "[EMU] FILL XY's own set-up, MAME's fill(): 4 + 2 (XY) + 2; "
+                                   "its pixels are the memory model's");
             p.kind = Kind::Graphics;
             p.graphics = "FILL";
             return p;
@@ -312,10 +375,91 @@ class Pricer {
         return p;
     }
 
+    // The 34020's long immediate (IL): 2 states when its two words start on a long word, 3
+    // when not ([UG20]); the listing's own layout says which.
+    Price long_immediate(const Instruction& in, std::string_view m, std::string_view pages) const {
+        const bool aligned = (m_word_at.at(in.line) + 1) % 2 == 0;
+        return simple(3, aligned ? 2 : 3,
+                      fmt::format("[UG20] {}, {} IL,Rd: {} (its long word {}aligned at word {} "
+                                  "of the listing)",
+                                  pages, m, aligned ? 2 : 3, aligned ? "" : "not ",
+                                  m_word_at.at(in.line) + 1));
+    }
+
+    // The 34020's MOVE with a memory operand ([UG20] pp. 13-159 to 13-161, Table 15-2 p. 15-10
+    // and p. 15-11), a field of 16 or 32 bits that its 32-bit bus moves in one cycle:
+    //   *Rs,Rd and *Rs+,Rd   3         Rs,*Rd and Rs,*Rd+   1 (+1)
+    //   @a,Rd                4 / 5     Rs,@a                2 (+1) / 3 (+1)
+    // (+n: hidden write states, the write queue's), @a by its address's alignment in the
+    // listing, FE = 0 (SETF 16,0,0 and 32,0,1). A 16-bit field on a 16-bit boundary and
+    // @a's long-aligned symbols are case 1; a 32-bit field through a register is taken as
+    // case 1 (long-aligned) and at the band's dear end as case 3, across a long word (+1
+    // read state, +1 hidden write state: the ring's words are 16-bit aligned only). A wait
+    // state adds a state to the cycle (the counts assume none, p. 15-1).
+    Price memory_move_34020(const Instruction& in) const {
+        const auto& ops = in.operands;
+        const std::size_t field = ops.size() == 3 ? (ops[2] == "1" ? 1 : ops[2] == "0" ? 0 : 2) : 0;
+        if (field > 1) fail(in, "the field select is 0 or 1");
+        const auto memory = [](std::string_view s) {
+            return s.starts_with("*") || s.starts_with("@");
+        };
+        const bool read = memory(ops[0]) && is_register(ops[1]);
+        const bool write = is_register(ops[0]) && memory(ops[1]);
+        if (!read && !write) fail(in, "a MOVE is register to memory or memory to register here");
+        const std::string_view where = read ? std::string_view(ops[0]) : std::string_view(ops[1]);
+        bool io = false;
+        const bool absolute = where.starts_with("@");
+        bool across = false;  // a 32-bit field across a long word: case 3
+        if (where.starts_with("*")) {
+            std::string_view r = where.substr(1);
+            if (r.ends_with("+")) r.remove_suffix(1);
+            if (!is_register(r)) fail(in, "an indirect operand is *Rn or *Rn+");
+            across = kFieldBits[field] == 32 && m_end == TimingEnd::High;
+        } else {
+            const uint64_t address = value(in, where.substr(1));
+            io = address >= kIoFirst && address <= kIoLast;
+            if (address % 16 != 0) fail(in, "an absolute operand here is word-aligned");
+            across = kFieldBits[field] == 32 && address % 32 != 0;
+        }
+        const uint32_t wait = io || m_memory.cycle_states <= 2 ? 0 : m_memory.cycle_states - 2;
+        Price p;
+        p.words = absolute ? 3 : 1;
+        p.kind = read ? Kind::MemoryRead : Kind::MemoryWrite;
+        std::string form;
+        uint32_t visible = 0, hidden = 0;
+        if (absolute) {
+            // the address's two words after the opcode: on a long word when the opcode is not
+            const bool aligned = (m_word_at.at(in.line) + 1) % 2 == 0;
+            visible = (read ? (aligned ? 4 : 5) : (aligned ? 2 : 3)) + (read && across ? 1 : 0);
+            hidden = read ? 0 : 1 + (across ? 1 : 0);
+            form = fmt::format("{}, its address {}aligned, {}-bit field, case {}",
+                               read ? "MOVE @a,Rd" : "MOVE Rs,@a", aligned ? "" : "not ",
+                               kFieldBits[field], across ? 3 : 1);
+        } else {
+            visible = read ? 3 + (across ? 1 : 0) : 1;
+            hidden = read ? 0 : 1 + (across ? 1 : 0);
+            form =
+                fmt::format("{}, {}-bit field, case {}", read ? "MOVE *Rs(+),Rd" : "MOVE Rs,*Rd(+)",
+                            kFieldBits[field], across ? 3 : 1);
+        }
+        if (read) {
+            p.cycles = visible + wait;
+        } else {
+            p.cycles = visible;
+            p.queued = hidden + wait;
+        }
+        p.source =
+            fmt::format("[UG20] pp. 13-159 to 13-161, 15-10 to 15-11, {}: {}{}{}", form, visible,
+                        hidden ? fmt::format(" (+{})", hidden) : "",
+                        wait ? fmt::format(" + {} wait state{}", wait, wait == 1 ? "" : "s") : "");
+        return p;
+    }
+
     const Listing& m_listing;
     const Parsed& m_parsed;
     MemoryTiming m_memory;
     TimingEnd m_end;
+    std::map<int, uint32_t> m_word_at;  // the 34020's: each instruction's word, by line
 };
 
 Parsed parse(const Listing& listing) {
@@ -484,6 +628,16 @@ CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pri
 
 }  // namespace
 
+std::optional<Chip> chip_named(std::string_view name) {
+    if (name == "tms34010") return Chip::Tms34010;
+    if (name == "tms34020") return Chip::Tms34020;
+    return std::nullopt;
+}
+
+std::string_view chip_name(Chip chip) {
+    return chip == Chip::Tms34020 ? "tms34020" : "tms34010";
+}
+
 const Listing& builtin_listing(std::string_view name) {
     for (const Listing& l : builtin_listings())
         if (l.name == name) return l;
@@ -553,8 +707,10 @@ std::string annotated_listing(const Listing& listing, const MemoryTiming& memory
         for (const CountedLine& l : path.lines)
             priced.emplace(l.line, &l);
     std::string out = fmt::format(
-        "; {}.asm, each counted instruction with its cycles (memory cycle {} states, I/O {})\n",
-        listing.name, memory.cycle_states, memory.io_cycle_states);
+        "; {}.asm, each counted instruction with its cycles on the {} (memory cycle {} states, "
+        "I/O {})\n",
+        listing.name, memory.chip == Chip::Tms34020 ? "TMS34020" : "TMS34010", memory.cycle_states,
+        memory.io_cycle_states);
     std::string_view text = listing.text;
     int number = 0;
     while (!text.empty()) {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -17,13 +18,24 @@ namespace fb89::controller {
 // What the memory costs an instruction of the listing: the states of one local-memory cycle
 // with its wait states (a 16-bit word read or written), and of an I/O register's cycle
 // (which ignores LRDY: no wait states, SPVS002C p. 20).
+// The processor whose instruction timings price the listing: the TMS34010's data sheet
+// (SPVS002C pp. 11-14), or the TMS34020's User's Guide (SPVU019 ch. 13 and 15, the cycle
+// counts of a cached instruction with no wait states; docs/COST_MODEL.md, "The TMS34020's
+// own timings"). The 34020 runs the 34010's object code (SPVS004D p. 1): the same listing.
+enum class Chip { Tms34010, Tms34020 };
+
 struct MemoryTiming {
     uint32_t cycle_states = 2;
     uint32_t io_cycle_states = 2;
     // One pixel written alone (PIXT): a write cycle when the pixel fills its word or byte
-    // strobes take it alone, else a read and a write.
+    // strobes take it alone, else a read and a write (the 34020: its hidden write states).
     uint32_t pixel_write_states = 4;
+    Chip chip = Chip::Tms34010;
 };
+
+// "tms34010" or "tms34020"; std::nullopt for any other name.
+std::optional<Chip> chip_named(std::string_view name);
+std::string_view chip_name(Chip chip);
 
 // Which end of an estimated instruction timing a count takes: the estimate itself, or the
 // low or high end of its band.

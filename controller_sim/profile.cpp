@@ -39,7 +39,7 @@ constexpr const char* kUnlimited = "unlimited";
 // The value of command_buffer_bytes for a buffer without a bound.
 constexpr const char* kUnbounded = "unbounded";
 
-constexpr std::array<std::string_view, 29> kKnownKeys = {"name",
+constexpr std::array<std::string_view, 30> kKnownKeys = {"name",
                                                          "description",
                                                          "f_cyc_hz",
                                                          "bpp",
@@ -67,7 +67,8 @@ constexpr std::array<std::string_view, 29> kKnownKeys = {"name",
                                                          "byte_strobes",
                                                          "page_mode_states",
                                                          "host_port_bytes_per_s",
-                                                         "depth_bits"};
+                                                         "depth_bits",
+                                                         "gsp_chip"};
 
 // A profile's cycle figures given directly (no "gsp"), and derived from the listing (with it).
 constexpr std::array<std::string_view, 5> kGivenCycles = {"C_cmd", "C_setup", "C_op",
@@ -354,6 +355,13 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         if (!it->is_string() || it->get<std::string>().empty())
             r.fail("gsp", fmt::format("expected the name of a listing, got {}", it->dump()));
         p.gsp = it->get<std::string>();
+        if (auto c = j.find("gsp_chip"); c != j.end()) {
+            const auto chip = c->is_string() ? chip_named(c->get<std::string>()) : std::nullopt;
+            if (!chip)
+                r.fail("gsp_chip",
+                       fmt::format("expected \"tms34010\" or \"tms34020\", got {}", c->dump()));
+            p.gsp_chip = *chip;
+        }
         for (std::string_view given : kGivenCycles)
             if (j.contains(given))
                 r.fail(given,
@@ -387,8 +395,8 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         for (std::string_view model : kMemoryModel)
             if (j.contains(model))
                 r.fail(model, "only a profile with \"gsp\" (a listing) has a memory model");
-        for (std::string_view field :
-             {"C_line_extra", "byte_strobes", "page_mode_states", "host_port_bytes_per_s"})
+        for (std::string_view field : {"C_line_extra", "byte_strobes", "page_mode_states",
+                                       "host_port_bytes_per_s", "gsp_chip"})
             if (j.contains(field)) r.fail(field, "only a profile with \"gsp\" (a listing) has it");
         p.c_cmd = r.cycles("C_cmd");
         p.c_setup = r.cycles("C_setup");
@@ -446,6 +454,20 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
     return p;
 }
 
+MemoryTiming memory_timing(const CostProfile& p) {
+    const uint32_t m = p.memory_cycle_states + p.wait_states;  // one memory cycle, SPVS002C p. 19
+    // An I/O register's cycle ignores LRDY (p. 20): no wait states.
+    // A pixel written alone (PIXT): one write when it fills its word or a byte strobe takes
+    // it, else a read and a write. The 34020's hidden write states instead ([UG20] Table
+    // 15-2): 1 for a byte-aligned field in a long word (case 1), 2 for one that is not (case
+    // 2), plus the wait states.
+    const bool pixel_alone = p.bpp >= p.bus_bits || (p.byte_strobes && p.bpp >= 8);
+    const uint32_t pixel_write = p.gsp_chip == Chip::Tms34020
+                                     ? (pixel_alone ? 1 : 2) + p.wait_states
+                                     : (pixel_alone ? m : 2 * m);
+    return MemoryTiming{m, p.memory_cycle_states, pixel_write, p.gsp_chip};
+}
+
 void derive_figures(CostProfile& p) {
     p.c_row = p.row_states;
     if (p.gsp.empty()) {
@@ -469,13 +491,7 @@ void derive_figures(CostProfile& p) {
     const TimingEnd end = p.listing_dear    ? TimingEnd::High
                           : p.listing_cheap ? TimingEnd::Low
                                             : TimingEnd::Estimate;
-    // An I/O register's cycle ignores LRDY (p. 20): no wait states.
-    // A pixel written alone (PIXT): one write when it fills its word or a byte strobe takes
-    // it, else a read and a write.
-    const bool pixel_alone = p.bpp >= p.bus_bits || (p.byte_strobes && p.bpp >= 8);
-    const auto paths =
-        count_paths(builtin_listing(p.gsp),
-                    MemoryTiming{m, p.memory_cycle_states, pixel_alone ? m : 2 * m}, end);
+    const auto paths = count_paths(builtin_listing(p.gsp), memory_timing(p), end);
     const auto path = [&](const char* name, const char* graphics) -> uint32_t {
         auto it = paths.find(name);
         if (it == paths.end())
@@ -616,6 +632,7 @@ nlohmann::json CostProfile::to_json() const {
         j["C_line_pix"] = c_line_pix;
     } else {
         j["gsp"] = gsp;
+        j["gsp_chip"] = std::string(chip_name(gsp_chip));
         j["memory_cycle_states"] = memory_cycle_states;
         j["wait_states"] = wait_states;
         j["refresh_every_states"] = refresh_every_states;

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "controller_sim/gsp_listing.h"
 #include "protocol/command.h"
 
 namespace fb89::controller {
@@ -43,6 +44,7 @@ struct CostProfile {
     // A profile without "gsp" gives the derived figures itself (C_cmd, C_setup, C_op, C_row,
     // C_line_setup, C_line_pix: the figures of the first cost model, MAME's).
     std::string gsp;                    // the command executive, controller_sim/gsp/NAME.asm
+    Chip gsp_chip = Chip::Tms34010;     // whose instruction timings price it ("gsp_chip")
     uint32_t memory_cycle_states = 2;   // one local-memory cycle without wait states
     uint32_t wait_states = 0;           // LRDY's, per memory cycle
     uint32_t refresh_every_states = 0;  // a DRAM refresh cycle every N states (0: none)
@@ -188,6 +190,10 @@ CostProfile load_profile_file(const std::filesystem::path& path);
 inline CostProfile default_profile() {
     return load_profile(kDefaultProfile);
 }
+
+// What the memory costs the listing's instructions in profile `p` (one with "gsp"): its
+// memory cycle with wait states, its I/O cycle, a pixel written alone, the chip's timings.
+MemoryTiming memory_timing(const CostProfile& p);
 
 // Fills the figures the cost model charges: a "gsp" profile's from its listing and memory
 // model, a profile without one's from its given figures by the first model's rules

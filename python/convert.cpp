@@ -212,8 +212,28 @@ void CommandRows::check() const {
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const DepthFields* fields = rows[i].opcode >= 9 ? beside(depth, d, i) : nullptr;
         const auto* points = rows[i].opcode == 10 ? beside(faces, face, i) : nullptr;
+        if (rows[i].opcode >= 9 && rows[i].opcode <= 10 && !fields)
+            throw std::invalid_argument("commands: row " + std::to_string(i) + " (" +
+                                        (rows[i].opcode == 9 ? "DEPTH_SPAN" : "FACE") +
+                                        ") has no (row, z, dzdx, dzdy) entry in depth");
+        if (fields && rows[i].opcode == 9 && fields->dzdy != 0)
+            throw std::invalid_argument(
+                "depth: row " + std::to_string(i) + " (DEPTH_SPAN) has a dzdy of " +
+                std::to_string(fields->dzdy) + "; a span steps in x only (0)");
         row_command(rows[i], i, {}, fields ? *fields : DepthFields{}, points);
     }
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+        const std::size_t row = depth[k].first;
+        if (row >= rows.size() || (rows[row].opcode != 9 && rows[row].opcode != 10))
+            throw std::invalid_argument("depth: row " + std::to_string(row) +
+                                        " is not a DEPTH_SPAN or FACE");
+        if (k > 0 && depth[k - 1].first == row)
+            throw std::invalid_argument("depth: row " + std::to_string(row) + " given twice");
+    }
+    for (std::size_t k = 1; k < faces.size(); ++k)
+        if (faces[k - 1].first == faces[k].first)
+            throw std::invalid_argument("face_points: row " + std::to_string(faces[k].first) +
+                                        " given twice");
     for (const auto& [row, points] : faces)
         if (row >= rows.size() || rows[row].opcode != 10)
             throw std::invalid_argument("face_points: row " + std::to_string(row) +

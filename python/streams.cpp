@@ -140,14 +140,84 @@ std::vector<std::pair<std::size_t, std::string>> markers_of(const py::handle& ma
     return out;
 }
 
+// (row, z, dzdx[, dzdy]) entries, as Stream.depth gives them, in row order.
+std::vector<std::pair<std::size_t, DepthFields>> depth_of(const py::handle& depth) {
+    std::vector<std::pair<std::size_t, DepthFields>> out;
+    if (depth.is_none()) return out;
+    if (!py::isinstance<py::list>(depth) && !py::isinstance<py::tuple>(depth))
+        throw py::type_error("depth: expected a list of (row, z, dzdx, dzdy) tuples");
+    static constexpr frontend::OptionLimit kRow{"", "depth: row", 0, 1e15};
+    static constexpr frontend::OptionLimit kZ{"", "depth: z", 0, 4294967295.0};
+    static constexpr frontend::OptionLimit kSlope{"", "depth: slope", -2147483648.0, 2147483647.0};
+    for (const py::handle entry : depth) {
+        if (!py::isinstance<py::tuple>(entry) && !py::isinstance<py::list>(entry))
+            throw py::type_error("depth: expected (row, z, dzdx, dzdy) tuples");
+        const py::sequence e = py::reinterpret_borrow<py::sequence>(entry);
+        if (e.size() != 3 && e.size() != 4)
+            throw py::type_error(
+                "depth: expected (row, z, dzdx, dzdy) tuples (dzdy may be left "
+                "out for a DEPTH_SPAN)");
+        DepthFields d;
+        d.z = static_cast<uint32_t>(whole_number(e[1], kZ));
+        d.dzdx = static_cast<int32_t>(whole_number(e[2], kSlope));
+        if (e.size() == 4) d.dzdy = static_cast<int32_t>(whole_number(e[3], kSlope));
+        out.emplace_back(static_cast<std::size_t>(whole_number(e[0], kRow)), d);
+    }
+    std::stable_sort(out.begin(), out.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+}
+
+// (row, points) pairs, points an n x 2 array of integers in 1/256 pixel, as Stream.face_points
+// gives them, in row order.
+std::vector<std::pair<std::size_t, std::vector<protocol::SnappedPoint>>> face_points_of(
+    const py::handle& faces) {
+    std::vector<std::pair<std::size_t, std::vector<protocol::SnappedPoint>>> out;
+    if (faces.is_none()) return out;
+    if (!py::isinstance<py::list>(faces) && !py::isinstance<py::tuple>(faces))
+        throw py::type_error("face_points: expected a list of (row, points) pairs");
+    static constexpr frontend::OptionLimit kRow{"", "face_points: row", 0, 1e15};
+    for (const py::handle pair : faces) {
+        if (!py::isinstance<py::tuple>(pair) && !py::isinstance<py::list>(pair))
+            throw py::type_error("face_points: expected (row, points) pairs");
+        const py::sequence p = py::reinterpret_borrow<py::sequence>(pair);
+        if (p.size() != 2) throw py::type_error("face_points: expected (row, points) pairs");
+        const std::size_t row = static_cast<std::size_t>(whole_number(p[0], kRow));
+        py::array_t<int64_t> a;
+        try {
+            a = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(p[1]);
+        } catch (const py::error_already_set&) {
+            a = {};
+        }
+        if (!a || a.ndim() != 2 || a.shape(1) != 2)
+            throw py::type_error("face_points: row " + std::to_string(row) +
+                                 ": expected an n x 2 array of integers (x, y in 1/256 pixel)");
+        if (py::isinstance<py::array>(p[1]) &&
+            py::reinterpret_borrow<py::array>(p[1]).dtype().kind() == 'f')
+            throw py::type_error("face_points: row " + std::to_string(row) +
+                                 ": points are integers in 1/256 pixel, not floats");
+        const auto v = a.unchecked<2>();
+        std::vector<protocol::SnappedPoint> points(static_cast<std::size_t>(a.shape(0)));
+        for (py::ssize_t i = 0; i < a.shape(0); ++i)
+            points[static_cast<std::size_t>(i)] = {v(i, 0), v(i, 1)};
+        out.emplace_back(row, std::move(points));
+    }
+    std::stable_sort(out.begin(), out.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+}
+
 std::shared_ptr<StreamFile> stream_from(const py::handle& commands, const py::handle& header,
-                                        const py::handle& markers) {
+                                        const py::handle& markers, const py::handle& depth,
+                                        const py::handle& face_points) {
     const py::array rows = rows_of(commands);
     auto out = std::make_shared<StreamFile>();
     out->header = header_of(header);
     const auto* first = static_cast<const CommandRow*>(rows.data());
     out->commands.rows.assign(first, first + rows.shape(0));
     out->commands.markers = markers_of(markers);
+    out->commands.depth = depth_of(depth);
+    out->commands.faces = face_points_of(face_points);
     out->commands.check();
     return out;
 }
@@ -250,14 +320,21 @@ array of fb89.COMMAND_DTYPE, one row a command, with the markers' text beside th
 
 Stream.open(path) reads a file; Stream(commands, header=None, markers=None) makes one from an
 array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.stream.)")
-        .def(py::init(
-                 [](const py::object& commands, const py::object& header,
-                    const py::object& markers) { return stream_from(commands, header, markers); }),
+        .def(py::init([](const py::object& commands, const py::object& header,
+                         const py::object& markers, const py::object& depth,
+                         const py::object& face_points) {
+                 return stream_from(commands, header, markers, depth, face_points);
+             }),
              py::arg("commands"), py::arg("header") = py::none(), py::arg("markers") = py::none(),
-             "A stream of these commands (copied), its header properties, and the MARKER rows' "
-             "text as (row, text) pairs. Every row is checked as the stream format checks "
-             "commands: an opcode that is none, a span of width 0 or a frame of size 0 is an "
-             "fb89.OptionError naming the row.")
+             py::arg("depth") = py::none(), py::arg("face_points") = py::none(),
+             "A stream of these commands (copied), its header properties, the MARKER rows' "
+             "text as (row, text) pairs, and for format version 3 each DEPTH_SPAN's and FACE's "
+             "depth as (row, z, dzdx, dzdy) and each FACE's points as (row, n x 2 integer array "
+             "in 1/256 pixel), as Stream.depth and Stream.face_points give them. Every row is "
+             "checked as the stream format checks commands: an opcode that is none, a span of "
+             "width 0, a frame of size 0, a depth command without its depth, a FACE whose "
+             "points are not its w, or a depth out of range is an fb89.OptionError naming the "
+             "row.")
         .def_static(
             "open",
             [](const py::object& path, const py::object& calls) {

@@ -50,8 +50,7 @@ void reference_pixel(const SnappedPoint* p, uint32_t n, int32_t& x, int32_t& y) 
         sy += p[i].y;
     }
     const auto pixel = [&](int64_t sum) {  // floor(sum / n / 256)
-        const int64_t d = int64_t{n} * kSubpixel;
-        return static_cast<int32_t>(sum >= 0 ? sum / d : -((-sum + d - 1) / d));
+        return static_cast<int32_t>(protocol::detail::floor_div(sum, int64_t{n} * kSubpixel));
     };
     x = pixel(sx);
     y = pixel(sy);

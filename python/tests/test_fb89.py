@@ -524,3 +524,56 @@ def test_a_face_streams_depth_and_points_beside_its_rows(tmp_path):
     again = tmp_path / "again.fb89"
     s.save(again)
     assert fb89.Stream.open(again).commands.tobytes() == s.commands.tobytes()
+
+
+def test_a_depth_stream_built_from_arrays_replays_as_the_render_did(tmp_path):
+    # the rows, their depth and their points are all a stream of version 3 holds: a stream
+    # built from them (as a user would, or edits) replays to the render's frame
+    r = fb89.render("A", method="faces", size=(64, 48))
+    s = r.stream
+    made = fb89.Stream(s.commands.copy(), header={"scene": "made"}, markers=s.markers,
+                       depth=s.depth, face_points=s.face_points)
+    assert made.depth == s.depth
+    assert [row for row, _ in made.face_points] == [row for row, _ in s.face_points]
+    assert np.array_equal(fb89.replay(made).image, fb89.replay(s).image)
+    path = tmp_path / "made.fb89"
+    made.save(str(path))
+    back = fb89.Stream.open(str(path))
+    assert back.version == 3 and back.depth == s.depth
+    # a hand-made DEPTH_SPAN pair: the nearer wins whichever comes first
+    rows = np.zeros(5, dtype=fb89.COMMAND_DTYPE)
+    rows[0] = (fb89.FRAME_BEGIN, 0, 0, 16, 4, 0, 0, 0, 0)
+    rows[1] = (fb89.DEPTH_CLEAR, 0, 0, 0, 0, 0, 0, 0, 0)
+    rows[2] = (fb89.DEPTH_SPAN, 0, 1, 16, 1, 255, 0, 0, 0)
+    rows[3] = (fb89.DEPTH_SPAN, 4, 1, 8, 1, 0, 255, 0, 0)
+    rows[4] = (fb89.FRAME_END, 0, 0, 0, 0, 0, 0, 0, 0)
+    near, far = 1 << 20, 1 << 27
+    image = fb89.replay(fb89.Stream(rows, depth=[(2, far, 0), (3, near, 0, 0)])).image
+    assert (image[1, 4:12] == [0, 255, 0]).all() and (image[1, :4] == [255, 0, 0]).all()
+    image = fb89.replay(fb89.Stream(rows, depth=[(2, near, 0), (3, far, 0)])).image
+    assert (image[1, :] == [255, 0, 0]).all()
+
+
+def test_a_depth_stream_from_arrays_is_checked_as_the_format_checks_it():
+    r = fb89.render("A", method="faces", size=(32, 24))
+    s = r.stream
+    rows = s.commands.copy()
+    face = s.face_points[0][0]
+    with pytest.raises(fb89.OptionError, match=f"row {face} \\(FACE\\) has no .* entry in depth"):
+        fb89.Stream(rows, depth=None, face_points=s.face_points)
+    with pytest.raises(fb89.OptionError, match=f"row {face}: FACE of .* points has 0"):
+        fb89.Stream(rows, depth=s.depth)
+    with pytest.raises(fb89.OptionError, match="depth: row 0 is not a DEPTH_SPAN or FACE"):
+        fb89.Stream(rows, depth=s.depth + [(0, 1, 0, 0)], face_points=s.face_points)
+    with pytest.raises(fb89.OptionError, match=f"depth: row {face} given twice"):
+        fb89.Stream(rows, depth=s.depth + [s.depth[0]], face_points=s.face_points)
+    with pytest.raises(fb89.OptionError, match="depth: z"):
+        fb89.Stream(rows, depth=[(face, -1, 0, 0)] + s.depth[1:], face_points=s.face_points)
+    far = [(row, np.full_like(p, 1 << 40)) for row, p in s.face_points]
+    with pytest.raises(fb89.OptionError, match=f"commands: row {face} \\(FACE\\)"):
+        fb89.Stream(rows, depth=s.depth, face_points=far)
+    with pytest.raises(TypeError, match="face_points: row .* integers"):
+        fb89.Stream(rows, depth=s.depth,
+                    face_points=[(row, p.astype(float)) for row, p in s.face_points])
+    with pytest.raises(TypeError, match="depth: expected"):
+        fb89.Stream(rows, depth=[(face, 1)])

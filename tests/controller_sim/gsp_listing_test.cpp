@@ -95,8 +95,7 @@ TEST(GspListing, TheBandsEndsMoveEveryEstimatedTimingAndNothingElse) {
 TEST(GspListing, TheProfilesFiguresAreTheListingsSums) {
     for (const char* name : {"tms34010-50mhz", "tms34010-isa", "tms34020-40mhz"}) {
         const CostProfile p = load_profile(name);
-        const uint32_t m = p.memory_cycle_states + p.wait_states;
-        const auto paths = count_paths(builtin_listing(p.gsp), MemoryTiming{m, 2});
+        const auto paths = count_paths(builtin_listing(p.gsp), memory_timing(p));
         const auto sum = [](const CountedPath& path) {
             return std::accumulate(path.lines.begin(), path.lines.end(), uint64_t{0},
                                    [](uint64_t s, const CountedLine& l) { return s + l.cycles; });
@@ -110,6 +109,61 @@ TEST(GspListing, TheProfilesFiguresAreTheListingsSums) {
         for (const auto& [path_name, path] : paths)
             EXPECT_EQ(path.cycles, sum(path)) << name << " " << path_name;
     }
+}
+
+// The TMS34020's timings on the same listing, by hand from its User's Guide ([UG20]): the
+// loop's reads are 3 states each whatever the field (a 32-bit bus cycle), its register
+// instructions and jumps as the 34010's: CMP 1, JRNE 2, CMP 1, JRLO 2, MOVE *A0+,A5,0 3,
+// SLL 1, ADD 1, MOVE *A5,A5,1 3, JUMP 2.
+TEST(GspListing, TheTms34020PricesTheSameListingByItsOwnTables) {
+    const MemoryTiming c20{2, 2, 1, Chip::Tms34020};
+    const auto paths = count_paths(tms34010(), c20);
+    EXPECT_EQ(cycles_of(paths.at("COMMON")), (std::vector<uint32_t>{1, 2, 1, 2, 3, 1, 1, 3, 2}));
+    EXPECT_EQ(paths.at("COMMON").lines[4].source.substr(0, 6), "[UG20]");
+    // two 32-bit reads and a 16-bit one, 3 each; four register moves; FILL XY's 8 [EMU]; JRUC 2
+    EXPECT_EQ(cycles_of(paths.at("FILL_RECT")), (std::vector<uint32_t>{3, 3, 3, 1, 1, 1, 1, 8, 2}));
+    // the 16-bit depth loop, a nearer pixel: the read 3, MOVE, SRL, CMP, JRHS not taken 1
+    // each, the depth written 1 (+1 hidden), PIXT 2 [EMU] after the hidden state, its own
+    // write hidden behind ADDK; DSJ taken 3
+    EXPECT_EQ(cycles_of(paths.at("ZPIXEL16:nearer")),
+              (std::vector<uint32_t>{3, 1, 1, 1, 1, 1, 3, 1, 1, 1, 3}));
+    EXPECT_EQ(paths.at("ZPIXEL16:farther").cycles, 3u + 1 + 1 + 1 + 2 + 1 + 1 + 1 + 3);
+    // a wait state lengthens each memory cycle by a state: two reads on the loop
+    const auto slow = count_paths(tms34010(), MemoryTiming{3, 2, 2, Chip::Tms34020});
+    EXPECT_EQ(slow.at("COMMON").cycles, paths.at("COMMON").cycles + 2u);
+    // at the band's dear end a 32-bit field through a register crosses a long word (case 3)
+    const auto high = count_paths(tms34010(), c20, TimingEnd::High);
+    EXPECT_EQ(high.at("COMMON").cycles, paths.at("COMMON").cycles + 1u);
+    EXPECT_EQ(high.at("FILL_RECT").cycles, paths.at("FILL_RECT").cycles + 2u);
+}
+
+// A long immediate costs the 34020 2 states when its long word is aligned and 3 when not,
+// from the instructions' own layout (the listing loaded at a long word).
+TEST(GspListing, TheTms34020PricesALongImmediateByItsAlignment) {
+    const std::string text =
+        ";@path COMMON next\n"
+        "next: MOVI 12345678h,A1\n"  // words 0-2: its long word at word 1, not aligned
+        "      MOVI 12345678h,A2\n"  // words 3-5: at word 4, aligned
+        "      MOVK 1,A3\n"          // word 6
+        "      MOVI 12345678h,A4\n"  // words 7-9: at word 8, aligned
+        "      JUMP A5\n";
+    const auto paths = count_paths(Listing{"imm", text}, MemoryTiming{2, 2, 1, Chip::Tms34020});
+    EXPECT_EQ(cycles_of(paths.at("COMMON")), (std::vector<uint32_t>{3, 2, 1, 2, 2}));
+    EXPECT_NE(paths.at("COMMON").lines[0].source.find("not aligned"), std::string::npos);
+    const auto c10 = count_paths(Listing{"imm", text}, MemoryTiming{2, 2});
+    EXPECT_EQ(cycles_of(c10.at("COMMON")), (std::vector<uint32_t>{3, 3, 1, 3, 2}));
+}
+
+TEST(GspListing, TheTms34020ProfileIsPricedByItsChip) {
+    const CostProfile c20 = load_profile("tms34020-40mhz");
+    EXPECT_EQ(c20.gsp_chip, Chip::Tms34020);
+    EXPECT_EQ(memory_timing(c20).chip, Chip::Tms34020);
+    EXPECT_EQ(memory_timing(c20).pixel_write_states, 1u);  // byte strobes, 8 bpp: case 1
+    EXPECT_EQ(c20.c_cmd, count_paths(tms34010(), memory_timing(c20)).at("COMMON").cycles);
+    EXPECT_EQ(load_profile("tms34010-50mhz").gsp_chip, Chip::Tms34010);
+    EXPECT_EQ(chip_named("tms34020"), Chip::Tms34020);
+    EXPECT_EQ(chip_named("tms34030"), std::nullopt);
+    EXPECT_EQ(chip_name(Chip::Tms34020), "tms34020");
 }
 
 TEST(GspListing, EachCommandsRepeatedWorkFitsTheInstructionCache) {

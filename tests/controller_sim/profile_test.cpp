@@ -112,7 +112,8 @@ TEST(Profile, EveryBuiltInFigureCitesItsSource) {
         const CostProfile p = load_profile(name);
         for (const auto& [field, source] : p.sources)
             EXPECT_TRUE(source.rfind("[DS]", 0) == 0 || source.rfind("[UG]", 0) == 0 ||
-                        source.rfind("[EMU]", 0) == 0 || source.rfind("[EST]", 0) == 0)
+                        source.rfind("[UG20]", 0) == 0 || source.rfind("[EMU]", 0) == 0 ||
+                        source.rfind("[EST]", 0) == 0)
                 << name << " " << field << ": " << source;
         if (name == "ideal") continue;
         std::vector<const char*> fields = {
@@ -168,6 +169,17 @@ TEST(Profile, AListingProfileDerivesItsCycleFiguresAndRefusesThemGiven) {
     j["page_mode_states"] = 1;
     EXPECT_NE(load_error(j).find("\"page_mode_states\": only a profile with \"gsp\""),
               std::string::npos)
+        << load_error(j);
+    j = listing_profile_json();
+    j["gsp_chip"] = "tms34030";
+    EXPECT_NE(load_error(j).find("\"gsp_chip\": expected \"tms34010\" or \"tms34020\""),
+              std::string::npos)
+        << load_error(j);
+    j["gsp_chip"] = "tms34020";
+    EXPECT_EQ(parse_profile(j.dump(), "test").gsp_chip, Chip::Tms34020);
+    j = default_profile_json();
+    j["gsp_chip"] = "tms34020";
+    EXPECT_NE(load_error(j).find("\"gsp_chip\": only a profile with \"gsp\""), std::string::npos)
         << load_error(j);
     // "derived" is written for the reader and ignored when read
     j = listing_profile_json();
