@@ -328,11 +328,13 @@ class Pricer {
             fail(in, "only MOVE crosses between the A and B files");
     }
 
-    // MOVE with a memory operand: the data sheet's tables give no figure ("depends on field
-    // size and alignment", p. 12), so the price is one state to issue it [EST, band 1-2] plus
-    // the memory cycles of its field, word-aligned: a read waits for them; a write is queued
-    // (p. 10) and overlaps the instructions after it until the next memory access.
-    Price memory_move(const Instruction& in) const {
+    // A memory MOVE's field select, direction and memory operand; fails for any other form.
+    struct MoveOperands {
+        std::size_t field;
+        bool read;
+        std::string_view where;
+    };
+    MoveOperands move_operands(const Instruction& in) const {
         const auto& ops = in.operands;
         const std::size_t field = ops.size() == 3 ? (ops[2] == "1" ? 1 : ops[2] == "0" ? 0 : 2) : 0;
         if (field > 1) fail(in, "the field select is 0 or 1");
@@ -342,7 +344,15 @@ class Pricer {
         const bool read = memory(ops[0]) && is_register(ops[1]);
         const bool write = is_register(ops[0]) && memory(ops[1]);
         if (!read && !write) fail(in, "a MOVE is register to memory or memory to register here");
-        const std::string_view where = read ? std::string_view(ops[0]) : std::string_view(ops[1]);
+        return {field, read, read ? std::string_view(ops[0]) : std::string_view(ops[1])};
+    }
+
+    // MOVE with a memory operand: the data sheet's tables give no figure ("depends on field
+    // size and alignment", p. 12), so the price is one state to issue it [EST, band 1-2] plus
+    // the memory cycles of its field, word-aligned: a read waits for them; a write is queued
+    // (p. 10) and overlaps the instructions after it until the next memory access.
+    Price memory_move(const Instruction& in) const {
+        const auto [field, read, where] = move_operands(in);
         if (where.starts_with("*")) {
             std::string_view r = where.substr(1);
             if (r.ends_with("+")) r.remove_suffix(1);
@@ -397,16 +407,7 @@ class Pricer {
     // read state, +1 hidden write state: the ring's words are 16-bit aligned only). A wait
     // state adds a state to the cycle (the counts assume none, p. 15-1).
     Price memory_move_34020(const Instruction& in) const {
-        const auto& ops = in.operands;
-        const std::size_t field = ops.size() == 3 ? (ops[2] == "1" ? 1 : ops[2] == "0" ? 0 : 2) : 0;
-        if (field > 1) fail(in, "the field select is 0 or 1");
-        const auto memory = [](std::string_view s) {
-            return s.starts_with("*") || s.starts_with("@");
-        };
-        const bool read = memory(ops[0]) && is_register(ops[1]);
-        const bool write = is_register(ops[0]) && memory(ops[1]);
-        if (!read && !write) fail(in, "a MOVE is register to memory or memory to register here");
-        const std::string_view where = read ? std::string_view(ops[0]) : std::string_view(ops[1]);
+        const auto [field, read, where] = move_operands(in);
         bool io = false;
         const bool absolute = where.starts_with("@");
         bool across = false;  // a 32-bit field across a long word: case 3
