@@ -121,90 +121,85 @@ protocol::Properties header_of(const py::handle& header) {
     return out;
 }
 
-std::vector<std::pair<std::size_t, std::string>> markers_of(const py::handle& markers) {
-    std::vector<std::pair<std::size_t, std::string>> out;
-    if (markers.is_none()) return out;
-    if (!py::isinstance<py::list>(markers) && !py::isinstance<py::tuple>(markers))
-        throw py::type_error("markers: expected a list of (row, text) pairs");
-    static constexpr frontend::OptionLimit kRow{"", "markers: row", 0, 1e15};
-    for (const py::handle pair : markers) {
-        if (!py::isinstance<py::tuple>(pair) && !py::isinstance<py::list>(pair))
-            throw py::type_error("markers: expected (row, text) pairs");
-        const py::sequence p = py::reinterpret_borrow<py::sequence>(pair);
-        if (p.size() != 2) throw py::type_error("markers: expected (row, text) pairs");
-        out.emplace_back(static_cast<std::size_t>(whole_number(p[0], kRow)),
-                         text(p[1], "markers: text"));
-    }
-    std::sort(out.begin(), out.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    return out;
-}
-
-// (row, z, dzdx[, dzdy]) entries, as Stream.depth gives them, in row order.
-std::vector<std::pair<std::size_t, DepthFields>> depth_of(const py::handle& depth) {
-    std::vector<std::pair<std::size_t, DepthFields>> out;
-    if (depth.is_none()) return out;
-    if (!py::isinstance<py::list>(depth) && !py::isinstance<py::tuple>(depth))
-        throw py::type_error("depth: expected a list of (row, z, dzdx, dzdy) tuples");
-    static constexpr frontend::OptionLimit kRow{"", "depth: row", 0, 1e15};
-    static constexpr frontend::OptionLimit kZ{"", "depth: z", 0, 4294967295.0};
-    static constexpr frontend::OptionLimit kSlope{"", "depth: slope", -2147483648.0, 2147483647.0};
-    for (const py::handle entry : depth) {
-        if (!py::isinstance<py::tuple>(entry) && !py::isinstance<py::list>(entry))
-            throw py::type_error("depth: expected (row, z, dzdx, dzdy) tuples");
+// The entries of `list` (None, or a list or tuple of tuples or lists of `lo` to `hi` items),
+// each made by `make` from its items as a (row, value) pair, in row order (a row's entries in
+// their given order). `what` names the keyword and `shape` an entry in the TypeErrors;
+// `size_note` follows the one for an entry of the wrong length.
+template <class T, class Make>
+std::vector<std::pair<std::size_t, T>> row_entries(const py::handle& list, const std::string& what,
+                                                   const std::string& shape, std::size_t lo,
+                                                   std::size_t hi, const std::string& size_note,
+                                                   Make make) {
+    std::vector<std::pair<std::size_t, T>> out;
+    if (list.is_none()) return out;
+    const auto sequence = [](const py::handle& h) {
+        return py::isinstance<py::list>(h) || py::isinstance<py::tuple>(h);
+    };
+    if (!sequence(list)) throw py::type_error(what + ": expected a list of " + shape);
+    for (const py::handle entry : list) {
+        if (!sequence(entry)) throw py::type_error(what + ": expected " + shape);
         const py::sequence e = py::reinterpret_borrow<py::sequence>(entry);
-        if (e.size() != 3 && e.size() != 4)
-            throw py::type_error(
-                "depth: expected (row, z, dzdx, dzdy) tuples (dzdy may be left "
-                "out for a DEPTH_SPAN)");
-        DepthFields d;
-        d.z = static_cast<uint32_t>(whole_number(e[1], kZ));
-        d.dzdx = static_cast<int32_t>(whole_number(e[2], kSlope));
-        if (e.size() == 4) d.dzdy = static_cast<int32_t>(whole_number(e[3], kSlope));
-        out.emplace_back(static_cast<std::size_t>(whole_number(e[0], kRow)), d);
+        if (e.size() < lo || e.size() > hi)
+            throw py::type_error(what + ": expected " + shape + size_note);
+        out.push_back(make(e));
     }
     std::stable_sort(out.begin(), out.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     return out;
+}
+
+std::vector<std::pair<std::size_t, std::string>> markers_of(const py::handle& markers) {
+    static constexpr frontend::OptionLimit kRow{"", "markers: row", 0, 1e15};
+    return row_entries<std::string>(
+        markers, "markers", "(row, text) pairs", 2, 2, "", [](const py::sequence& p) {
+            return std::pair{static_cast<std::size_t>(whole_number(p[0], kRow)),
+                             text(p[1], "markers: text")};
+        });
+}
+
+// (row, z, dzdx[, dzdy]) entries, as Stream.depth gives them, in row order.
+std::vector<std::pair<std::size_t, DepthFields>> depth_of(const py::handle& depth) {
+    static constexpr frontend::OptionLimit kRow{"", "depth: row", 0, 1e15};
+    static constexpr frontend::OptionLimit kZ{"", "depth: z", 0, 4294967295.0};
+    static constexpr frontend::OptionLimit kSlope{"", "depth: slope", -2147483648.0, 2147483647.0};
+    return row_entries<DepthFields>(
+        depth, "depth", "(row, z, dzdx, dzdy) tuples", 3, 4,
+        " (dzdy may be left out for a DEPTH_SPAN)", [](const py::sequence& e) {
+            DepthFields d;
+            d.z = static_cast<uint32_t>(whole_number(e[1], kZ));
+            d.dzdx = static_cast<int32_t>(whole_number(e[2], kSlope));
+            if (e.size() == 4) d.dzdy = static_cast<int32_t>(whole_number(e[3], kSlope));
+            return std::pair{static_cast<std::size_t>(whole_number(e[0], kRow)), d};
+        });
 }
 
 // (row, points) pairs, points an n x 2 array of integers in 1/256 pixel, as Stream.face_points
 // gives them, in row order.
 std::vector<std::pair<std::size_t, std::vector<protocol::SnappedPoint>>> face_points_of(
     const py::handle& faces) {
-    std::vector<std::pair<std::size_t, std::vector<protocol::SnappedPoint>>> out;
-    if (faces.is_none()) return out;
-    if (!py::isinstance<py::list>(faces) && !py::isinstance<py::tuple>(faces))
-        throw py::type_error("face_points: expected a list of (row, points) pairs");
     static constexpr frontend::OptionLimit kRow{"", "face_points: row", 0, 1e15};
-    for (const py::handle pair : faces) {
-        if (!py::isinstance<py::tuple>(pair) && !py::isinstance<py::list>(pair))
-            throw py::type_error("face_points: expected (row, points) pairs");
-        const py::sequence p = py::reinterpret_borrow<py::sequence>(pair);
-        if (p.size() != 2) throw py::type_error("face_points: expected (row, points) pairs");
-        const std::size_t row = static_cast<std::size_t>(whole_number(p[0], kRow));
-        py::array_t<int64_t> a;
-        try {
-            a = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(p[1]);
-        } catch (const py::error_already_set&) {
-            a = {};
-        }
-        if (!a || a.ndim() != 2 || a.shape(1) != 2)
-            throw py::type_error("face_points: row " + std::to_string(row) +
-                                 ": expected an n x 2 array of integers (x, y in 1/256 pixel)");
-        if (py::isinstance<py::array>(p[1]) &&
-            py::reinterpret_borrow<py::array>(p[1]).dtype().kind() == 'f')
-            throw py::type_error("face_points: row " + std::to_string(row) +
-                                 ": points are integers in 1/256 pixel, not floats");
-        const auto v = a.unchecked<2>();
-        std::vector<protocol::SnappedPoint> points(static_cast<std::size_t>(a.shape(0)));
-        for (py::ssize_t i = 0; i < a.shape(0); ++i)
-            points[static_cast<std::size_t>(i)] = {v(i, 0), v(i, 1)};
-        out.emplace_back(row, std::move(points));
-    }
-    std::stable_sort(out.begin(), out.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    return out;
+    return row_entries<std::vector<protocol::SnappedPoint>>(
+        faces, "face_points", "(row, points) pairs", 2, 2, "", [](const py::sequence& p) {
+            const std::size_t row = static_cast<std::size_t>(whole_number(p[0], kRow));
+            py::array_t<int64_t> a;
+            try {
+                a = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(p[1]);
+            } catch (const py::error_already_set&) {
+                a = {};
+            }
+            if (!a || a.ndim() != 2 || a.shape(1) != 2)
+                throw py::type_error("face_points: row " + std::to_string(row) +
+                                     ": expected an n x 2 array of integers (x, y in 1/256 pixel)");
+            if (py::isinstance<py::array>(p[1]) &&
+                py::reinterpret_borrow<py::array>(p[1]).dtype().kind() == 'f')
+                throw py::type_error("face_points: row " + std::to_string(row) +
+                                     ": points are integers in 1/256 pixel, not floats");
+            const auto v = a.unchecked<2>();
+            std::vector<protocol::SnappedPoint> points(static_cast<std::size_t>(a.shape(0)));
+            for (py::ssize_t i = 0; i < a.shape(0); ++i)
+                points[static_cast<std::size_t>(i)] = {v(i, 0), v(i, 1)};
+            return std::pair{row, std::move(points)};
+        });
 }
 
 std::shared_ptr<StreamFile> stream_from(const py::handle& commands, const py::handle& header,
