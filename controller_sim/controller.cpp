@@ -201,7 +201,12 @@ void Controller::step(const DepthClear& c) {
     account(Opcode::DepthClear, exec_depth_clear(c));
 }
 void Controller::step(const DepthSpan& c) {
-    account(Opcode::DepthSpan, exec_depth_span(c));
+    check_depth(Opcode::DepthSpan, true);
+    DepthCounters counts;
+    const Executed x = exec_depth_span(c, counts);
+    m_frame.depth += counts;
+    m_stats.depth += counts;
+    account(Opcode::DepthSpan, x);
 }
 void Controller::step(const Face& c) {
     account(Opcode::Face, exec_face(c));
@@ -346,22 +351,22 @@ Controller::Executed Controller::exec_depth_clear(const DepthClear& c) {
 }
 
 // DEPTH_SPAN: clipped to the frame (a cut on the left steps Z to the first column), then
-// each pixel tested and drawn where nearer.
-Controller::Executed Controller::exec_depth_span(const DepthSpan& s) {
-    check_depth(Opcode::DepthSpan, true);
+// each pixel tested and drawn where nearer; its pixels' counts added to `counts`. The caller
+// has checked it (check_depth). Inlined into execute_drawing's loop too.
+[[gnu::always_inline]] inline Controller::Executed Controller::exec_depth_span(
+    const DepthSpan& s, DepthCounters& counts) {
     const int64_t w = m_fb.width(), h = m_fb.height();
     if (!m_in_frame || s.y < 0 || s.y >= h || s.x1 < 0 || s.x0 >= w || s.x1 < s.x0)
         return Executed{m_costs.depth_span_outside(), 0, false, true};
     const int64_t x0 = std::max<int64_t>(s.x0, 0), x1 = std::min<int64_t>(s.x1, w - 1);
     const bool cut_left = x0 > s.x0;
     const int64_t z = int64_t{s.z} + int64_t{s.dz} * (x0 - s.x0);
-    DepthCounters counts;
+    const uint64_t tests = counts.tests, nearer = counts.nearer;
     depth_run(static_cast<uint32_t>(s.y), static_cast<uint32_t>(x0),
               static_cast<uint32_t>(x1 - x0 + 1), z, s.dz, s.color, counts);
-    m_frame.depth += counts;
-    m_stats.depth += counts;
-    return Executed{m_costs.depth_span(cut_left, counts.nearer, counts.tests - counts.nearer),
-                    counts.nearer, cut_left || x1 < s.x1, false};
+    const uint64_t drawn = counts.nearer - nearer, refused = counts.tests - tests - drawn;
+    return Executed{m_costs.depth_span(cut_left, drawn, refused), drawn, cut_left || x1 < s.x1,
+                    false};
 }
 
 // FACE: its edges by the coverage rule (protocol/coverage.h), its rows clipped to the frame,
@@ -467,8 +472,9 @@ std::size_t Controller::execute_drawing(std::span<const Command> commands, std::
     const OpcodeEntry& span_entry = m_opcodes[span_op];
     const OpcodeEntry& zspan_entry = m_opcodes[zspan_op];
     OpcodeCounters fills, spans, zspans;
-    // DEPTH_SPANs too once the frame has its depth buffer (they cannot fail then; before it,
-    // the general path reports them with their number)
+    DepthCounters depth;
+    // DEPTH_SPANs too once the frame has its depth buffer (check_depth passes them then; before
+    // it, the general path reports them with their number)
     const bool depth_ok = !m_depth.empty() && profile().depth_priced;
     Pipeline pipe = m_frame_pipe;
     double bus_busy_us = m_stats.bus_busy_us, controller_busy_us = m_stats.controller_busy_us;
@@ -490,7 +496,7 @@ std::size_t Controller::execute_drawing(std::span<const Command> commands, std::
         } else if (const auto* f = std::get_if<FillRect>(&c)) {
             account_local(fill_entry, fills, exec_fill_rect(*f));
         } else if (const auto* z = depth_ok ? std::get_if<DepthSpan>(&c) : nullptr) {
-            account_local(zspan_entry, zspans, exec_depth_span(*z));
+            account_local(zspan_entry, zspans, exec_depth_span(*z, depth));
         } else {
             break;
         }
@@ -503,6 +509,8 @@ std::size_t Controller::execute_drawing(std::span<const Command> commands, std::
     m_stats.totals[fill_op] += fills;
     m_stats.totals[span_op] += spans;
     m_stats.totals[zspan_op] += zspans;
+    m_frame.depth += depth;
+    m_stats.depth += depth;
     m_frame_pipe = pipe;
     m_stats.bus_busy_us = bus_busy_us;
     m_stats.controller_busy_us = controller_busy_us;

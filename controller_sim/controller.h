@@ -15,6 +15,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "controller_sim/board_memory.h"
 #include "controller_sim/cost_model.h"
 #include "controller_sim/framebuffer.h"
 #include "controller_sim/profile.h"
@@ -125,7 +126,7 @@ class Controller final : public protocol::CommandSink {
     const CostProfile& profile() const { return m_stats.profile; }
     const Framebuffer& framebuffer() const { return m_fb; }
     // The open frame's depth buffer (width x height words, row by row), empty without one.
-    const std::vector<uint32_t>& depth_buffer() const { return m_depth; }
+    std::span<const uint32_t> depth_buffer() const { return m_depth; }
     const ControllerStats& stats() const { return m_stats; }
     const std::vector<FrameResult>& frames() const { return m_stats.frames; }
     bool in_frame() const { return m_in_frame; }
@@ -172,7 +173,7 @@ class Controller final : public protocol::CommandSink {
     Executed exec_marker(const protocol::Marker& c);
     Executed exec_frame_end(const protocol::FrameEnd& c);
     Executed exec_depth_clear(const protocol::DepthClear& c);
-    Executed exec_depth_span(const protocol::DepthSpan& c);
+    Executed exec_depth_span(const protocol::DepthSpan& c, DepthCounters& counts);
     Executed exec_face(const protocol::Face& c);
     // A depth command's checks: the profile prices it, and (but for DEPTH_CLEAR) the frame has
     // a depth buffer.
@@ -207,7 +208,7 @@ class Controller final : public protocol::CommandSink {
     CycleCosts m_costs;
     double m_us_per_cycle;
     Framebuffer m_fb;
-    std::vector<uint32_t> m_depth;  // the open frame's depth buffer, after its DEPTH_CLEAR
+    BoardVector<uint32_t> m_depth;  // the open frame's depth buffer, after its DEPTH_CLEAR
     std::vector<uint8_t> m_nearer;  // a row's depth test: 1 where nearer (depth_run's)
     ControllerStats m_stats;
     bool m_in_frame = false;
