@@ -340,7 +340,7 @@ void Controller::depth_run(uint32_t y, uint32_t x, uint32_t n, int64_t z, int64_
 }
 
 // DEPTH_CLEAR: the frame's depth buffer, every word far; charged as the FILL that clears it.
-Controller::Executed Controller::exec_depth_clear(const DepthClear& c) {
+Controller::Executed Controller::exec_depth_clear(const DepthClear&) {
     check_depth(Opcode::DepthClear, false);
     if (!m_in_frame) return Executed{outside_cycles(profile(), Opcode::DepthClear), 0, false, true};
     m_depth.assign(std::size_t{m_fb.width()} * m_fb.height(),

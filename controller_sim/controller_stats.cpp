@@ -149,7 +149,7 @@ std::string ControllerStats::summary() const {
             "depth: {} tests, {} nearer (drawn), {} as near as the word they met (kept: ties of "
             "the {}-bit word); the buffer takes {:.2f} MB of the board's memory at {}x{}\n",
             grouped(depth.tests), grouped(depth.nearer), grouped(depth.equal), profile.depth_bits,
-            profile.depth_buffer_bytes(width, height) / 1e6, width, height);
+            static_cast<double>(profile.depth_buffer_bytes(width, height)) / 1e6, width, height);
     }
     const OpcodeCounters loose = sum(unframed);
     if (loose.commands > 0)

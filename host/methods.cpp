@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "host/raster/controller_depth.h"
+#include "host/raster/hzb.h"
 #include "host/raster/scanline.h"
 #include "host/raster/zbuffer.h"
 
@@ -11,7 +12,7 @@ namespace fb89::host {
 
 namespace {
 
-constexpr std::array<MethodInfo, 8> kMethods{{
+constexpr std::array<MethodInfo, 9> kMethods{{
     {Method::ZBuffer, "zbuffer", "Z-buffer: depth test per pixel, spans of equal colour", 0},
     {Method::ScanLine, "scanline", "Watkins scan-line: active faces per row, depth per segment", 0},
     {Method::Warnock, "warnock", "Warnock window sampling (§1, §2): fills from the thinker",
@@ -31,6 +32,10 @@ constexpr std::array<MethodInfo, 8> kMethods{{
      "host scan-converts, controller tests depth: DEPTH_SPANs, no depth test on the host", 0, true},
     {Method::Faces, "faces",
      "host projects and clips only: FACEs the controller scan-converts and depth-tests", 0, true},
+    {Method::Hzb, "hzb",
+     "hierarchical Z-buffer (Greene et al. 1993): an octree front to back, culled in a depth "
+     "pyramid; the Z-buffer's spans",
+     0},
 }};
 
 }  // namespace
@@ -105,6 +110,8 @@ std::unique_ptr<Renderer> make_renderer(const MethodOptions& o) {
             return std::make_unique<DepthSpans>();
         case Method::Faces:
             return std::make_unique<FaceSender>();
+        case Method::Hzb:
+            return std::make_unique<HierarchicalZBuffer>();
     }
     throw std::invalid_argument("unknown method");
 }

@@ -21,7 +21,7 @@
 
 namespace fb89::host {
 
-enum class Method { ZBuffer, ScanLine, Warnock, Hybrid, RayTrace, Beam, DepthSpans, Faces };
+enum class Method { ZBuffer, ScanLine, Warnock, Hybrid, RayTrace, Beam, DepthSpans, Faces, Hzb };
 
 // Which option groups a method reads; any other group's options do not apply to it.
 enum OptionGroup : unsigned {
@@ -41,7 +41,8 @@ struct MethodInfo {
     bool uses(OptionGroup group) const { return (options & group) != 0; }
 };
 
-// Every method, in the order the paper introduces them; then the two that move the split.
+// Every method, in the order the paper introduces them; then the two that move the split; then
+// the successors that came after the paper.
 std::span<const MethodInfo> methods();
 const MethodInfo& method_info(Method method);
 // Throws std::invalid_argument naming the known methods when `name` is not one.

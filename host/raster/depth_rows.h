@@ -35,8 +35,11 @@ inline constexpr int kDepthRowPad = 4;
 
 // Depth-tests centres [xb, xe) of row y (xb < xe); depth and face point at the row's x = 0,
 // and `mark` (the face's index + 1) goes into face[] where the face wins.
-// Returns how many the face won.
+// Returns how many the face won. With kLowerIdOnTies a face also wins a centre of equal depth
+// held by a higher index (the shared rule's tie, nearer() in depth.h, kept whatever order the
+// faces come in: the hierarchical Z-buffer's, hzb.h); without it the stored face keeps it.
 struct DepthRowScalar {
+    template <bool kLowerIdOnTies = false>
     static uint64_t test(const DepthPlane& plane, int y, int xb, int xe, uint32_t mark,
                          double* __restrict depth, uint32_t* __restrict face) {
         const double a = plane.a, by = plane.b * (y + 0.5), c = plane.c;
@@ -44,7 +47,8 @@ struct DepthRowScalar {
         double xc = xb + 0.5;
         for (int x = xb; x < xe; ++x, xc += 1.0) {
             const double z = a * xc + by + c;
-            const bool wins = (face[x] == 0) | (z < depth[x]);
+            bool wins = (face[x] == 0) | (z < depth[x]);
+            if constexpr (kLowerIdOnTies) wins = wins | ((z == depth[x]) & (mark < face[x]));
             depth[x] = wins ? z : depth[x];
             face[x] = wins ? mark : face[x];
             written += wins;
@@ -55,6 +59,7 @@ struct DepthRowScalar {
 
 #if defined(__SSE2__)
 struct DepthRowSse2 {
+    template <bool kLowerIdOnTies = false>
     static uint64_t test(const DepthPlane& plane, int y, int xb, int xe, uint32_t mark,
                          double* __restrict depth, uint32_t* __restrict face) {
         const __m128d a = _mm_set1_pd(plane.a), by = _mm_set1_pd(plane.b * (y + 0.5));
@@ -70,6 +75,13 @@ struct DepthRowSse2 {
             const __m128i empty = _mm_cmpeq_epi32(f, _mm_setzero_si128());
             __m128d wins =
                 _mm_or_pd(_mm_cmplt_pd(z, d), _mm_castsi128_pd(_mm_unpacklo_epi32(empty, empty)));
+            if constexpr (kLowerIdOnTies) {
+                // indices are below 2^31: the signed compare is the unsigned one
+                const __m128i lower = _mm_cmplt_epi32(vmark, f);
+                wins =
+                    _mm_or_pd(wins, _mm_and_pd(_mm_cmpeq_pd(z, d),
+                                               _mm_castsi128_pd(_mm_unpacklo_epi32(lower, lower))));
+            }
             if (x + 1 == xe) wins = _mm_and_pd(wins, _mm_castsi128_pd(_mm_set_epi64x(0, -1)));
             // keep the winners
             _mm_storeu_pd(depth + x, _mm_or_pd(_mm_and_pd(wins, z), _mm_andnot_pd(wins, d)));
@@ -95,6 +107,7 @@ inline bool has_avx2() {
 }
 
 struct DepthRowAvx2 {
+    template <bool kLowerIdOnTies = false>
     [[gnu::target("avx2")]] static uint64_t test(const DepthPlane& plane, int y, int xb, int xe,
                                                  uint32_t mark, double* __restrict depth,
                                                  uint32_t* __restrict face) {
@@ -112,6 +125,12 @@ struct DepthRowAvx2 {
             const __m256i empty = _mm256_cvtepi32_epi64(_mm_cmpeq_epi32(f, _mm_setzero_si128()));
             __m256d wins =
                 _mm256_or_pd(_mm256_cmp_pd(z, d, _CMP_LT_OQ), _mm256_castsi256_pd(empty));
+            if constexpr (kLowerIdOnTies) {
+                // indices are below 2^31: the signed compare is the unsigned one
+                const __m256i lower = _mm256_cvtepi32_epi64(_mm_cmplt_epi32(vmark, f));
+                wins = _mm256_or_pd(wins, _mm256_and_pd(_mm256_cmp_pd(z, d, _CMP_EQ_OQ),
+                                                        _mm256_castsi256_pd(lower)));
+            }
             if (x + 4 > xe) {
                 const __m256i inside = _mm256_cmpgt_epi64(_mm256_set1_epi64x(xe - x), lane);
                 wins = _mm256_and_pd(wins, _mm256_castsi256_pd(inside));

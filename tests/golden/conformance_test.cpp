@@ -24,13 +24,14 @@ struct Mismatch {
     std::string first;
 };
 
-Mismatch compare_with_fixture(const std::string& name) {
+Mismatch compare_with_fixture(const std::string& name, host::Method method) {
     const std::string base =
         (std::filesystem::path(FB89_TEST_DATA_DIR) / "golden" / "conformance" / name).string();
     host::Scene scene = host::load_scene(base + ".tri");
     host::HostStats stats;
     host::ScreenScene ids = host::project_scene(scene, host::ColorMode::FaceId, stats.counters);
-    auto renderer = host::make_renderer(host::Method::ZBuffer);
+    auto renderer = host::make_renderer(method);
+    renderer->setup(ids);
     protocol::MemoryBuffer commands;
     host::render_frame(*renderer, ids, commands, stats);
     controller::Controller ctl(controller::load_profile("ideal"));
@@ -60,7 +61,14 @@ Mismatch compare_with_fixture(const std::string& name) {
 class GoldenConformance : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(GoldenConformance, FaceIdBufferMatchesLlvmpipePixelForPixel) {
-    Mismatch m = compare_with_fixture(GetParam());
+    Mismatch m = compare_with_fixture(GetParam(), host::Method::ZBuffer);
+    EXPECT_EQ(m.coverage, 0) << "coverage mismatches; first: " << m.first;
+    EXPECT_EQ(m.pixels, 0) << "id mismatches; first: " << m.first;
+}
+
+// The hierarchical Z-buffer culls conservatively and keeps the tie rule: the same ids.
+TEST_P(GoldenConformance, HierarchicalZBufferMatchesLlvmpipePixelForPixel) {
+    Mismatch m = compare_with_fixture(GetParam(), host::Method::Hzb);
     EXPECT_EQ(m.coverage, 0) << "coverage mismatches; first: " << m.first;
     EXPECT_EQ(m.pixels, 0) << "id mismatches; first: " << m.first;
 }

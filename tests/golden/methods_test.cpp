@@ -61,7 +61,7 @@ TEST_P(GoldenMethods, EveryMethodAndHybridThresholdGivesTheZBuffersIdsAndImage) 
     const Frame image = render(scene, host::ColorMode::Shaded, reference);
     std::vector<host::MethodOptions> methods{
         method(host::Method::ScanLine), method(host::Method::Warnock),
-        method(host::Method::Warnock, host::WindowTest::Centres)};
+        method(host::Method::Warnock, host::WindowTest::Centres), method(host::Method::Hzb)};
     for (double threshold : {0.0, 0.003, 0.04, 0.5}) {
         host::MethodOptions hybrid = method(host::Method::Hybrid);
         hybrid.hybrid.threshold = threshold;

@@ -1,0 +1,102 @@
+// The hierarchical Z-buffer: Greene, Kass & Miller, "Hierarchical Z-Buffer Visibility",
+// SIGGRAPH 93 -- the successor of the paper's §3 hybrid, image coherence (a depth pyramid)
+// and object coherence (an octree) used together.
+//
+// The faces sit in an octree, walked front to back; the Z-buffer keeps, beside its depths, a
+// pyramid whose every cell holds the farthest depth of the pixels below it (a pixel no face
+// has covered yet counts as infinitely far). A node of the octree whose nearest depth lies
+// beyond the pyramid's farthest over its screen rectangle is hidden with everything in it and
+// skipped whole; each face of a node that survives is tested the same way before it is
+// scan-converted, and the pixels of the faces drawn bring the pyramid's cells nearer.
+//
+// Ours differs from the paper's in four ways, each keeping the face-id buffer identical to the
+// Z-buffer's (zbuffer.h) on every scene:
+// - The octree is built in screen space (pixels in x and y, the depth plane's z), over the
+//   ScreenScene every raster method shares, so that "front to back" is an order by depth and
+//   the pyramid tests are made in the coordinates the depth test uses. A face lives in the
+//   smallest node that holds its box; a node's tests use the tight box of what is in it, not
+//   its cube, and its children are taken in the order of their nearest depths.
+// - A face's nearest depth is its plane's least value over the corners of its pixel
+//   rectangle, less a margin for the rounding of depth_at() (depth.h), so a culled face could
+//   not have won a pixel: the test is conservative and there is nothing to forgive.
+// - The depth test keeps the shared rule's tie to the lower id explicitly (nearer(), depth.h),
+//   since faces come front to back rather than in id order.
+// - The pyramid's finest level is a tile of 8 x 8 pixels, not the pixel; a tile is far while
+//   it has an uncovered pixel, and a tile whose depths a face changed is taken again after
+//   that face, its change carried up the levels while it changes them.
+// Spans leave as the Z-buffer's do (band_spans.h), row by row, so the stream is the same.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "host/raster/renderer.h"
+
+namespace fb89::host {
+
+struct HzbCounts {
+    uint64_t nodes_visited =
+        0;  // octree nodes reached by the walk (counter hzb_nodes_visited, and so on)
+    uint64_t nodes_culled = 0;    // of those, hidden in the pyramid with all they hold
+    uint64_t faces_culled = 0;    // faces of surviving nodes hidden in the pyramid
+    uint64_t faces_drawn = 0;     // faces scan-converted and depth-tested
+    uint64_t pyramid_tests = 0;   // pyramid cells compared with a nearest depth
+    uint64_t depth_tests = 0;     // pixel centres a drawn face covered and tested
+    uint64_t pixels_written = 0;  // tests that won
+    uint64_t tiles_updated = 0;   // finest pyramid cells taken again after a face
+    uint64_t spans = 0;           // DRAW_SPAN commands sent
+};
+
+class HierarchicalZBuffer final : public Renderer {
+  public:
+    std::string_view name() const override { return "hzb"; }
+    // Builds the octree over this scene's faces (set-up, not hidden-surface time).
+    void setup(const ScreenScene& scene) override;
+    void render(const ScreenScene& scene, protocol::CommandSink& sink, HostStats& stats) override;
+
+    const HzbCounts& counts() const { return m_counts; }
+    std::size_t node_count() const { return m_nodes.size(); }
+
+    static constexpr int kTileShift = 3;  // the pyramid's finest cell: 8 x 8 pixels
+    static constexpr uint32_t kLeafFaces = 8;
+    static constexpr int kMaxDepth = 16;
+
+  private:
+    struct Box {
+        PixelRect rect;  // screen pixels
+        double z0 = 0, z1 = 0;
+    };
+    struct Node {
+        Box box;                                    // the tight box of its faces and its children's
+        uint32_t first_face = 0, face_count = 0;    // into m_order, nearest first
+        uint32_t first_child = 0, child_count = 0;  // into m_nodes, nearest first
+    };
+
+    uint32_t build(std::vector<uint32_t>& faces, const Box& cube, int depth);
+    void walk(const ScreenScene& scene, uint32_t node);
+    bool hidden(const PixelRect& r, double z);
+    bool cell_hidden(int level, int cx, int cy, const PixelRect& r, double z);
+    void draw(const ScreenScene& scene, uint32_t index);
+    void update_tiles();
+    void reset_pyramid();
+
+    const ScreenScene* m_scene = nullptr;
+    std::vector<Box> m_face_box;  // each face's pixel rectangle and conservative depth range
+    std::vector<Node> m_nodes;    // m_nodes[0] the root, when there are faces
+    std::vector<uint32_t> m_order;
+
+    int m_width = 0, m_height = 0;
+    std::vector<double> m_depth;   // meaningful only where m_face is not 0
+    std::vector<uint32_t> m_face;  // scene.faces index + 1, 0: none; padded (depth_rows.h)
+    std::vector<uint32_t> m_color;
+    struct Level {
+        int w = 0, h = 0;
+        std::vector<double> far;  // the farthest depth below each cell
+    };
+    std::vector<Level> m_levels;  // [0]: tiles
+    std::vector<uint8_t> m_dirty;
+    std::vector<uint32_t> m_dirty_list;
+    HzbCounts m_counts;
+};
+
+}  // namespace fb89::host
