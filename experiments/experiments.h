@@ -33,6 +33,11 @@ Table experiment_fig3_1(const ExperimentSettings& settings, double chosen);
 // The hybrid at `chosen` and at the paper's 0.04 against the Z-buffer, per scene.
 Table experiment_hybrid(const ExperimentSettings& settings, double chosen);
 
+// After the paper (successor_experiments.cpp): the hierarchical Z-buffer beside the Z-buffer
+// and the §3 hybrid at the paper's 0.04, on each scene and on the ideal scene at depth
+// complexities 1 to 64; natively only for now (on a 1989 host, std::invalid_argument).
+Table experiment_successors(const ExperimentSettings& settings);
+
 // The split (split_experiment.cpp): every method on every scene, host time per frame beside
 // the controller's, the pipeline's frame time and the side that bounds it.
 Table experiment_split(const ExperimentSettings& settings);

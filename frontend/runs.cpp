@@ -131,6 +131,8 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
         table = experiment_beam_threshold(s, beam_threshold_ramp());
     else if (name == "split")
         table = experiment_split(s);
+    else if (name == "successors")
+        table = experiment_successors(s);
     else if (name == "radiosity")
         table = experiment_radiosity(s, r.patches);
     else if (name == "ff-error" || name == "radiosity-error")

@@ -475,6 +475,41 @@ def boundary(root):
     save(fig, os.path.join(root, "boundary.png"))
 
 
+def successors(folder):
+    """After the paper, the hierarchical Z-buffer (fb89 experiment successors): FOLDER/
+    successors.csv drawn as FOLDER/successors.png -- the speed-up over the Z-buffer of the
+    paper's hybrid and of the hierarchical Z-buffer against depth complexity, a line each
+    over the ideal scene's ladder, a marker each at scenes A-F."""
+    rows = read(os.path.join(folder, "successors.csv"))
+    labels = {"hybrid-0.04": "the paper's hybrid (§3, threshold 0.04)",
+              "hzb": "hierarchical Z-buffer (Greene et al. 1993)"}
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for i, method in enumerate(labels):
+        ladder = sorted((float(r["depth_complexity"]), float(r["speedup"])) for r in rows
+                        if r["method"] == method and scene_label(r["scene"]).startswith("ideal-"))
+        paper = [(float(r["depth_complexity"]), float(r["speedup"]), scene_label(r["scene"]))
+                 for r in rows if r["method"] == method
+                 and not scene_label(r["scene"]).startswith("ideal-")]
+        ax.plot([p[0] for p in ladder], [p[1] for p in ladder], marker="o", color=f"C{i}",
+                label=labels[method] + ", ideal scene")
+        ax.scatter([p[0] for p in paper], [p[1] for p in paper], marker="s", color=f"C{i}",
+                   facecolors="none", label=labels[method] + ", scenes A-F")
+        for dc, up, name in paper:
+            ax.annotate(name, (dc, up), textcoords="offset points", xytext=(3, 3), fontsize=6,
+                        color=f"C{i}")
+    ax.axhline(1.0, color="grey", lw=0.8, ls="--")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log", base=2)
+    ax.set_xlabel("depth complexity (face pixels over covered pixels)")
+    ax.set_ylabel("speed-up over the Z-buffer (host hidden-surface time)")
+    ax.set_title("After the paper: image and object coherence together\n"
+                 "1024x780, this machine, medians of interleaved rounds", fontsize=10)
+    ax.grid(which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    save(fig, os.path.join(folder, "successors.png"))
+
+
 def timeline_png(json_path, png_path):
     """One frame through the pipeline in time (fb89 render --timeline): the host's, the bus's
     and the controller's lanes in time, host stalls in red, the command buffer's fill below,
@@ -548,6 +583,9 @@ def main():
         return
     if "--boundary" in sys.argv:
         boundary(folder)
+        return
+    if "--successors" in sys.argv:
+        successors(folder)
         return
     if "--timelines" in sys.argv:
         timelines(folder)

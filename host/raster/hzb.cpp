@@ -78,12 +78,12 @@ void HierarchicalZBuffer::setup(const ScreenScene& scene) {
     int w = (m_width + (1 << kTileShift) - 1) >> kTileShift;
     int h = (m_height + (1 << kTileShift) - 1) >> kTileShift;
     for (;;) {
-        m_levels.push_back(Level{w, h, std::vector<double>(static_cast<std::size_t>(w) * h)});
+        const std::size_t cells = static_cast<std::size_t>(w) * h;
+        m_levels.push_back(Level{w, h, std::vector<double>(cells), std::vector<uint8_t>(cells)});
         if (w == 1 && h == 1) break;
         w = (w + 1) / 2;
         h = (h + 1) / 2;
     }
-    m_dirty.assign(m_levels[0].far.size(), 0);
     m_dirty_list.clear();
 }
 
@@ -173,8 +173,10 @@ uint32_t HierarchicalZBuffer::build(std::vector<uint32_t>& faces, const Box& cub
 // --- the pyramid --------------------------------------------------------------------------
 
 void HierarchicalZBuffer::reset_pyramid() {
-    for (Level& l : m_levels)
+    for (Level& l : m_levels) {
         std::fill(l.far.begin(), l.far.end(), kFar);
+        std::fill(l.dirty.begin(), l.dirty.end(), uint8_t{0});
+    }
 }
 
 // Whether every centre of `r` (not empty, on the screen) lies behind a drawn depth nearer
@@ -196,6 +198,7 @@ bool HierarchicalZBuffer::hidden(const PixelRect& r, double z) {
 }
 
 bool HierarchicalZBuffer::cell_hidden(int level, int cx, int cy, const PixelRect& r, double z) {
+    refresh(level, cx, cy);
     const Level& l = m_levels[static_cast<std::size_t>(level)];
     ++m_counts.pyramid_tests;
     if (l.far[static_cast<std::size_t>(cy) * l.w + cx] < z) return true;
@@ -212,20 +215,38 @@ bool HierarchicalZBuffer::cell_hidden(int level, int cx, int cy, const PixelRect
     return true;
 }
 
-// The tiles the last face changed: each taken again (the farthest of its depths, once all
-// its pixels are covered) and the change carried up while it changes a level.
-void HierarchicalZBuffer::update_tiles() {
-    const Level& tiles = m_levels[0];
+// The cells above the tiles the last face changed marked too; the tiles stay marked. A
+// marked cell is brought up to date only when a test reads it (refresh), so a tile that many
+// faces change before any test looks at it is taken once, and one no test reads never.
+void HierarchicalZBuffer::mark_levels() {
     for (uint32_t t : m_dirty_list) {
-        m_dirty[t] = 0;
+        int cx = static_cast<int>(t % static_cast<uint32_t>(m_levels[0].w));
+        int cy = static_cast<int>(t / static_cast<uint32_t>(m_levels[0].w));
+        for (std::size_t level = 1; level < m_levels.size(); ++level) {
+            cx /= 2;
+            cy /= 2;
+            uint8_t& d =
+                m_levels[level].dirty[static_cast<std::size_t>(cy) * m_levels[level].w + cx];
+            if (d) break;  // and so are the ones above it
+            d = 1;
+        }
+    }
+    m_dirty_list.clear();
+}
+
+// A marked cell taken again: a tile, the farthest of its depths (far while a pixel is
+// uncovered); a cell above, the farthest of its children, each brought up to date first.
+void HierarchicalZBuffer::refresh(int level, int cx, int cy) {
+    Level& l = m_levels[static_cast<std::size_t>(level)];
+    const std::size_t at = static_cast<std::size_t>(cy) * l.w + cx;
+    if (!l.dirty[at]) return;
+    l.dirty[at] = 0;
+    double far = -kFar;
+    if (level == 0) {
         ++m_counts.tiles_updated;
-        const int tx = static_cast<int>(t % static_cast<uint32_t>(tiles.w));
-        const int ty = static_cast<int>(t / static_cast<uint32_t>(tiles.w));
-        const int x0 = tx << kTileShift, y0 = ty << kTileShift;
+        const int x0 = cx << kTileShift, y0 = cy << kTileShift;
         const int x1 = std::min(m_width, x0 + (1 << kTileShift));
         const int y1 = std::min(m_height, y0 + (1 << kTileShift));
-        // the farthest depth of the tile, or far while a pixel is uncovered
-        double far = -kFar;
         uint32_t uncovered = 0;
         for (int y = y0; y < y1; ++y) {
             const std::size_t row = static_cast<std::size_t>(y) * m_width;
@@ -236,25 +257,16 @@ void HierarchicalZBuffer::update_tiles() {
                 uncovered |= face[x] == 0 ? 1u : 0u;
             }
         }
-        if (uncovered) continue;
-        if (far == m_levels[0].far[t]) continue;
-        m_levels[0].far[t] = far;
-        int cx = tx, cy = ty;
-        for (std::size_t level = 1; level < m_levels.size(); ++level) {
-            const Level& below = m_levels[level - 1];
-            cx /= 2;
-            cy /= 2;
-            double up = -kFar;
-            for (int y = 2 * cy; y <= std::min(2 * cy + 1, below.h - 1); ++y)
-                for (int x = 2 * cx; x <= std::min(2 * cx + 1, below.w - 1); ++x)
-                    up = std::max(up, below.far[static_cast<std::size_t>(y) * below.w + x]);
-            double& cell =
-                m_levels[level].far[static_cast<std::size_t>(cy) * m_levels[level].w + cx];
-            if (up == cell) break;
-            cell = up;
-        }
+        l.far[at] = uncovered ? kFar : far;
+        return;
     }
-    m_dirty_list.clear();
+    const Level& below = m_levels[static_cast<std::size_t>(level) - 1];
+    for (int y = 2 * cy; y <= std::min(2 * cy + 1, below.h - 1); ++y)
+        for (int x = 2 * cx; x <= std::min(2 * cx + 1, below.w - 1); ++x) {
+            refresh(level - 1, x, y);
+            far = std::max(far, below.far[static_cast<std::size_t>(y) * below.w + x]);
+        }
+    l.far[at] = far;
 }
 
 // --- drawing ------------------------------------------------------------------------------
@@ -264,7 +276,7 @@ namespace {
 // One face: its rows' runs of centres by the coverage rule, each run depth-tested by the
 // Z-buffer's kernel (depth_rows.h) with the shared rule's tie to the lower index, since faces
 // arrive front to back, not in id order; the tiles of a run that won a centre are marked for
-// update_tiles(). The wrappers below compile it once per kernel, as zbuffer.cpp does.
+// mark_levels(). The wrappers below compile it once per kernel, as zbuffer.cpp does.
 template <class DepthRow>
 uint64_t draw_face(const ScreenScene& scene, uint32_t index, double* depth_buffer,
                    uint32_t* face_buffer, int width, int tiles_w, uint8_t* dirty,
@@ -325,15 +337,15 @@ void HierarchicalZBuffer::draw(const ScreenScene& scene, uint32_t index) {
 #if defined(FB89_HAS_AVX2_KERNEL)
     if (has_avx2())
         written = draw_face_avx2(scene, index, m_depth.data(), m_face.data(), m_width,
-                                 m_levels[0].w, m_dirty.data(), m_dirty_list, tests);
+                                 m_levels[0].w, m_levels[0].dirty.data(), m_dirty_list, tests);
     else
 #endif
         written = draw_face_baseline(scene, index, m_depth.data(), m_face.data(), m_width,
-                                     m_levels[0].w, m_dirty.data(), m_dirty_list, tests);
+                                     m_levels[0].w, m_levels[0].dirty.data(), m_dirty_list, tests);
     m_counts.depth_tests += tests;
     m_counts.pixels_written += written;
     ++m_counts.faces_drawn;
-    update_tiles();
+    mark_levels();
 }
 
 void HierarchicalZBuffer::walk(const ScreenScene& scene, uint32_t index) {

@@ -22,8 +22,9 @@
 // - The depth test keeps the shared rule's tie to the lower id explicitly (nearer(), depth.h),
 //   since faces come front to back rather than in id order.
 // - The pyramid's finest level is a tile of 8 x 8 pixels, not the pixel; a tile is far while
-//   it has an uncovered pixel, and a tile whose depths a face changed is taken again after
-//   that face, its change carried up the levels while it changes them.
+//   it has an uncovered pixel, and a cell whose pixels faces changed is taken again only when
+//   a test reads it (Greene's pyramid is brought up to date as each face is drawn): the
+//   tests see the same values, so the same faces and nodes are culled.
 // Spans leave as the Z-buffer's do (band_spans.h), row by row, so the stream is the same.
 #pragma once
 
@@ -43,7 +44,7 @@ struct HzbCounts {
     uint64_t pyramid_tests = 0;   // pyramid cells compared with a nearest depth
     uint64_t depth_tests = 0;     // pixel centres a drawn face covered and tested
     uint64_t pixels_written = 0;  // tests that won
-    uint64_t tiles_updated = 0;   // finest pyramid cells taken again after a face
+    uint64_t tiles_updated = 0;   // finest pyramid cells taken again for a test
     uint64_t spans = 0;           // DRAW_SPAN commands sent
 };
 
@@ -77,7 +78,8 @@ class HierarchicalZBuffer final : public Renderer {
     bool hidden(const PixelRect& r, double z);
     bool cell_hidden(int level, int cx, int cy, const PixelRect& r, double z);
     void draw(const ScreenScene& scene, uint32_t index);
-    void update_tiles();
+    void mark_levels();
+    void refresh(int level, int cx, int cy);
     void reset_pyramid();
 
     const ScreenScene* m_scene = nullptr;
@@ -91,11 +93,11 @@ class HierarchicalZBuffer final : public Renderer {
     std::vector<uint32_t> m_color;
     struct Level {
         int w = 0, h = 0;
-        std::vector<double> far;  // the farthest depth below each cell
+        std::vector<double> far;     // the farthest depth below each cell
+        std::vector<uint8_t> dirty;  // 1: a pixel below changed since `far` was taken
     };
-    std::vector<Level> m_levels;  // [0]: tiles
-    std::vector<uint8_t> m_dirty;
-    std::vector<uint32_t> m_dirty_list;
+    std::vector<Level> m_levels;         // [0]: tiles
+    std::vector<uint32_t> m_dirty_list;  // tiles the face being drawn marked
     HzbCounts m_counts;
 };
 
