@@ -87,16 +87,8 @@ uint64_t warnock_samples(const host::ScreenScene& screen, host::WindowTest test,
 }
 
 host::ScreenScene ideal_screen(int e_s, int layers, uint64_t f_v) {
-    host::Scene scene;
-    scene.projection = host::Projection::Screen;
-    scene.width = scene.height = e_s;
     const double cell = e_s / std::sqrt(static_cast<double>(f_v));
-    for (auto& p : host::generate_ideal(e_s, e_s, layers, cell, cell, 0.5)) {
-        host::Face f;
-        f.vertices = std::move(p.vertices);
-        f.id = scene.face_count++;
-        scene.faces.push_back(std::move(f));
-    }
+    const host::Scene scene = host::ideal_scene(e_s, e_s, layers, cell, cell, 0.5);
     host::Counters counters;
     return host::project_scene(scene, host::ColorMode::Shaded, counters);
 }

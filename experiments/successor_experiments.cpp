@@ -19,16 +19,8 @@ namespace {
 // The ideal scene at the settings' size (1024 x 780 when none is given): `layers` layers of
 // 16 x 16-pixel squares, a ½-pixel gap between them, layer k at depth (k + 1) / (layers + 1).
 host::ScreenScene ideal_ladder_screen(const ExperimentSettings& s, int layers, host::Scene& scene) {
-    scene = host::Scene{};
-    scene.projection = host::Projection::Screen;
-    scene.width = s.size.width > 0 ? s.size.width : 1024;
-    scene.height = s.size.height > 0 ? s.size.height : 780;
-    for (auto& p : host::generate_ideal(scene.width, scene.height, layers, 16, 16, 0.5)) {
-        host::Face f;
-        f.vertices = std::move(p.vertices);
-        f.id = scene.face_count++;
-        scene.faces.push_back(std::move(f));
-    }
+    scene = host::ideal_scene(s.size.width > 0 ? s.size.width : 1024,
+                              s.size.height > 0 ? s.size.height : 780, layers, 16, 16, 0.5);
     host::Counters counters;
     return host::project_scene(scene, host::ColorMode::Shaded, counters);
 }

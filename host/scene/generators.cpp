@@ -305,6 +305,20 @@ GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_
     return out;
 }
 
+Scene ideal_scene(int width, int height, int layers, double cell_w, double cell_h, double gap) {
+    Scene scene;
+    scene.projection = Projection::Screen;
+    scene.width = width;
+    scene.height = height;
+    for (auto& p : generate_ideal(width, height, layers, cell_w, cell_h, gap)) {
+        Face f;
+        f.vertices = std::move(p.vertices);
+        f.id = scene.face_count++;
+        scene.faces.push_back(std::move(f));
+    }
+    return scene;
+}
+
 GeneratedPolygons generate_random_triangles(int width, int height, int count, double area,
                                             uint64_t seed) {
     std::mt19937_64 rng(seed);

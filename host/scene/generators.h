@@ -38,6 +38,10 @@ GeneratedPolygons generate_quad(const glm::dvec3& origin, const glm::dvec3& u, c
 GeneratedPolygons generate_ideal(int width, int height, int layers, double cell_w, double cell_h,
                                  double gap);
 
+// The ideal scene as a whole screen-space scene of `width` x `height`: generate_ideal()'s
+// faces, ids in their order, in the material's default colour.
+Scene ideal_scene(int width, int height, int layers, double cell_w, double cell_h, double gap);
+
 // `count` random triangles in screen space, each of about `area` pixels, centres uniform
 // over the screen, vertex depths uniform in [0, 1] (so they slope and cut through each
 // other). The same seed gives the same triangles.

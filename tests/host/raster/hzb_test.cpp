@@ -40,24 +40,11 @@ Both both(const ScreenScene& s) {
     return {run(zbuffer, s), run(hzb, s)};
 }
 
-Scene ideal_scene(int side, int layers, int cells) {
-    Scene scene;
-    scene.projection = Projection::Screen;
-    scene.width = scene.height = side;
-    const double cell = static_cast<double>(side) / cells;
-    for (auto& p : generate_ideal(side, side, layers, cell, cell, 0.5)) {
-        Face f;
-        f.vertices = std::move(p.vertices);
-        f.id = scene.face_count++;
-        scene.faces.push_back(std::move(f));
-    }
-    return scene;
-}
-
 TEST(Hzb, TheIdealSceneAtDepthComplexity16IsCulledToItsFrontLayer) {
     const int layers = 16, cells = 8;  // 64 faces a layer, 1,024 in all
     Counters setup;
-    const ScreenScene s = project_scene(ideal_scene(256, layers, cells), ColorMode::FaceId, setup);
+    const ScreenScene s =
+        project_scene(ideal_scene(256, 256, layers, 32, 32, 0.5), ColorMode::FaceId, setup);
     const auto [z, h] = both(s);
     EXPECT_EQ(h.commands, z.commands);
     // the front layer is drawn and covers the screen's every centre it can; of the 15 layers

@@ -17,16 +17,8 @@ namespace fb89::host {
 namespace {
 
 Counters warnock_on_ideal(int e_s, int layers, uint64_t f_v, WindowTest test) {
-    Scene scene;
-    scene.projection = Projection::Screen;
-    scene.width = scene.height = e_s;
     const double cell = e_s / std::sqrt(static_cast<double>(f_v));
-    for (auto& p : generate_ideal(e_s, e_s, layers, cell, cell, 0.5)) {
-        Face f;
-        f.vertices = std::move(p.vertices);
-        f.id = scene.face_count++;
-        scene.faces.push_back(std::move(f));
-    }
+    const Scene scene = ideal_scene(e_s, e_s, layers, cell, cell, 0.5);
     Counters setup;
     ScreenScene screen = project_scene(scene, ColorMode::FaceId, setup);
     Warnock warnock({test, {}});
