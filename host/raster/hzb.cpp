@@ -198,10 +198,16 @@ bool HierarchicalZBuffer::hidden(const PixelRect& r, double z) {
 }
 
 bool HierarchicalZBuffer::cell_hidden(int level, int cx, int cy, const PixelRect& r, double z) {
-    refresh(level, cx, cy);
     const Level& l = m_levels[static_cast<std::size_t>(level)];
+    const std::size_t at = static_cast<std::size_t>(cy) * l.w + cx;
     ++m_counts.pyramid_tests;
-    if (l.far[static_cast<std::size_t>(cy) * l.w + cx] < z) return true;
+    // a cell's depths only come nearer, so a value not yet brought up to date is at least as
+    // far as the true one: if it hides z, the true one does, and the cell need not be taken
+    if (l.far[at] < z) return true;
+    if (l.dirty[at]) {
+        refresh(level, cx, cy);
+        if (l.far[at] < z) return true;
+    }
     if (level == 0) return false;
     const int s = kTileShift + level - 1;  // the children's cell side
     const Level& below = m_levels[static_cast<std::size_t>(level) - 1];
