@@ -71,12 +71,12 @@ void HierarchicalZBuffer::setup(const ScreenScene& scene) {
 
     m_width = scene.width;
     m_height = scene.height;
-    const std::size_t pixels = static_cast<std::size_t>(m_width) * m_height;
+    const std::size_t pixels = static_cast<std::size_t>(m_width) * kBandRows;
     m_depth.assign(pixels + kDepthRowPad, 0.0);  // the kernels' padding past the last row
     m_face.assign(pixels + kDepthRowPad, 0);
     m_levels.clear();
     int w = (m_width + (1 << kTileShift) - 1) >> kTileShift;
-    int h = (m_height + (1 << kTileShift) - 1) >> kTileShift;
+    int h = kBandRows >> kTileShift;
     for (;;) {
         const std::size_t cells = static_cast<std::size_t>(w) * h;
         m_levels.push_back(Level{w, h, std::vector<double>(cells), std::vector<uint8_t>(cells)});
@@ -252,7 +252,7 @@ void HierarchicalZBuffer::refresh(int level, int cx, int cy) {
         ++m_counts.tiles_updated;
         const int x0 = cx << kTileShift, y0 = cy << kTileShift;
         const int x1 = std::min(m_width, x0 + (1 << kTileShift));
-        const int y1 = std::min(m_height, y0 + (1 << kTileShift));
+        const int y1 = std::min(m_band_rows, y0 + (1 << kTileShift));
         uint32_t uncovered = 0;
         for (int y = y0; y < y1; ++y) {
             const std::size_t row = static_cast<std::size_t>(y) * m_width;
@@ -284,24 +284,26 @@ namespace {
 // arrive front to back, not in id order; the tiles of a run that won a centre are marked for
 // mark_levels(). The wrappers below compile it once per kernel, as zbuffer.cpp does.
 template <class DepthRow>
-uint64_t draw_face(const ScreenScene& scene, uint32_t index, double* depth_buffer,
-                   uint32_t* face_buffer, int width, int tiles_w, uint8_t* dirty,
-                   std::vector<uint32_t>& dirty_list, uint64_t& tests) {
+uint64_t draw_face(const ScreenScene& scene, uint32_t index, int band_y0, int band_rows,
+                   double* depth_buffer, uint32_t* face_buffer, int width, int tiles_w,
+                   uint8_t* dirty, std::vector<uint32_t>& dirty_list, uint64_t& tests) {
     const ScreenFace& f = scene.faces[index];
     const EdgeFunction* edges = scene.edges_of(f);
     constexpr int shift = HierarchicalZBuffer::kTileShift;
     uint64_t written = 0;
-    for (int y = f.bounds.y0; y < f.bounds.y1; ++y) {
+    const int y_end = std::min(f.bounds.y1, band_y0 + band_rows);
+    for (int y = std::max(f.bounds.y0, band_y0); y < y_end; ++y) {
         int xb = 0, xe = 0;
         if (!row_span(edges, f.point_count, y, f.bounds.x0, f.bounds.x1, xb, xe)) continue;
-        const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        const int local = y - band_y0;  // the band buffers' row
+        const std::size_t row = static_cast<std::size_t>(local) * static_cast<std::size_t>(width);
         tests += static_cast<uint64_t>(xe - xb);
         const uint64_t won = DepthRow::template test<true>(f.depth, y, xb, xe, index + 1,
                                                            depth_buffer + row, face_buffer + row);
         if (won == 0) continue;
         written += won;
         const uint32_t tile_row =
-            static_cast<uint32_t>(y >> shift) * static_cast<uint32_t>(tiles_w);
+            static_cast<uint32_t>(local >> shift) * static_cast<uint32_t>(tiles_w);
         for (int tx = xb >> shift; tx <= (xe - 1) >> shift; ++tx) {
             const uint32_t t = tile_row + static_cast<uint32_t>(tx);
             if (!dirty[t]) {
@@ -319,20 +321,21 @@ using HzbRowBaseline = DepthRowSse2;
 using HzbRowBaseline = DepthRowScalar;
 #endif
 
-[[gnu::flatten]] uint64_t draw_face_baseline(const ScreenScene& scene, uint32_t index,
-                                             double* depth, uint32_t* face, int width, int tiles_w,
-                                             uint8_t* dirty, std::vector<uint32_t>& dirty_list,
-                                             uint64_t& tests) {
-    return draw_face<HzbRowBaseline>(scene, index, depth, face, width, tiles_w, dirty, dirty_list,
-                                     tests);
+[[gnu::flatten]] uint64_t draw_face_baseline(const ScreenScene& scene, uint32_t index, int band_y0,
+                                             int band_rows, double* depth, uint32_t* face,
+                                             int width, int tiles_w, uint8_t* dirty,
+                                             std::vector<uint32_t>& dirty_list, uint64_t& tests) {
+    return draw_face<HzbRowBaseline>(scene, index, band_y0, band_rows, depth, face, width, tiles_w,
+                                     dirty, dirty_list, tests);
 }
 
 #if defined(FB89_HAS_AVX2_KERNEL)
 [[gnu::target("avx2"), gnu::flatten]] uint64_t draw_face_avx2(
-    const ScreenScene& scene, uint32_t index, double* depth, uint32_t* face, int width, int tiles_w,
-    uint8_t* dirty, std::vector<uint32_t>& dirty_list, uint64_t& tests) {
-    return draw_face<DepthRowAvx2>(scene, index, depth, face, width, tiles_w, dirty, dirty_list,
-                                   tests);
+    const ScreenScene& scene, uint32_t index, int band_y0, int band_rows, double* depth,
+    uint32_t* face, int width, int tiles_w, uint8_t* dirty, std::vector<uint32_t>& dirty_list,
+    uint64_t& tests) {
+    return draw_face<DepthRowAvx2>(scene, index, band_y0, band_rows, depth, face, width, tiles_w,
+                                   dirty, dirty_list, tests);
 }
 #endif
 
@@ -342,28 +345,42 @@ void HierarchicalZBuffer::draw(const ScreenScene& scene, uint32_t index) {
     uint64_t tests = 0, written = 0;
 #if defined(FB89_HAS_AVX2_KERNEL)
     if (has_avx2())
-        written = draw_face_avx2(scene, index, m_depth.data(), m_face.data(), m_width,
-                                 m_levels[0].w, m_levels[0].dirty.data(), m_dirty_list, tests);
+        written =
+            draw_face_avx2(scene, index, m_band_y0, m_band_rows, m_depth.data(), m_face.data(),
+                           m_width, m_levels[0].w, m_levels[0].dirty.data(), m_dirty_list, tests);
     else
 #endif
-        written = draw_face_baseline(scene, index, m_depth.data(), m_face.data(), m_width,
-                                     m_levels[0].w, m_levels[0].dirty.data(), m_dirty_list, tests);
+        written = draw_face_baseline(scene, index, m_band_y0, m_band_rows, m_depth.data(),
+                                     m_face.data(), m_width, m_levels[0].w,
+                                     m_levels[0].dirty.data(), m_dirty_list, tests);
     m_counts.depth_tests += tests;
     m_counts.pixels_written += written;
-    ++m_counts.faces_drawn;
+    m_drawn[index] = 1;
     mark_levels();
+}
+
+// A rectangle's part in the band, in the band buffers' rows (empty when it misses the band).
+PixelRect HierarchicalZBuffer::in_band(const PixelRect& r) const {
+    PixelRect local{r.x0, std::max(r.y0, m_band_y0) - m_band_y0, r.x1,
+                    std::min(r.y1, m_band_y0 + m_band_rows) - m_band_y0};
+    return local;
 }
 
 void HierarchicalZBuffer::walk(const ScreenScene& scene, uint32_t index) {
     const Node& node = m_nodes[index];
+    const PixelRect rect = in_band(node.box.rect);
+    if (rect.empty()) return;  // not in this band
     ++m_counts.nodes_visited;
-    if (hidden(node.box.rect, node.box.z0)) {
+    if (hidden(rect, node.box.z0)) {
         ++m_counts.nodes_culled;
         return;
     }
     for (uint32_t i = node.first_face; i < node.first_face + node.face_count; ++i) {
         const uint32_t f = m_order[i];
-        if (hidden(m_face_box[f].rect, m_face_box[f].z0)) {
+        const PixelRect face = in_band(m_face_box[f].rect);
+        if (face.empty()) continue;
+        ++m_counts.face_tests;
+        if (hidden(face, m_face_box[f].z0)) {
             ++m_counts.faces_culled;
             continue;
         }
@@ -379,17 +396,25 @@ void HierarchicalZBuffer::render(const ScreenScene& scene, protocol::CommandSink
         m_face_box.size() != scene.faces.size())
         setup(scene);
     m_counts = HzbCounts{};
-    reset_pyramid();
     m_color.resize(scene.faces.size());
     for (std::size_t i = 0; i < scene.faces.size(); ++i)
         m_color[i] = packed_color(scene.faces[i].color);
-    if (!m_nodes.empty()) walk(scene, 0);
-    // the spans, row by row as the Z-buffer sends them; emission leaves the rows zeroed
-    for (int y = 0; y < m_height; ++y)
-        m_counts.spans += emit_band_row(m_face.data() + static_cast<std::size_t>(y) * m_width, y, 0,
-                                        m_width, m_color.data(), sink);
+    m_drawn.assign(scene.faces.size(), 0);
+    // band by band: the octree walked over the band, then the band's spans (emission leaves
+    // its rows zeroed for the next)
+    for (m_band_y0 = 0; m_band_y0 < m_height; m_band_y0 += kBandRows) {
+        m_band_rows = std::min(kBandRows, m_height - m_band_y0);
+        reset_pyramid();
+        if (!m_nodes.empty()) walk(scene, 0);
+        for (int y = 0; y < m_band_rows; ++y)
+            m_counts.spans += emit_band_row(m_face.data() + static_cast<std::size_t>(y) * m_width,
+                                            m_band_y0 + y, 0, m_width, m_color.data(), sink);
+    }
+    for (uint8_t d : m_drawn)
+        m_counts.faces_drawn += d;
     stats.counters.add("hzb_nodes_visited", m_counts.nodes_visited);
     stats.counters.add("hzb_nodes_culled", m_counts.nodes_culled);
+    stats.counters.add("hzb_face_tests", m_counts.face_tests);
     stats.counters.add("hzb_faces_culled", m_counts.faces_culled);
     stats.counters.add("faces_rasterised", m_counts.faces_drawn);
     stats.counters.add("hzb_pyramid_tests", m_counts.pyramid_tests);
