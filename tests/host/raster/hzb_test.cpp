@@ -58,6 +58,24 @@ TEST(Hzb, TheIdealSceneAtDepthComplexity16IsCulledToItsFrontLayer) {
     EXPECT_EQ(h.counters.get("spans"), z.counters.get("spans"));
 }
 
+// Where it loses (depth complexity 1: nothing to cull), the loss is bounded: every depth test
+// the Z-buffer makes and no more, about one pyramid cell compared a node or face tested, and
+// the same commands.
+TEST(Hzb, AtDepthComplexityOneItsExtraWorkIsBoundedAndItsResultExact) {
+    Counters setup;
+    const ScreenScene s =
+        project_scene(ideal_scene(256, 256, 1, 16, 16, 0.5), ColorMode::FaceId, setup);
+    const auto [z, h] = both(s);
+    EXPECT_EQ(h.commands, z.commands);
+    EXPECT_EQ(h.counters.get("depth_tests"), z.counters.get("depth_tests"));
+    EXPECT_EQ(h.counters.get("faces_rasterised"), s.faces.size());
+    EXPECT_EQ(h.counters.get("hzb_faces_culled"), 0u);
+    EXPECT_EQ(h.counters.get("hzb_nodes_culled"), 0u);
+    const uint64_t tested = h.counters.get("hzb_face_tests") + h.counters.get("hzb_nodes_visited");
+    EXPECT_GE(h.counters.get("hzb_pyramid_tests"), tested);
+    EXPECT_LE(h.counters.get("hzb_pyramid_tests"), 2 * tested);
+}
+
 TEST(Hzb, ExactTiesGoToTheLowerIdWhateverOrderTheOctreeTakesThem) {
     // 400 random triangles, all in one plane: every overlap is an exact tie
     Scene scene = testing::random_scene(192, 144, 400, 600, 7);
