@@ -67,7 +67,10 @@ void HierarchicalZBuffer::setup(const ScreenScene& scene) {
     m_nodes.clear();
     m_order.clear();
     m_order.reserve(faces.size());
-    if (!faces.empty()) build(faces, cube, 0);
+    if (!faces.empty()) {
+        m_nodes.emplace_back();
+        build(0, faces, cube, 0);
+    }
 
     m_width = scene.width;
     m_height = scene.height;
@@ -87,11 +90,10 @@ void HierarchicalZBuffer::setup(const ScreenScene& scene) {
     m_dirty_list.clear();
 }
 
-// Makes the node of `faces` (each wholly inside `cube`) and, for those that fit wholly in one
-// of its eight octants, its children; returns its index.
-uint32_t HierarchicalZBuffer::build(std::vector<uint32_t>& faces, const Box& cube, int depth) {
-    const uint32_t index = static_cast<uint32_t>(m_nodes.size());
-    m_nodes.emplace_back();
+// Makes m_nodes[index] the node of `faces` (each wholly inside `cube`) and, for those that
+// fit wholly in one of its eight octants, its children.
+void HierarchicalZBuffer::build(uint32_t index, std::vector<uint32_t>& faces, const Box& cube,
+                                int depth) {
     std::vector<uint32_t> own;
     std::array<std::vector<uint32_t>, 8> octant;
     const bool split = faces.size() > kLeafFaces && depth < kMaxDepth;
@@ -141,8 +143,14 @@ uint32_t HierarchicalZBuffer::build(std::vector<uint32_t>& faces, const Box& cub
     m_nodes[index].face_count = static_cast<uint32_t>(own.size());
     m_order.insert(m_order.end(), own.begin(), own.end());
 
-    // its children: built one after another, then placed side by side, nearest first
-    std::vector<uint32_t> children;
+    // its children, side by side: each built in its slot, then the block ordered nearest first
+    // (stable: octant order among equals; a slot's own children lie in their own blocks)
+    uint32_t count = 0;
+    for (const std::vector<uint32_t>& in : octant)
+        count += in.empty() ? 0 : 1;
+    const uint32_t first = static_cast<uint32_t>(m_nodes.size());
+    m_nodes.resize(m_nodes.size() + count);
+    uint32_t slot = first;
     for (int o = 0; o < 8; ++o) {
         std::vector<uint32_t>& in = octant[static_cast<std::size_t>(o)];
         if (in.empty()) continue;
@@ -150,24 +158,19 @@ uint32_t HierarchicalZBuffer::build(std::vector<uint32_t>& faces, const Box& cub
         (o & 1 ? c.rect.x0 : c.rect.x1) = mx;
         (o & 2 ? c.rect.y0 : c.rect.y1) = my;
         (o & 4 ? c.z0 : c.z1) = mz;
-        children.push_back(build(in, c, depth + 1));
+        build(slot++, in, c, depth + 1);
     }
-    // children must be contiguous: copy the subtrees' roots into one block at the end
-    std::sort(children.begin(), children.end(), [&](uint32_t a, uint32_t b) {
-        return m_nodes[a].box.z0 < m_nodes[b].box.z0 ||
-               (m_nodes[a].box.z0 == m_nodes[b].box.z0 && a < b);
-    });
-    m_nodes[index].first_child = static_cast<uint32_t>(m_nodes.size());
-    m_nodes[index].child_count = static_cast<uint32_t>(children.size());
-    for (uint32_t c : children) {
-        const Node copy = m_nodes[c];
-        m_nodes.push_back(copy);
-        box.rect = unite(box.rect, copy.box.rect);
-        box.z0 = std::min(box.z0, copy.box.z0);
-        box.z1 = std::max(box.z1, copy.box.z1);
+    const auto block = m_nodes.begin() + first;
+    std::stable_sort(block, block + count,
+                     [](const Node& a, const Node& b) { return a.box.z0 < b.box.z0; });
+    for (uint32_t k = first; k < first + count; ++k) {
+        box.rect = unite(box.rect, m_nodes[k].box.rect);
+        box.z0 = std::min(box.z0, m_nodes[k].box.z0);
+        box.z1 = std::max(box.z1, m_nodes[k].box.z1);
     }
+    m_nodes[index].first_child = first;
+    m_nodes[index].child_count = count;
     m_nodes[index].box = box;
-    return index;
 }
 
 // --- the pyramid --------------------------------------------------------------------------

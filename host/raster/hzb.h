@@ -81,7 +81,7 @@ class HierarchicalZBuffer final : public Renderer {
         uint32_t first_child = 0, child_count = 0;  // into m_nodes, nearest first
     };
 
-    uint32_t build(std::vector<uint32_t>& faces, const Box& cube, int depth);
+    void build(uint32_t index, std::vector<uint32_t>& faces, const Box& cube, int depth);
     void walk(const ScreenScene& scene, uint32_t node);
     PixelRect in_band(const PixelRect& r) const;
     bool hidden(const PixelRect& r, double z);
