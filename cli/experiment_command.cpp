@@ -79,9 +79,10 @@ void register_experiment(CLI::App& app, int& exit_code) {
                     "fig4.*: the beam-ray hybrid's Expr. 2.7 threshold (number, inf or "
                     "calibrated)")
         ->capture_default_str();
-    sub->add_option("--sizes", args->request.sizes,
-                    "fig4.8/4.11/4.12: image sizes WxH (default 256x195 512x390 1024x780 "
-                    "2048x1560)");
+    sub->add_option(
+        "--sizes", args->request.sizes,
+        "fig4.8/4.11/4.12, successors-rays: image sizes WxH (default 256x195 512x390 1024x780 "
+        "2048x1560)");
     sub->add_option("--out-dir", args->request.out_dir, "fig4.7: where the frames and masks go")
         ->capture_default_str();
     sub->add_option("--patches", args->request.patches,

@@ -77,8 +77,8 @@ void refuse_options_the_method_ignores(const CLI::App& sub, const std::string& m
         {"--approx-eps", host::kWindowOptions, "warnock and hybrid"},
         {"--threshold", host::kHybridOptions, "hybrid"},
         {"--depth-estimate", host::kHybridOptions, "hybrid"},
-        {"--reflections", host::kTraceOptions, "raytrace and beam"},
-        {"--accel", host::kTraceOptions, "raytrace and beam"},
+        {"--reflections", host::kTraceOptions, "raytrace, beam and mlrta"},
+        {"--accel", host::kTraceOptions, "raytrace, beam and mlrta"},
         {"--grid-density", host::kBeamOptions, "beam"},
         {"--beam-threshold", host::kBeamOptions, "beam"},
     };
@@ -419,10 +419,11 @@ void register_render(CLI::App& app, int& exit_code) {
         ->check(cli_check(limits::kGridDensity))
         ->capture_default_str();
     sub->add_option("--accel", args->accel,
-                    "Raytrace and beam: what rays find their nearest face through, and beams "
-                    "the faces in their way: bvh, or grid (the paper's: a uniform grid walked "
-                    "by 3DDDA, Fujimoto et al.); the same frame either way")
-        ->check(CLI::IsMember({"bvh", "grid"}))
+                    "Raytrace, beam and mlrta: what rays find their nearest face through, and "
+                    "beams the faces in their way: bvh, grid (the paper's: a uniform grid walked "
+                    "by 3DDDA, Fujimoto et al.) or kd (the kd-tree mlrta's beams walk; raytrace "
+                    "and mlrta only); the same frame every way")
+        ->check(CLI::IsMember({"bvh", "grid", "kd"}))
         ->capture_default_str();
     sub->add_option("--mask", args->mask,
                     "Beam: write the image with every pixel the ray tracer decided blacked out "

@@ -35,8 +35,13 @@ Table experiment_hybrid(const ExperimentSettings& settings, double chosen);
 
 // After the paper (successor_experiments.cpp): the hierarchical Z-buffer beside the Z-buffer
 // and the §3 hybrid at the paper's 0.04, on each scene and on the ideal scene at depth
-// complexities 1 to 64; natively only for now (on a 1989 host, std::invalid_argument).
+// complexities 1 to 64; natively, or on a 1989 host (each run emulated once, counted).
 Table experiment_successors(const ExperimentSettings& settings);
+// The same for §4 (successor_experiments.cpp): multi-level ray tracing beside the ray tracer
+// (on its BVH and on the kd-tree) and the beam-ray hybrid at `beam_threshold`, per scene at
+// each size; natively or on a 1989 host.
+Table experiment_successors_rays(const ExperimentSettings& settings,
+                                 const std::vector<ImageSize>& sizes, double beam_threshold);
 
 // The split (split_experiment.cpp): every method on every scene, host time per frame beside
 // the controller's, the pipeline's frame time and the side that bounds it.

@@ -107,6 +107,14 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
     const auto beam_threshold = [&] {
         return resolve_beam_threshold(r.beam_threshold, nullptr, host);
     };
+    // --sizes, or the paper's three and twice the largest
+    const auto sizes = [&] {
+        std::vector<ImageSize> out_sizes;
+        for (const auto& text : r.sizes)
+            out_sizes.push_back(parse_size(text, r.spelling));
+        if (out_sizes.empty()) out_sizes = {{256, 195}, {512, 390}, {1024, 780}, {2048, 1560}};
+        return out_sizes;
+    };
     const std::string& name = r.name;
     Table& table = out.table;
     if (name == "fig2.1")
@@ -119,13 +127,9 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
         table = experiment_hybrid(s, threshold());
     else if (name == "accuracy")
         table = experiment_accuracy(s, threshold());
-    else if (name == "fig4.8" || name == "fig4.11" || name == "fig4.12") {
-        std::vector<ImageSize> sizes;
-        for (const auto& text : r.sizes)
-            sizes.push_back(parse_size(text, r.spelling));
-        if (sizes.empty()) sizes = {{256, 195}, {512, 390}, {1024, 780}, {2048, 1560}};
-        table = experiment_beam_resolution(s, sizes, beam_threshold());
-    } else if (name == "fig4.7")
+    else if (name == "fig4.8" || name == "fig4.11" || name == "fig4.12")
+        table = experiment_beam_resolution(s, sizes(), beam_threshold());
+    else if (name == "fig4.7")
         table = experiment_beam_masks(s, beam_threshold(), r.out_dir);
     else if (name == "beam-threshold")
         table = experiment_beam_threshold(s, beam_threshold_ramp());
@@ -133,6 +137,8 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
         table = experiment_split(s);
     else if (name == "successors")
         table = experiment_successors(s);
+    else if (name == "successors-rays")
+        table = experiment_successors_rays(s, sizes(), beam_threshold());
     else if (name == "radiosity")
         table = experiment_radiosity(s, r.patches);
     else if (name == "ff-error" || name == "radiosity-error")

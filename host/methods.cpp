@@ -7,12 +7,13 @@
 #include "host/raster/hzb.h"
 #include "host/raster/scanline.h"
 #include "host/raster/zbuffer.h"
+#include "host/trace/mlrta.h"
 
 namespace fb89::host {
 
 namespace {
 
-constexpr std::array<MethodInfo, 9> kMethods{{
+constexpr std::array<MethodInfo, 10> kMethods{{
     {Method::ZBuffer, "zbuffer", "Z-buffer: depth test per pixel, spans of equal colour", 0},
     {Method::ScanLine, "scanline", "Watkins scan-line: active faces per row, depth per segment", 0},
     {Method::Warnock, "warnock", "Warnock window sampling (§1, §2): fills from the thinker",
@@ -36,6 +37,10 @@ constexpr std::array<MethodInfo, 9> kMethods{{
      "hierarchical Z-buffer (Greene et al. 1993): an octree front to back, culled in a depth "
      "pyramid; the Z-buffer's spans",
      0},
+    {Method::Mlrta, "mlrta",
+     "multi-level ray tracing (Reshetov et al. 2005): beams of rays find their entry point in a "
+     "kd-tree, split where their rays part; the ray tracer's frame",
+     kTraceOptions},
 }};
 
 }  // namespace
@@ -80,6 +85,11 @@ void validate(const MethodOptions& o) {
         if (o.trace.max_reflections < 0 || o.trace.max_reflections > kMaxReflections)
             throw std::invalid_argument("the reflection limit must be 0 to " +
                                         std::to_string(kMaxReflections));
+        if (o.method == Method::Beam && o.trace.accel == Accel::Kd)
+            throw std::invalid_argument(
+                "accel kd: the beam method's beams query a BVH or a grid (mlrta walks a kd-tree)");
+        if (o.method == Method::Mlrta && o.trace.accel == Accel::Grid)
+            throw std::invalid_argument("accel grid: mlrta's beams and rays walk a kd-tree");
     }
     if (info.uses(kBeamOptions) &&
         !(o.beam.grid_density >= kMinGridDensity && o.beam.grid_density <= kMaxGridDensity))
@@ -112,6 +122,8 @@ std::unique_ptr<Renderer> make_renderer(const MethodOptions& o) {
             return std::make_unique<FaceSender>();
         case Method::Hzb:
             return std::make_unique<HierarchicalZBuffer>();
+        case Method::Mlrta:
+            return std::make_unique<MultiLevelRayTracer>(o.trace);
     }
     throw std::invalid_argument("unknown method");
 }

@@ -21,7 +21,18 @@
 
 namespace fb89::host {
 
-enum class Method { ZBuffer, ScanLine, Warnock, Hybrid, RayTrace, Beam, DepthSpans, Faces, Hzb };
+enum class Method {
+    ZBuffer,
+    ScanLine,
+    Warnock,
+    Hybrid,
+    RayTrace,
+    Beam,
+    DepthSpans,
+    Faces,
+    Hzb,
+    Mlrta
+};
 
 // Which option groups a method reads; any other group's options do not apply to it.
 enum OptionGroup : unsigned {

@@ -510,6 +510,38 @@ def successors(folder):
     save(fig, os.path.join(folder, "successors.png"))
 
 
+def successors_rays(folder):
+    """After the paper, multi-level ray tracing (fb89 experiment successors-rays): FOLDER/
+    successors_rays.csv drawn as FOLDER/successors_rays.png -- the speed-up over the ray tracer
+    (its BVH) of the paper's beam-ray hybrid, of multi-level ray tracing and of the ray tracer
+    on mlrta's kd-tree, against image width, one panel per scene."""
+    rows = read(os.path.join(folder, "successors_rays.csv"))
+    scenes = list(dict.fromkeys(scene_label(r["scene"]) for r in rows))
+    labels = {"beam": "the paper's beam-ray hybrid (§4)",
+              "mlrta": "multi-level ray tracing (Reshetov et al. 2005)",
+              "raytrace-kd": "ray tracer on mlrta's kd-tree"}
+    fig, axes = plt.subplots(1, len(scenes), figsize=(3.2 * len(scenes), 3.8), sharey=True,
+                             squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        for i, method in enumerate(labels):
+            points = sorted((int(r["width"]), float(r["speedup"])) for r in rows
+                            if scene_label(r["scene"]) == scene and r["method"] == method)
+            ax.plot([p[0] for p in points], [p[1] for p in points], marker="o",
+                    color=f"C{i}", label=labels[method])
+        ax.axhline(1.0, color="grey", lw=0.8, ls="--")
+        ax.set_xscale("log", base=2)
+        ax.set_yscale("log", base=2)
+        ax.set_title(scene, fontsize=9)
+        ax.set_xlabel("image width (pixels)", fontsize=8)
+        ax.grid(which="both", alpha=0.3)
+    axes[0][0].set_ylabel("speed-up over the ray tracer (BVH), hidden-surface time", fontsize=8)
+    axes[0][0].legend(fontsize=6)
+    fig.suptitle("After the paper: beams that fill windows against beams that find entry points "
+                 "(this machine, medians of interleaved rounds)", fontsize=9)
+    fig.tight_layout()
+    save(fig, os.path.join(folder, "successors_rays.png"))
+
+
 def timeline_png(json_path, png_path):
     """One frame through the pipeline in time (fb89 render --timeline): the host's, the bus's
     and the controller's lanes in time, host stalls in red, the command buffer's fill below,
@@ -586,6 +618,8 @@ def main():
         return
     if "--successors" in sys.argv:
         successors(folder)
+        if os.path.exists(os.path.join(folder, "successors_rays.csv")):
+            successors_rays(folder)
         return
     if "--timelines" in sys.argv:
         timelines(folder)

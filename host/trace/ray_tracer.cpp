@@ -1,6 +1,7 @@
 #include "host/trace/ray_tracer.h"
 
 #include "host/trace/kernel_level.h"
+#include "host/trace/nearest.h"
 
 #include <algorithm>
 #include <span>
@@ -12,57 +13,33 @@
 namespace fb89::host {
 
 std::string_view accel_name(Accel accel) {
-    return accel == Accel::Grid ? "grid" : "bvh";
+    return accel == Accel::Grid ? "grid" : accel == Accel::Kd ? "kd" : "bvh";
 }
 
 Accel parse_accel(std::string_view name) {
     if (name == "bvh") return Accel::Bvh;
     if (name == "grid") return Accel::Grid;
-    throw std::invalid_argument("expected bvh or grid, got '" + std::string(name) + "'");
+    if (name == "kd") return Accel::Kd;
+    throw std::invalid_argument("expected bvh, grid or kd, got '" + std::string(name) + "'");
 }
 
 void TraceCounts::publish(Counters& counters) const {
     counters.add("rays", rays);
-    if (cells > 0)
-        counters.add("cells_visited", cells);
-    else
-        counters.add("bvh_nodes_visited", nodes);
+    if (cells > 0) counters.add("cells_visited", cells);
+    if (kd_nodes > 0) counters.add("kd_nodes_visited", kd_nodes);
+    if (nodes > 0 || (cells == 0 && kd_nodes == 0)) counters.add("bvh_nodes_visited", nodes);
     counters.add("ray_face_tests", face_tests);
     counters.add("ray_ties", ties);
 }
 
 namespace {
 
-// The nearest-hit rule both walks share (the BVH's and the grid's): a piece hit at tmin < t <=
-// tmax becomes the best when nearer than it, or as near and a lower piece -- a tie, counted --
-// so the answer does not depend on the order a walk meets the pieces. Tests and ties counted
-// in locals, added to TraceCounts once a ray.
-struct Nearest {
-    const TraceScene& scene;
-    const Ray& ray;
-    const RaySpace& space;
-    double tmin, tmax;
-    Hit best{INFINITY, kNoFace};
-    uint64_t tests = 0, ties = 0;
-
-    void test(uint32_t piece) {
-        ++tests;
-        double t;
-        if (!scene.intersect(ray, space, piece, tmin, t, std::min(best.t, tmax)) || t > best.t ||
-            t > tmax)
-            return;
-        if (t == best.t) {
-            ++ties;
-            if (piece > best.piece) return;
-        }
-        best = {t, piece};
-    }
-    Hit counted(TraceCounts& counts) const {
-        counts.face_tests += tests;
-        counts.ties += ties;
-        return best;
-    }
-};
+// Nearest (nearest.h) with its tests and ties added to the frame's counts.
+Hit counted(const Nearest& nearest, TraceCounts& counts) {
+    counts.face_tests += nearest.tests;
+    counts.ties += nearest.ties;
+    return nearest.best;
+}
 
 // The nearest piece with tmin < t <= tmax, never `skip`: the BVH walk and the watertight test.
 // Inlined whole into each level's entry point below (flatten), so that each is compiled for
@@ -78,7 +55,7 @@ inline Hit closest_hit_body(const RayBvh& bvh, const TraceScene& scene, const Ra
             if (piece != skip) nearest.test(piece);
         },
         [&] { return nearest.best.t; });
-    return nearest.counted(counts);
+    return counted(nearest, counts);
 }
 
 using ClosestHit = Hit (*)(const RayBvh&, const TraceScene&, const Ray&, double, uint32_t,
@@ -122,16 +99,20 @@ ClosestHit closest_hit_for(KernelLevel level) {
 
 }  // namespace
 
-RayTracer::RayTracer(const TraceScene& scene, const UniformGrid* grid)
+RayTracer::RayTracer(const TraceScene& scene, const UniformGrid* grid, Accel accel)
     : m_scene(scene),
       m_grid(grid),
-      m_bvh(grid ? std::nullopt : std::optional<RayBvh>(std::in_place, scene)),
+      m_bvh(grid || accel == Accel::Kd ? std::nullopt
+                                       : std::optional<RayBvh>(std::in_place, scene)),
+      m_kd(!grid && accel == Accel::Kd ? std::optional<KdTree>(std::in_place, scene)
+                                       : std::nullopt),
       m_level(host::kernel_level()),
-      m_mailbox(grid ? scene.faces().size() : 0) {}
+      m_mailbox(grid || accel == Accel::Kd ? scene.faces().size() : 0) {}
 
 Hit RayTracer::closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
                            double tmax) const {
     if (m_grid) return closest_hit_grid(ray, tmin, skip, counts, tmax);
+    if (m_kd) return closest_hit_kd(ray, tmin, skip, counts, tmax);
     return closest_hit_for(m_level)(*m_bvh, m_scene, ray, tmin, skip, counts, tmax);
 }
 
@@ -148,7 +129,25 @@ Hit RayTracer::closest_hit_grid(const Ray& ray, double tmin, uint32_t skip, Trac
     const auto walked = m_grid->walk_levels(
         ray, tmin, tmax, test_list, [&](double t_exit) { return nearest.best.t <= t_exit; });
     counts.cells += walked.cells + walked.sub_cells;
-    return nearest.counted(counts);
+    return counted(nearest, counts);
+}
+
+Hit RayTracer::closest_hit_kd(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
+                              double tmax) const {
+    const Mailbox::Round mailbox = m_mailbox.begin();
+    const RaySpace space(ray);
+    Nearest nearest{m_scene, ray, space, tmin, tmax};
+    const glm::dvec3 inv = inverse_direction(ray);
+    double t0 = tmin, t1 = tmax;
+    if (KdTree::clip(ray, inv, m_kd->bounds(), t0, t1))
+        m_kd->walk(
+            ray, inv, 0, t0, t1,
+            [&, mailbox](std::span<const uint32_t> pieces) {
+                for (uint32_t piece : pieces)
+                    if (mailbox.first_visit(piece) && piece != skip) nearest.test(piece);
+            },
+            [&](double t_exit) { return nearest.best.t <= t_exit; }, counts.kd_nodes);
+    return counted(nearest, counts);
 }
 
 Hit RayTracer::primary_hit(const Ray& primary, TraceCounts& counts) const {
@@ -162,7 +161,11 @@ void RayTracer::trace(const Ray& primary, RayTrace& out, TraceCounts& counts) co
 
 uint32_t RayTracer::pixel_color(int x, int y, RayTrace& scratch, TraceCounts& counts) const {
     const Ray ray = m_scene.pixel_ray(x, y);
-    const Hit hit = primary_hit(ray, counts);
+    return color_of(ray, primary_hit(ray, counts), scratch, counts);
+}
+
+uint32_t RayTracer::color_of(const Ray& ray, Hit hit, RayTrace& scratch,
+                             TraceCounts& counts) const {
     if (hit.piece == kNoFace) return 0;
     const TraceFace& f = m_scene.faces()[hit.piece];
     // the common path: a face that is no mirror (or no reflection followed) ends it
@@ -230,7 +233,8 @@ void TraceSetup::build(const ScreenScene& screen, int max_reflections, double gr
     if (grid_density > 0 || accel == Accel::Grid)
         grid = std::make_unique<UniformGrid>(*scene,
                                              grid_density > 0 ? grid_density : kDefaultGridDensity);
-    tracer = std::make_unique<RayTracer>(*scene, accel == Accel::Grid ? grid.get() : nullptr);
+    tracer =
+        std::make_unique<RayTracer>(*scene, accel == Accel::Grid ? grid.get() : nullptr, accel);
 }
 
 void RayTraceRenderer::setup(const ScreenScene& scene) {

@@ -18,6 +18,7 @@
 #include "host/raster/renderer.h"
 #include "host/trace/bvh.h"
 #include "host/trace/grid.h"
+#include "host/trace/kd_tree.h"
 #include "host/trace/kernel_level.h"
 #include "host/trace/mailbox.h"
 #include "host/trace/trace_scene.h"
@@ -26,11 +27,12 @@ namespace fb89::host {
 
 inline constexpr int kMaxReflections = 16;
 
-// The structure rays find their nearest piece through: the BVH (bvh.h), or the paper's: the
+// The structure rays find their nearest piece through: the BVH (bvh.h), the paper's: the
 // uniform grid of Fujimoto et al. walked by 3DDDA, its crowded cells gridded again (grid.h),
-// pieces met twice skipped by a mailbox. The same hits either way.
-enum class Accel { Bvh, Grid };
-std::string_view accel_name(Accel accel);  // "bvh", "grid"
+// pieces met twice skipped by a mailbox, or the kd-tree the multi-level ray tracer's beams
+// walk (kd_tree.h). The same hits every way.
+enum class Accel { Bvh, Grid, Kd };
+std::string_view accel_name(Accel accel);  // "bvh", "grid", "kd"
 Accel parse_accel(std::string_view name);  // throws std::invalid_argument
 
 // Counted in locals by kernels, published once per frame.
@@ -38,6 +40,7 @@ struct TraceCounts {
     uint64_t rays = 0;        // every ray traced: primary and reflected
     uint64_t nodes = 0;       // BVH nodes visited
     uint64_t cells = 0;       // grid cells visited (Accel::Grid: both levels)
+    uint64_t kd_nodes = 0;    // kd-tree nodes visited (Accel::Kd)
     uint64_t face_tests = 0;  // ray-piece tests
     uint64_t ties = 0;        // a piece hit at exactly the best distance so far
     void publish(Counters& counters) const;
@@ -58,7 +61,8 @@ struct RayTrace {
 class RayTracer {
   public:
     // With Accel::Grid, `grid` is the grid its rays walk (kept by the caller); else null.
-    explicit RayTracer(const TraceScene& scene, const UniformGrid* grid = nullptr);
+    explicit RayTracer(const TraceScene& scene, const UniformGrid* grid = nullptr,
+                       Accel accel = Accel::Bvh);
 
     // Nearest piece with tmin < t <= tmax, never `skip`.
     Hit closest_hit(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
@@ -71,9 +75,13 @@ class RayTracer {
     // Pixel (x, y)'s colour packed (packed_pixel; 0 for background), as trace_pixel gives
     // it, without keeping the path unless it meets a mirror (then in `scratch`).
     uint32_t pixel_color(int x, int y, RayTrace& scratch, TraceCounts& counts) const;
+    // The same colour for a primary ray whose nearest hit is already known (the multi-level
+    // ray tracer finds it from a beam's entry point).
+    uint32_t color_of(const Ray& primary, Hit hit, RayTrace& scratch, TraceCounts& counts) const;
 
     const TraceScene& scene() const { return m_scene; }
-    const RayBvh& bvh() const { return *m_bvh; }  // with the BVH (no grid) only
+    const RayBvh& bvh() const { return *m_bvh; }     // with the BVH only
+    const KdTree& kd_tree() const { return *m_kd; }  // with Accel::Kd only
     // The instruction set its inner loop runs with (kernel_level.h), fixed at construction.
     KernelLevel kernel_level() const { return m_level; }
 
@@ -88,8 +96,13 @@ class RayTracer {
                          double tmax) const;
 
     const TraceScene& m_scene;
-    const UniformGrid* m_grid;    // rays walk it when set; else the BVH
-    std::optional<RayBvh> m_bvh;  // built unless rays walk the grid
+    // The kd-tree's closest hit (Accel::Kd).
+    Hit closest_hit_kd(const Ray& ray, double tmin, uint32_t skip, TraceCounts& counts,
+                       double tmax) const;
+
+    const UniformGrid* m_grid;    // rays walk it when set; else the BVH or the kd-tree
+    std::optional<RayBvh> m_bvh;  // built when rays walk it
+    std::optional<KdTree> m_kd;   // built when rays walk it
     KernelLevel m_level;
     mutable Mailbox m_mailbox;
 };

@@ -91,6 +91,11 @@ class TraceScene {
     // clip. A scene given in screen space is seen along +z, unclipped.
     Ray pixel_ray(int x, int y) const;
     double primary_length() const { return m_primary_length; }
+    // The t at which every pixel ray reaches the depth of point p (pixel rays' t is depth
+    // from the near plane): no pixel ray meets p's depth before it.
+    double ray_depth(const glm::dvec3& p) const {
+        return m_orthographic ? p.z + 1.0 : glm::dot(p - m_eye, m_forward) - m_near;
+    }
     bool orthographic() const { return m_orthographic; }
 
     // The watertight test of one piece: true with t when the ray hits it at tmin < t. A hit

@@ -145,8 +145,8 @@ int main(int argc, char** argv) {
     app.add_option("--beam-threshold", a.beam_threshold, "Beam: Expr. 2.7 threshold");
     app.add_option("--reflections", a.reflections, "Raytrace and beam: mirror bounces");
     app.add_option("--grid-density", a.grid_density, "Beam: grid cells per piece");
-    app.add_option("--accel", a.accel, "Raytrace and beam: what rays walk, bvh or grid")
-        ->check(CLI::IsMember({"bvh", "grid"}));
+    app.add_option("--accel", a.accel, "Raytrace, beam and mlrta: what rays walk, bvh, grid or kd")
+        ->check(CLI::IsMember({"bvh", "grid", "kd"}));
     app.add_option("--approx-min", a.approx_min, "Approximate fills: smallest side");
     app.add_option("--approx-eps", a.approx_eps, "Approximate fills: centres missed");
     app.add_flag("--ids", a.ids, "Render the face-id pass instead of the shaded frame");

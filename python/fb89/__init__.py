@@ -165,7 +165,7 @@ def render(scene, *, method="zbuffer", size=None, host="native", controller=DEFA
     threshold, beam_threshold: the hybrids' thresholds: a number, "inf", "paper" or
         "calibrated" (the default: the one saved for this host by calibrate(save=True) or
         `fb89 calibrate`, else the paper's); refused for a method that does not read them.
-    reflections: mirror bounces for raytrace and beam, 0 to 16.
+    reflections: mirror bounces for raytrace, beam and mlrta, 0 to 16.
     buffer: the controller's command buffer for the pipeline in time, in bytes, or
         "unbounded" (render --buffer); None for the profile's.
     Raises fb89.SceneError, fb89.OptionError (naming the keyword), fb89.EmulatorError, and

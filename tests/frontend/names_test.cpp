@@ -43,7 +43,7 @@ TEST(Names, EveryRegisteredNamePassesItsCheck) {
 TEST(Names, ANearMissIsAnsweredWithTheNearestKnownName) {
     EXPECT_EQ(said(check_method, "zbufer"),
               "unknown method 'zbufer'; did you mean 'zbuffer'? (zbuffer, scanline, warnock, "
-              "hybrid, raytrace, beam, zspans, faces or hzb; fb89 list methods)");
+              "hybrid, raytrace, beam, zspans, faces, hzb or mlrta; fb89 list methods)");
     const std::string profile = said(fe::check_profile_name, "tms34020-40mz");
     EXPECT_EQ(profile.rfind("unknown profile 'tms34020-40mz'; did you mean 'tms34020-40mhz'? (", 0),
               0u)

@@ -122,6 +122,40 @@ TEST(PeriodExperiments, Sun4JobsNameTheirInstructionSetAndJoinIntoTheSameTable) 
     EXPECT_EQ(slurp(merged), slurp(single));
 }
 
+// After the paper on a 1989 host: every row's time is the emulated run's, counted, so two runs
+// give the same table; the ideal ladder's rungs go to the guest as scene files in a scratch
+// folder, which is gone afterwards.
+TEST(PeriodExperiments, TheSuccessorsRunOnA1989HostAndGiveOneTable) {
+    const auto dir = test_dir();
+    const std::string one = (dir / "successors1.csv").string(),
+                      two = (dir / "successors2.csv").string();
+    const std::string run =
+        "experiment successors " + kScenes + "/A.json --size 64x48 --host sun4-260 -q --csv ";
+    const auto scratch_folders = [] {
+        int n = 0;
+        for (const auto& entry :
+             std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
+            n += entry.path().filename().string().rfind("fb89-successors-", 0) == 0;
+        return n;
+    };
+    const int before = scratch_folders();
+    CliRun r = run_fb89(run + one);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(run_fb89(run + two).exit_code, 0);
+    EXPECT_LE(scratch_folders(), before);
+    const std::string table = slurp(one);
+    EXPECT_EQ(table, slurp(two));
+    EXPECT_NE(table.find("\nideal-16,hzb,"), std::string::npos) << table;
+
+    const std::string rays = (dir / "successors_rays.csv").string();
+    CliRun t = run_fb89("experiment successors-rays " + kScenes +
+                        "/cornell_box.json --sizes 48x36 --host sun4-260 -q --csv " + rays);
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    const std::string rows = slurp(rays);
+    EXPECT_NE(rows.find(",mlrta,"), std::string::npos) << rows;
+    EXPECT_EQ(rows.find(",NO"), std::string::npos) << rows;
+}
+
 TEST(PeriodExperiments, JobOptionsNeedA1989Host) {
     CliRun r = run_fb89(kSweep.substr(0, kSweep.find("--host")) + "--jobs 2");
     EXPECT_EQ(r.exit_code, 2);
