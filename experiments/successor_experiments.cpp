@@ -12,7 +12,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -23,6 +22,7 @@
 #include "host/raster/scene_measures.h"
 #include "host/raster/screen_setup.h"
 #include "host/scene/generators.h"
+#include "protocol/output_file.h"
 
 namespace fb89::experiments {
 
@@ -71,9 +71,7 @@ class ScratchScenes {
             {"image", {{"width", width}, {"height", height}}},
             {"objects",
              {{{"generator", "ideal"}, {"layers", layers}, {"cell", 16}, {"gap", 0.5}}}}};
-        std::ofstream out(path);
-        out << scene.dump(2) << "\n";
-        if (!out) throw std::runtime_error("cannot write " + path.string());
+        protocol::write_output(path, scene.dump(2) + "\n", protocol::Publish::Now);
         return path.string();
     }
 
