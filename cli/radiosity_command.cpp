@@ -12,6 +12,10 @@
 //   disk      δ by flux tracing, Wallace et al.'s disk form (bounded for close patches)
 //   exact     δ by flux tracing, exact unoccluded polygon-to-polygon factors times δ
 //   hemicube  the hemicube, its own occlusion (no δ)
+//   hierarchical  hierarchical radiosity (host/radiosity/hierarchical.h): BF-refined links
+//             (--epsilon), --link-rays visibility rays each, elements no smaller than
+//             --min-area (default: a quarter of the patch area --patches asks for); it
+//             meshes and solves itself, so --solver and --adaptive do not apply
 // A scene with no emitting face is an error (exit 2): its radiosity is black everywhere.
 // --adaptive T re-meshes where neighbouring patches differ by more than T (relative) and
 // solves again, --adaptive-passes times or until nothing more is split.
@@ -155,6 +159,21 @@ nlohmann::json stats_json(const RadiosityArgs& args, const RadiosityRun& run,
                       {"exposure", run.result.exposure},
                       {"exposure_automatic", args.options.exposure == 0}};
     if (args.ff == "hemicube") j["radiosity"]["hemicube_res"] = args.options.hemicube_res;
+    if (const auto& h = run.result.hierarchy) {
+        j["radiosity"]["solver"] = "push-pull";
+        j["radiosity"]["hierarchical"] = {{"epsilon", args.options.hierarchical.epsilon},
+                                          {"link_rays", args.options.hierarchical.link_rays},
+                                          {"roots", h->roots},
+                                          {"elements", h->nodes},
+                                          {"leaves", h->leaves},
+                                          {"links", h->links},
+                                          {"refinements", h->refinements},
+                                          {"oracle_calls", h->oracle_calls},
+                                          {"link_form_factors", h->form_factors},
+                                          {"rays", h->rays},
+                                          {"passes", h->passes},
+                                          {"budget_hit", h->budget_hit}};
+    }
     if (args.options.adaptive > 0)
         j["radiosity"]["adaptive"] = {{"threshold", args.options.adaptive},
                                       {"passes", args.options.adaptive_passes},
@@ -196,8 +215,14 @@ std::string row_sum_flag(const RadiosityArgs& args, const RadiosityRun& run) {
     const char* hemicube =
         "The hemicube's cells are counted whole, so a row can exceed 1 by the rounding of its "
         "resolution; a finer hemicube (--hemicube-res) lowers it.";
+    const char* hierarchical =
+        "A leaf gathers along its own links and its ancestors', each with the ancestor's mean "
+        "factor: where a parent links a source whole, a leaf of it far from that source is "
+        "credited the parent's mean, so single rows can exceed 1 while the light sent and "
+        "absorbed balance; a smaller --epsilon links finer and lowers it.";
     const char* why = args.ff == "disk" || args.ff == "exact" ? all_or_nothing
                       : args.ff == "hemicube"                 ? hemicube
+                      : args.ff == "hierarchical"             ? hierarchical
                                                               : point_form;
     return fmt::format(
         "! {} of {} rows of F sum above 1, the largest by {:.1f}% (patch {}, on face {}). A "
@@ -218,10 +243,16 @@ std::string summary(const RadiosityArgs& args, const RadiosityRun& run) {
             out += fmt::format(" {}", n);
         out += " patches\n";
     }
+    if (const auto& h = run.result.hierarchy)
+        out += fmt::format(
+            "hierarchy: {} root elements, {} elements, {} leaves, {} links, {} refinements, {} "
+            "oracle calls, {} link factors, {} rays, {} passes{}\n",
+            h->roots, h->nodes, h->leaves, h->links, h->refinements, h->oracle_calls,
+            h->form_factors, h->rays, h->passes, h->budget_hit ? " (budget reached)" : "");
     out += fmt::format(
         "form factors {}, solver {}: {} {}, residual {:.3g}{}; largest row sum of F "
         "{:.4g}; exposure {:.4g}{}\n",
-        args.ff, args.solver, run.result.solution.iterations,
+        args.ff, run.result.hierarchy ? "push-pull" : args.solver, run.result.solution.iterations,
         args.solver == "progressive" ? "shots" : "sweeps", run.result.solution.residual,
         run.result.solution.converged ? "" : " (NOT converged)", run.result.max_row_sum,
         run.result.exposure, args.options.exposure > 0 ? "" : " (automatic)");
@@ -314,12 +345,37 @@ void register_radiosity(CLI::App& app, int& exit_code) {
     sub->add_option("scene", args->scene,
                     scene_argument_help("Scene with at least one emitting face: a .json file"))
         ->required();
-    sub->add_option("--ff", args->ff,
-                    "Form factors: flux (flux-traced δ, centre point form), hybrid (δ by the "
-                    "decahedral hybrid, same form), disk (flux δ, disk form), exact (flux δ, exact "
-                    "polygon factors) or hemicube")
-        ->check(CLI::IsMember({"flux", "hybrid", "hemicube", "exact", "disk"}))
+    std::vector<std::string> ff_names;
+    std::string ff_help = "Form factors:";
+    for (const host::NamedFormFactorMethod& m : host::form_factor_methods()) {
+        ff_names.emplace_back(m.name);
+        ff_help +=
+            fmt::format("{} {} ({})", ff_names.size() == 1 ? "" : ",", m.name, m.description);
+    }
+    sub->add_option("--ff", args->ff, ff_help)
+        ->check(CLI::IsMember(ff_names))
         ->capture_default_str();
+    CLI::Option* epsilon =
+        sub->add_option("--epsilon", args->options.hierarchical.epsilon,
+                        "Hierarchical: refine a link while the radiosity it may carry is above "
+                        "this fraction of the largest emission (BF refinement)")
+            ->check(CLI::Range(0.0, 1e6))
+            ->capture_default_str();
+    CLI::Option* link_rays =
+        sub->add_option("--link-rays", args->options.hierarchical.link_rays,
+                        "Hierarchical: visibility rays per link (1: centre to centre)")
+            ->check(CLI::Range(1, 4096))
+            ->capture_default_str();
+    CLI::Option* min_area =
+        sub->add_option("--min-area", args->options.hierarchical.min_area,
+                        "Hierarchical: elements of at most this area are not split (default: a "
+                        "quarter of the patch area --patches asks for)")
+            ->check(CLI::Range(1e-12, 1e12));
+    CLI::Option* max_links =
+        sub->add_option("--max-links", args->options.hierarchical.max_links,
+                        "Hierarchical: stop refining (with a note) at this many links")
+            ->check(CLI::Range(uint64_t{1}, uint64_t{200'000'000}))
+            ->capture_default_str();
     sub->add_option("--patches", args->options.patches,
                     "About this many patches in all (scenes/README.md gives each scene's value)")
         ->check(CLI::Range(1, host::kMaxPatches))
@@ -328,10 +384,12 @@ void register_radiosity(CLI::App& app, int& exit_code) {
                                        "Hemicube: cells on a side of its top face")
                            ->check(CLI::Range(4, 4096))
                            ->capture_default_str();
-    sub->add_option("--solver", args->solver,
-                    "gauss-seidel (gathering sweeps) or progressive (shooting, Cohen et al. 1988)")
-        ->check(CLI::IsMember({"gauss-seidel", "progressive"}))
-        ->capture_default_str();
+    CLI::Option* solver =
+        sub->add_option(
+               "--solver", args->solver,
+               "gauss-seidel (gathering sweeps) or progressive (shooting, Cohen et al. 1988)")
+            ->check(CLI::IsMember({"gauss-seidel", "progressive"}))
+            ->capture_default_str();
     sub->add_option("--tolerance", args->options.tolerance,
                     "Stop when what is still to change is below this fraction of the largest "
                     "emission")
@@ -369,9 +427,18 @@ void register_radiosity(CLI::App& app, int& exit_code) {
         ->check(profile_validator())
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-    sub->callback([args, res, adaptive, passes, &exit_code] {
+    sub->callback([=, &exit_code] {
         if (res->count() > 0 && args->ff != "hemicube")
             throw UsageError("--hemicube-res: only --ff hemicube uses a hemicube");
+        const bool hierarchical = args->ff == "hierarchical";
+        for (const CLI::Option* o : {epsilon, link_rays, min_area, max_links})
+            if (o->count() > 0 && !hierarchical)
+                throw UsageError(o->get_name() + ": only --ff hierarchical uses it");
+        for (const CLI::Option* o : {solver, adaptive})
+            if (o->count() > 0 && hierarchical)
+                throw UsageError(o->get_name() +
+                                 ": --ff hierarchical meshes and solves itself (gathering along "
+                                 "its links with push-pull)");
         if (passes->count() > 0 && adaptive->count() == 0)
             throw UsageError("--adaptive-passes: needs --adaptive THRESHOLD");
         args->options.form_factors = *host::form_factor_method_named(args->ff);

@@ -223,19 +223,30 @@ def ff_error(folder):
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     for column, ax, label in (("ff_error", axes[0], "form-factor error (area-weighted mean |F - F_ref| row sum)"),
                               ("radiosity_rms_error", axes[1], "radiosity error (relative RMS)")):
+        # the form-factor panel times the form factors; the radiosity panel every stage
+        # (form factors and solve; the adaptive mesh and the hierarchy whole)
+        time = "cpu_ms" if column == "ff_error" else "total_cpu_ms"
         for scene, marker in zip(scenes, "os^v"):
-            sub = [r for r in rows if r["scene"] == scene and r[column]]
-            ax.scatter([float(r["cpu_ms"]) for r in sub], [float(r[column]) for r in sub], marker=marker,
-                       label=scene_label(scene))
+            sub = [r for r in rows if r["scene"] == scene and r[column] and r.get(time, "")]
+            points = ax.scatter([float(r[time]) for r in sub], [float(r[column]) for r in sub], marker=marker,
+                                label=scene_label(scene))
+            # one curve per method family: the hemicube's resolutions, the adaptive
+            # thresholds, the hierarchy's epsilons
+            for family in ("hemicube", "adaptive", "hierarchical"):
+                series = sorted((float(r[time]), float(r[column])) for r in sub if r["method"].startswith(family))
+                if len(series) > 1:
+                    ax.plot([x for x, _ in series], [y for _, y in series], color=points.get_facecolor()[0],
+                            linewidth=0.8, alpha=0.6)
             for r in sub:
-                ax.annotate(r["method"], (float(r["cpu_ms"]), float(r[column])), textcoords="offset points",
+                ax.annotate(r["method"], (float(r[time]), float(r[column])), textcoords="offset points",
                             xytext=(4, 3), fontsize=7)
         ref = [float(r["reference_error"]) for r in rows]
         if ref:
             ax.axhline(max(ref), color="gray", linestyle=":", linewidth=1) if column == "ff_error" else None
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("form-factor time, ms (median CPU)")
+        ax.set_xlabel("form-factor time, ms (median CPU)" if column == "ff_error"
+                      else "time to the solution, ms (median CPU)")
         ax.set_ylabel(label)
         ax.grid(which="both", alpha=0.3)
         ax.legend(fontsize=8)

@@ -30,14 +30,7 @@ void add_patches(Mesh& mesh, Element& e, uint32_t element_index) {
             p.i = i;
             p.j = j;
             p.corners = region_corners(e, i, i + 1, j, j + 1);
-            p.corner_count = p.corners[2] == p.corners[3] ? 3 : 4;
-            const double a1 = triangle_area(p.corners[0], p.corners[1], p.corners[2]);
-            const double a2 =
-                p.corner_count == 4 ? triangle_area(p.corners[0], p.corners[2], p.corners[3]) : 0.0;
-            p.area = a1 + a2;
-            const glm::dvec3 c1 = (p.corners[0] + p.corners[1] + p.corners[2]) / 3.0;
-            const glm::dvec3 c2 = (p.corners[0] + p.corners[2] + p.corners[3]) / 3.0;
-            p.centre = p.area > 0 ? (a1 * c1 + a2 * c2) / p.area : c1;
+            set_shape(p);
             mesh.patches.push_back(p);
         }
 }
@@ -119,18 +112,44 @@ double longest_side(const Patch& p) {
 
 }  // namespace
 
+void set_shape(Patch& p) {
+    p.corner_count = p.corners[2] == p.corners[3] ? 3 : 4;
+    const double a1 = triangle_area(p.corners[0], p.corners[1], p.corners[2]);
+    const double a2 =
+        p.corner_count == 4 ? triangle_area(p.corners[0], p.corners[2], p.corners[3]) : 0.0;
+    p.area = a1 + a2;
+    const glm::dvec3 c1 = (p.corners[0] + p.corners[1] + p.corners[2]) / 3.0;
+    const glm::dvec3 c2 = (p.corners[0] + p.corners[2] + p.corners[3]) / 3.0;
+    p.centre = p.area > 0 ? (a1 * c1 + a2 * c2) / p.area : c1;
+}
+
+std::array<glm::dvec3, 4> region_corners(const Element& e, double s0, double s1, double t0,
+                                         double t1) {
+    std::array<glm::dvec3, 4> c = {e.point(s0, t0), e.point(s1, t0), e.point(s1, t1),
+                                   e.point(s0, t1)};
+    if (t1 == 1 && e.corners[2] == e.corners[3]) c[2] = c[3] = e.corners[2];  // the apex, exactly
+    return c;
+}
+
+uint32_t add_region_element(Mesh& mesh, const Element& parent, double s0, double s1, double t0,
+                            double t1) {
+    Element e = parent;
+    e.corners = region_corners(parent, s0, s1, t0, t1);
+    e.nu = e.nv = 1;
+    const auto index = static_cast<uint32_t>(mesh.elements.size());
+    add_patches(mesh, e, index);
+    mesh.elements.push_back(e);
+    return index;
+}
+
 glm::dvec3 Element::point(double s, double t) const {
     return (1 - s) * (1 - t) * corners[0] + s * (1 - t) * corners[1] + s * t * corners[2] +
            (1 - s) * t * corners[3];
 }
 
 std::array<glm::dvec3, 4> region_corners(const Element& e, int i0, int i1, int j0, int j1) {
-    const double s0 = static_cast<double>(i0) / e.nu, s1 = static_cast<double>(i1) / e.nu;
-    const double t0 = static_cast<double>(j0) / e.nv, t1 = static_cast<double>(j1) / e.nv;
-    std::array<glm::dvec3, 4> c = {e.point(s0, t0), e.point(s1, t0), e.point(s1, t1),
-                                   e.point(s0, t1)};
-    if (t1 == 1 && e.corners[2] == e.corners[3]) c[2] = c[3] = e.corners[2];  // the apex, exactly
-    return c;
+    return region_corners(e, static_cast<double>(i0) / e.nu, static_cast<double>(i1) / e.nu,
+                          static_cast<double>(j0) / e.nv, static_cast<double>(j1) / e.nv);
 }
 
 Mesh mesh_scene(const Scene& scene, const MeshOptions& options) {

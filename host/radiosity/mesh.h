@@ -76,6 +76,19 @@ double patch_size_for(const Scene& scene, int target);
 // equal where the region reaches a triangle's apex.
 std::array<glm::dvec3, 4> region_corners(const Element& e, int i0, int i1, int j0, int j1);
 
+// The part s in [s0, s1] x t in [t0, t1] of an element's parameter square (the apex kept
+// exact where the region reaches a triangle's).
+std::array<glm::dvec3, 4> region_corners(const Element& e, double s0, double s1, double t0,
+                                         double t1);
+
+// A patch's corner count, area and centroid from its corners.
+void set_shape(Patch& patch);
+
+// Appends a one-patch element, the part [s0, s1] x [t0, t1] of `parent` (its face, piece and
+// material): hierarchical radiosity's leaves as a mesh. Returns its index.
+uint32_t add_region_element(Mesh& mesh, const Element& parent, double s0, double s1, double t0,
+                            double t1);
+
 // Which patches refine() splits: those with a neighbour (above) whose radiosity differs by more
 // than `threshold` relative to the brighter of the two (max |B_a − B_b| over channels / the
 // brighter one's largest channel). Pairs darker than 1/1000 of the brightest non-emitting patch are

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -18,12 +19,14 @@ namespace fb89::host {
 
 namespace {
 
-constexpr std::array<NamedFormFactorMethod, 5> kFormFactorMethods{{
+constexpr std::array<NamedFormFactorMethod, 6> kFormFactorMethods{{
     {FormFactorMethod::Flux, "flux", "flux-traced δ, centre point form"},
     {FormFactorMethod::Hybrid, "hybrid", "δ by the decahedral hybrid, same form as flux"},
     {FormFactorMethod::Disk, "disk", "flux-traced δ, disk form (bounded for close patches)"},
     {FormFactorMethod::Exact, "exact", "flux-traced δ, exact polygon-to-polygon factors"},
     {FormFactorMethod::Hemicube, "hemicube", "the hemicube, with its own occlusion"},
+    {FormFactorMethod::Hierarchical, "hierarchical",
+     "hierarchical radiosity: BF-refined links, k rays each (Hanrahan et al. 1991)"},
 }};
 
 bool has_emitter(const Scene& scene) {
@@ -115,6 +118,58 @@ void refine_and_solve(const RadiosityOptions& o, const RadiosityWorld& world, Ra
     }
 }
 
+// The uniform mesh, δ, a dense F and a solver; adaptive passes if asked.
+void solve_uniform(const Scene& world, const RadiosityOptions& o, RadiosityResult& run,
+                   const RadiosityObserver& observer) {
+    // patches and the grid the rays and queries run in
+    Stopwatch clock;
+    if (observer.stage) observer.stage("meshing");
+    run.patch_size = patch_size_for(world, o.patches);
+    MeshOptions mesh_options;
+    mesh_options.patch_size = run.patch_size;
+    run.mesh = mesh_scene(world, mesh_options);
+    check_size(run.mesh, "--patches " + std::to_string(o.patches));
+    const TraceScene trace(world, false, 0);
+    const UniformGrid grid(trace);
+    const RadiosityWorld traced{trace, grid};
+    run.patches_per_pass.push_back(run.mesh.patches.size());
+    run.times.meshing = clock.elapsed();
+
+    solve_mesh(o, traced, run, observer);
+    refine_and_solve(o, traced, run, observer);
+}
+
+// Roots one element a face piece; the hierarchy meshes and solves.
+void solve_hierarchical(const Scene& world, const RadiosityOptions& o, RadiosityResult& run,
+                        const RadiosityObserver& observer) {
+    Stopwatch clock;
+    if (observer.stage) observer.stage("meshing");
+    run.patch_size = patch_size_for(world, o.patches);
+    MeshOptions roots;
+    roots.patch_size = std::numeric_limits<double>::infinity();  // one patch an element
+    const Mesh mesh = mesh_scene(world, roots);
+    const TraceScene trace(world, false, 0);
+    const UniformGrid grid(trace);
+    run.times.meshing = clock.elapsed();
+
+    clock.restart();
+    if (observer.stage) observer.stage("hierarchical radiosity (links, rays, solving)");
+    HierarchicalOptions h = o.hierarchical;
+    if (h.min_area == 0) h.min_area = run.patch_size * run.patch_size / 4;
+    h.tolerance = o.tolerance;
+    h.max_iterations = o.max_iterations;
+    HierarchicalResult solved = hierarchical_radiosity(mesh, {trace, grid}, h, observer.work);
+    run.times.form_factors = clock.elapsed();
+    run.mesh = std::move(solved.leaves);
+    run.patches_per_pass.push_back(run.mesh.patches.size());
+    run.solution = std::move(solved.solution);
+    run.counts.rays = solved.counts.rays;
+    run.rows = solved.rows;
+    run.max_row_sum = solved.rows.largest;
+    run.hierarchy = solved.counts;
+    run.notes = std::move(solved.notes);
+}
+
 }  // namespace
 
 std::span<const NamedFormFactorMethod> form_factor_methods() {
@@ -152,25 +207,13 @@ RadiosityResult solve_radiosity(const Scene& world, const RadiosityOptions& o,
             "no face emits light (a material \"emission\"), so its radiosity is black "
             "everywhere");
     RadiosityResult run;
+    if (o.form_factors == FormFactorMethod::Hierarchical) {
+        solve_hierarchical(world, o, run, observer);
+    } else {
+        solve_uniform(world, o, run, observer);
+    }
 
-    // patches and the grid the rays and queries run in
     Stopwatch clock;
-    if (observer.stage) observer.stage("meshing");
-    run.patch_size = patch_size_for(world, o.patches);
-    MeshOptions mesh_options;
-    mesh_options.patch_size = run.patch_size;
-    run.mesh = mesh_scene(world, mesh_options);
-    check_size(run.mesh, "--patches " + std::to_string(o.patches));
-    const TraceScene trace(world, false, 0);
-    const UniformGrid grid(trace);
-    const RadiosityWorld traced{trace, grid};
-    run.patches_per_pass.push_back(run.mesh.patches.size());
-    run.times.meshing = clock.elapsed();
-
-    solve_mesh(o, traced, run, observer);
-    refine_and_solve(o, traced, run, observer);
-
-    clock.restart();
     run.exposure =
         o.exposure > 0 ? o.exposure : automatic_exposure(run.mesh, run.solution.radiosity);
     run.patches = patch_scene(world, run.mesh, run.solution.radiosity, run.exposure);

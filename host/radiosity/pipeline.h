@@ -9,6 +9,9 @@
 //   Disk      δ by flux tracing, Wallace et al.'s disk form (bounded for close patches)
 //   Exact     δ by flux tracing, exact unoccluded polygon-to-polygon factors times δ
 //   Hemicube  the hemicube, its own occlusion (no δ)
+//   Hierarchical  Hanrahan et al.'s hierarchical radiosity (hierarchical.h): links between
+//             elements of per-face trees, refined by BF until ε, k visibility rays a link;
+//             it meshes as it goes (--patches only sets its smallest element) and solves itself
 #pragma once
 
 #include <cstdint>
@@ -19,6 +22,7 @@
 #include <string_view>
 #include <vector>
 
+#include "host/radiosity/hierarchical.h"
 #include "host/radiosity/mesh.h"
 #include "host/radiosity/solver.h"
 #include "host/radiosity/visibility.h"
@@ -27,7 +31,7 @@
 
 namespace fb89::host {
 
-enum class FormFactorMethod { Flux, Hybrid, Disk, Exact, Hemicube };
+enum class FormFactorMethod { Flux, Hybrid, Disk, Exact, Hemicube, Hierarchical };
 enum class SolverKind { GaussSeidel, Progressive };
 
 struct NamedFormFactorMethod {
@@ -53,6 +57,10 @@ struct RadiosityOptions {
     double adaptive = 0;        // refine where neighbours differ by more (0: never)
     int adaptive_passes = 1;
     double exposure = 0;  // colour = radiosity x exposure (0: automatic)
+    // Hierarchical: epsilon, link rays, budgets; its min_area 0 means a quarter of the
+    // patch area `patches` asks for (elements down to half the patch side); tolerance and
+    // max_iterations are taken from above
+    HierarchicalOptions hierarchical;
 };
 
 struct RadiosityTimes {
@@ -70,8 +78,9 @@ struct RadiosityResult {
     RowSums rows;            // of F: the largest, its patch, how many exceed 1
     double exposure = 0;
     RadiosityTimes times;
-    std::vector<std::string> notes;  // what a user should hear (refinement cut short)
-    Scene patches;                   // one flat face per patch, coloured by radiosity
+    std::optional<HierarchicalCounts> hierarchy;  // Hierarchical: its links and elements
+    std::vector<std::string> notes;               // what a user should hear (refinement cut short)
+    Scene patches;                                // one flat face per patch, coloured by radiosity
 };
 
 // Progress: stage(name) as each stage starts, then work(done, total) now and then inside
@@ -82,7 +91,8 @@ struct RadiosityObserver {
 };
 
 // Throws SceneError when the world is not a perspective scene or nothing in it emits, and
-// std::invalid_argument when the mesh would exceed kMaxPatches.
+// std::invalid_argument when the mesh would exceed kMaxPatches (not Hierarchical, which keeps
+// no matrix) or an option is out of range.
 RadiosityResult solve_radiosity(const Scene& world, const RadiosityOptions& options,
                                 const RadiosityObserver& observer = {});
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <string>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 
 #include "host/methods.h"
 #include "host/radiosity/form_factors.h"
+#include "host/radiosity/hierarchical.h"
 #include "host/radiosity/mesh.h"
 #include "host/radiosity/visibility.h"
 #include "host/raster/screen_setup.h"
@@ -50,8 +52,9 @@ struct GuestArgs {
     int approx_min = 0;
     double approx_eps = 0;
     bool ids = false;
-    std::string radiosity;  // flux or hybrid: the §5 form factors instead of a frame
+    std::string radiosity;  // flux, hybrid or hierarchical: §5 instead of a frame
     int patches = 800;
+    double epsilon = host::HierarchicalOptions{}.epsilon;
 };
 
 host::MethodOptions method_options(const GuestArgs& a) {
@@ -78,9 +81,26 @@ int run_radiosity(const GuestArgs& a) {
     const host::Mesh mesh = host::mesh_scene(scene, {host::patch_size_for(scene, a.patches), 64});
     const host::TraceScene trace(scene, true, 0);
     const host::UniformGrid grid(trace);
+    const host::RadiosityWorld world{trace, grid};
+    if (a.radiosity == "hierarchical") {
+        // the roots, then links, rays and solving: the whole method is the timed part
+        const host::Mesh roots =
+            host::mesh_scene(scene, {std::numeric_limits<double>::infinity(), 64});
+        host::HierarchicalOptions o;
+        o.epsilon = a.epsilon;
+        const double size = host::patch_size_for(scene, a.patches);
+        o.min_area = size * size / 4;
+        mark(Phase::HiddenSurface);
+        const host::HierarchicalResult r = host::hierarchical_radiosity(roots, world, o);
+        mark(Phase::Output);
+        std::printf("leaves %llu links %llu rays %llu iterations %d\n",
+                    static_cast<unsigned long long>(r.counts.leaves),
+                    static_cast<unsigned long long>(r.counts.links),
+                    static_cast<unsigned long long>(r.counts.rays), r.solution.iterations);
+        return 0;
+    }
     mark(Phase::HiddenSurface);
     host::VisibilityCounts counts;
-    const host::RadiosityWorld world{trace, grid};
     const host::Visibility delta = a.radiosity == "hybrid"
                                        ? host::decahedral_hybrid(mesh, world, {}, counts)
                                        : host::flux_tracing(mesh, world, counts);
@@ -151,8 +171,10 @@ int main(int argc, char** argv) {
     app.add_option("--approx-eps", a.approx_eps, "Approximate fills: centres missed");
     app.add_flag("--ids", a.ids, "Render the face-id pass instead of the shaded frame");
     app.add_option("--radiosity", a.radiosity,
-                   "flux or hybrid: intervisibility and form factors instead of a frame")
-        ->check(CLI::IsMember({"flux", "hybrid"}));
+                   "flux or hybrid: intervisibility and form factors instead of a frame; "
+                   "hierarchical: hierarchical radiosity, solved")
+        ->check(CLI::IsMember({"flux", "hybrid", "hierarchical"}));
+    app.add_option("--epsilon", a.epsilon, "Hierarchical radiosity: BF refinement's epsilon");
     app.add_option("--patches", a.patches, "Radiosity: about this many patches");
     app.add_option("--stream", a.stream, "Where the command stream goes ('-' for stdout)");
     try {
