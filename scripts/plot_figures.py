@@ -227,7 +227,9 @@ def ff_error(folder):
         # (form factors and solve; the adaptive mesh and the hierarchy whole)
         time = "cpu_ms" if column == "ff_error" else "total_cpu_ms"
         for scene, marker in zip(scenes, "os^v"):
-            sub = [r for r in rows if r["scene"] == scene and r[column] and r.get(time, "")]
+            # a solve that diverged has no error to chart (the table says so)
+            sub = [r for r in rows if r["scene"] == scene and r[column] and r.get(time, "")
+                   and not (column == "radiosity_rms_error" and r["converged"].startswith("NO"))]
             points = ax.scatter([float(r[time]) for r in sub], [float(r[column]) for r in sub], marker=marker,
                                 label=scene_label(scene))
             # one curve per method family: the hemicube's resolutions, the adaptive

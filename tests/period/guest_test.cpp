@@ -8,10 +8,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "host/methods.h"
+#include "host/radiosity/hierarchical.h"
 #include "host/radiosity/mesh.h"
 #include "host/radiosity/visibility.h"
 #include "host/raster/screen_setup.h"
@@ -115,6 +117,28 @@ TEST_P(PeriodGuest, CountsTheNativeRaysAndQueriesOfTheRadiosityTable) {
                             std::to_string(mesh.patches.size() * mesh.patches.size()) + "\n")
             << method;
     }
+}
+
+// Hierarchical radiosity on the guest: the same leaves, links, rays and sweeps as natively.
+TEST_P(PeriodGuest, HierarchicalRadiosityLinksAndCastsAsNatively) {
+    const std::string room = kScenes + "/garish_room.json";
+    const host::Scene scene = host::load_scene(room);
+    const host::Mesh roots = host::mesh_scene(scene, {std::numeric_limits<double>::infinity(), 64});
+    const host::TraceScene trace(scene, true, 0);
+    const host::UniformGrid grid(trace);
+    host::HierarchicalOptions o;
+    o.epsilon = 0.2;
+    const double size = host::patch_size_for(scene, 120);
+    o.min_area = size * size / 4;
+    const host::HierarchicalResult native = host::hierarchical_radiosity(roots, {trace, grid}, o);
+    const GuestRun run = run_guest(
+        parts(), room, {"--radiosity", "hierarchical", "--patches", "120", "--epsilon", "0.2"});
+    const std::string said(run.stream.begin(), run.stream.end());
+    EXPECT_EQ(said, "leaves " + std::to_string(native.counts.leaves) + " links " +
+                        std::to_string(native.counts.links) + " rays " +
+                        std::to_string(native.counts.rays) + " iterations " +
+                        std::to_string(native.solution.iterations) + "\n");
+    EXPECT_GT(native.counts.links, 0u);
 }
 
 TEST_P(PeriodGuest, TheSameRunTwiceGivesByteIdenticalCounts) {
