@@ -51,6 +51,39 @@ TEST(RadiosityCommand, BadOptionsExitTwoNamingTheOption) {
     expect_usage_error("radiosity " + kGarish + " --adaptive -1", "--adaptive");
     EXPECT_EQ(fb89("radiosity").exit_code, 2);
     EXPECT_EQ(fb89("radiosity " + kScenes + "/no_such_scene.json").exit_code, 2);
+    // the hierarchy's options need it, and it takes no other solver or re-meshing
+    expect_usage_error("radiosity " + kGarish + " --epsilon 0.1", "--epsilon");
+    expect_usage_error("radiosity " + kGarish + " --link-rays 2", "--link-rays");
+    expect_usage_error("radiosity " + kGarish + " --ff hierarchical --link-rays 0", "--link-rays");
+    expect_usage_error("radiosity " + kGarish + " --ff hierarchical --epsilon -1", "--epsilon");
+    expect_usage_error("radiosity " + kGarish + " --ff hierarchical --solver progressive",
+                       "--solver");
+    expect_usage_error("radiosity " + kGarish + " --ff hierarchical --adaptive 0.2", "--adaptive");
+}
+
+TEST(RadiosityCommand, HierarchicalRendersTheRoomAndReportsItsLinks) {
+    fs::path png = scratch("room_hr.png"), stats = scratch("room_hr.json");
+    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --ff hierarchical --epsilon 0.05 --png " +
+                    png.string() + " --stats " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(slurp(stats));
+    const auto& h = j["radiosity"]["hierarchical"];
+    EXPECT_EQ(h["roots"], 29);
+    EXPECT_GT(h["links"].get<int>(), 0);
+    EXPECT_EQ(h["leaves"], j["radiosity"]["patches"]);
+    // 4 rays for each link factor found nonzero, none for the rest
+    EXPECT_EQ(h["rays"].get<int>() % 4, 0);
+    EXPECT_LE(h["rays"].get<int>(), 4 * h["link_form_factors"].get<int>());
+    EXPECT_GE(h["rays"].get<int>(), 4 * h["links"].get<int>());
+    EXPECT_EQ(j["radiosity"]["solver"], "push-pull");
+    EXPECT_TRUE(j["radiosity"]["converged"].get<bool>());
+    EXPECT_TRUE(fs::exists(png));
+    // a budget reached is said, and the run still renders
+    CliRun budget = fb89("radiosity " + kGarish + kSmall +
+                         "--ff hierarchical --epsilon 0 --max-links 500 --png " + png.string());
+    ASSERT_EQ(budget.exit_code, 0) << budget.err;
+    EXPECT_NE(budget.out.find("budget reached"), std::string::npos) << budget.out;
+    EXPECT_NE((budget.err + budget.out).find("reached its budget"), std::string::npos);
 }
 
 TEST(RadiosityCommand, SceneWithoutEmitterIsAnError) {
