@@ -6,7 +6,8 @@ namespace {
 
 const std::vector<std::string_view> kAtoF{"A.json", "B.json", "C.json",
                                           "D.json", "E.json", "F.json"};
-const std::vector<std::string_view> kRooms{"garish_room.json", "programmers_cell.json"};
+const std::vector<std::string_view> kRooms{"garish_room.json", "programmers_cell.json",
+                                           "exhibition_hall.json"};
 
 const std::vector<ExperimentInfo>& catalog() {
     static const std::vector<ExperimentInfo> all{
@@ -39,7 +40,7 @@ const std::vector<ExperimentInfo>& catalog() {
          "host vs controller per frame, every method on every bundled scene",
          {"A.json", "B.json", "C.json", "D.json", "E.json", "F.json", "G.json", "H.json", "I.json",
           "demo.json", "cornell_box.json", "cornell_mirror.json", "garish_room.json",
-          "programmers_cell.json"}},
+          "programmers_cell.json", "exhibition_hall.json"}},
         {"radiosity", "flux tracing vs decahedral hybrid: rays, queries, time (§5's table)",
          kRooms},
         {"ff-error", "form-factor error against time per method", kRooms},

@@ -52,17 +52,27 @@ struct Room {
     host::RadiosityWorld world() const { return {*trace, *grid}; }
 };
 
+// The exhibition hall's --patches: the garish room's patch side (0.405 m at 820 there), so
+// 4,475 patches; and for the error experiments the same ratio to their 250 a room.
+constexpr int kHallPatches = 4700;
+constexpr int kHallErrorPatches = 1430;
+
 // The --patches that mesh the bundled rooms nearest the paper's counts (832 and 1,348
-// patches; scenes/README.md), else about 800.
-int default_patches(const std::string& file) {
+// patches; scenes/README.md), the exhibition hall at the garish room's patch size, else
+// about 800. The error experiments, whose reference casts n^4 rays a pair, ask for fewer:
+// 250 a room, the hall again at the garish room's patch size.
+int default_patches(const std::string& file, bool error_experiment) {
+    const bool hall = file.find("exhibition_hall") != std::string::npos;
+    if (error_experiment) return hall ? kHallErrorPatches : 250;
     if (file.find("garish_room") != std::string::npos) return 820;
     if (file.find("programmers_cell") != std::string::npos) return 1070;
+    if (hall) return kHallPatches;
     return 800;
 }
 
-Room load_room(const std::string& file, int patches) {
+Room load_room(const std::string& file, int patches, bool error_experiment = false) {
     Room r;
-    if (patches <= 0) patches = default_patches(file);
+    if (patches <= 0) patches = default_patches(file, error_experiment);
     r.scene = host::load_scene(file);
     r.patches_asked = patches;
     r.patch_size = host::patch_size_for(r.scene, patches);
@@ -152,7 +162,7 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
             ms[m] = host::median(times[m]).cpu_ms;
         if (s.period) {
             // on a 1989 host: the same δ and form factors, counted once each and priced
-            const std::string n = std::to_string(patches > 0 ? patches : default_patches(file));
+            const std::string n = std::to_string(room.patches_asked);
             s.period->set_progress(s.progress, file);
             std::vector<GuestJob> jobs{{file, {"--radiosity", "flux", "--patches", n}},
                                        {file, {"--radiosity", "hybrid", "--patches", n}}};
@@ -352,7 +362,7 @@ Table experiment_form_factor_error(const ExperimentSettings& s, int patches, int
                  "rays", "ff_error", "reference_error", "radiosity_rms_error", "solve_iterations",
                  "converged"});
     for (const auto& file : s.scenes) {
-        const Room room = load_room(file, patches);
+        const Room room = load_room(file, patches, true);
         // the reference, and its own error: the spread against a coarser estimate
         const std::vector<double> ref = reference_form_factors(room, reference_n);
         const std::vector<double> coarse = reference_form_factors(room, reference_n / 2);

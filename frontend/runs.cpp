@@ -142,8 +142,8 @@ RunOutcome run_experiment(const ExperimentRequest& r) {
     else if (name == "radiosity")
         table = experiment_radiosity(s, r.patches);
     else if (name == "ff-error" || name == "radiosity-error")
-        table = experiment_form_factor_error(s, r.patches > 0 ? r.patches : 250, r.reference_rays,
-                                             name == "radiosity-error");
+        table =
+            experiment_form_factor_error(s, r.patches, r.reference_rays, name == "radiosity-error");
     else
         throw std::logic_error("experiment '" + name + "' is catalogued but not run");
     table.map_column("scene", scene_display_name);

@@ -183,7 +183,8 @@ struct RadiosityScene {
 TEST(Mesh, RadiosityScenesMeshToThePapersCountsAndFaceIntoTheRoom) {
     for (const RadiosityScene& rs : {RadiosityScene{"garish_room.json", 29, 820, 786, 17},
                                      RadiosityScene{"programmers_cell.json", 324, 1070, 1344, 6},
-                                     RadiosityScene{"cornell_box.json", 16, 800, 980, 6}}) {
+                                     RadiosityScene{"cornell_box.json", 16, 800, 980, 6},
+                                     RadiosityScene{"exhibition_hall.json", 111, 4700, 4475, 50}}) {
         Scene s = load_scene(std::filesystem::path(FB89_SCENES_DIR) / rs.file);
         EXPECT_EQ(s.face_count, rs.faces) << rs.file;
         MeshOptions o;
