@@ -42,6 +42,11 @@ uint32_t setup_of(const CostProfile& p, protocol::Opcode op) {
         case protocol::Opcode::FrameEnd:
             return p.c_frame_end_setup;
         case protocol::Opcode::Marker:
+        // the depth commands: a clear outside a frame pays no set-up; spans and faces are
+        // priced outside a frame by depth_span_outside_cycles and the controller's own rule
+        case protocol::Opcode::DepthClear:
+        case protocol::Opcode::DepthSpan:
+        case protocol::Opcode::Face:
             return 0;
     }
     return 0;

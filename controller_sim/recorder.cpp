@@ -73,6 +73,9 @@ Rgb opcode_tint(Opcode op) {
             return Rgb{240, 40, 40};  // spans, rays: red
         case Opcode::Marker:
         case Opcode::FrameEnd:
+        case Opcode::DepthClear:  // the depth commands are not recorded as writers
+        case Opcode::DepthSpan:
+        case Opcode::Face:
             break;
     }
     return Rgb{255, 255, 255};

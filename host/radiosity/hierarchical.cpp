@@ -16,10 +16,6 @@ namespace {
 
 constexpr int kMaxDepth = 24;  // below this a node is not split, whatever its area
 
-double max_component(const glm::dvec3& v) {
-    return std::max({v.x, v.y, v.z});
-}
-
 struct Link {
     uint32_t source = 0;
     double factor = 0;  // F_pq times the visibility: the share of p's light that q gives
@@ -286,8 +282,7 @@ class Hierarchy {
         glm::dvec3 b;
         if (node.children == 0) {
             b = m_mesh.elements[node.root].emission + total;
-            const glm::dvec3 d = glm::abs(b - node.radiosity);
-            change = std::max(change, max_component(d));
+            change = std::max(change, max_component(b - node.radiosity));
         } else {
             const uint32_t first = node.first_child, children = node.children;
             glm::dvec3 sum{0};

@@ -118,20 +118,14 @@ void refine_and_solve(const RadiosityOptions& o, const RadiosityWorld& world, Ra
     }
 }
 
-// The uniform mesh, δ, a dense F and a solver; adaptive passes if asked.
-void solve_uniform(const Scene& world, const RadiosityOptions& o, RadiosityResult& run,
-                   const RadiosityObserver& observer) {
-    // patches and the grid the rays and queries run in
-    Stopwatch clock;
-    if (observer.stage) observer.stage("meshing");
-    run.patch_size = patch_size_for(world, o.patches);
+// The uniform mesh, δ, a dense F and a solver; adaptive passes if asked. `clock` has timed
+// the meshing stage so far.
+void solve_uniform(const Scene& world, const RadiosityWorld& traced, const RadiosityOptions& o,
+                   RadiosityResult& run, Stopwatch& clock, const RadiosityObserver& observer) {
     MeshOptions mesh_options;
     mesh_options.patch_size = run.patch_size;
     run.mesh = mesh_scene(world, mesh_options);
     check_size(run.mesh, "--patches " + std::to_string(o.patches));
-    const TraceScene trace(world, false, 0);
-    const UniformGrid grid(trace);
-    const RadiosityWorld traced{trace, grid};
     run.patches_per_pass.push_back(run.mesh.patches.size());
     run.times.meshing = clock.elapsed();
 
@@ -140,16 +134,11 @@ void solve_uniform(const Scene& world, const RadiosityOptions& o, RadiosityResul
 }
 
 // Roots one element a face piece; the hierarchy meshes and solves.
-void solve_hierarchical(const Scene& world, const RadiosityOptions& o, RadiosityResult& run,
-                        const RadiosityObserver& observer) {
-    Stopwatch clock;
-    if (observer.stage) observer.stage("meshing");
-    run.patch_size = patch_size_for(world, o.patches);
+void solve_hierarchical(const Scene& world, const RadiosityWorld& traced, const RadiosityOptions& o,
+                        RadiosityResult& run, Stopwatch& clock, const RadiosityObserver& observer) {
     MeshOptions roots;
     roots.patch_size = std::numeric_limits<double>::infinity();  // one patch an element
     const Mesh mesh = mesh_scene(world, roots);
-    const TraceScene trace(world, false, 0);
-    const UniformGrid grid(trace);
     run.times.meshing = clock.elapsed();
 
     clock.restart();
@@ -158,7 +147,7 @@ void solve_hierarchical(const Scene& world, const RadiosityOptions& o, Radiosity
     if (h.min_area == 0) h.min_area = run.patch_size * run.patch_size / 4;
     h.tolerance = o.tolerance;
     h.max_iterations = o.max_iterations;
-    HierarchicalResult solved = hierarchical_radiosity(mesh, {trace, grid}, h, observer.work);
+    HierarchicalResult solved = hierarchical_radiosity(mesh, traced, h, observer.work);
     run.times.form_factors = clock.elapsed();
     run.mesh = std::move(solved.leaves);
     run.patches_per_pass.push_back(run.mesh.patches.size());
@@ -207,13 +196,19 @@ RadiosityResult solve_radiosity(const Scene& world, const RadiosityOptions& o,
             "no face emits light (a material \"emission\"), so its radiosity is black "
             "everywhere");
     RadiosityResult run;
-    if (o.form_factors == FormFactorMethod::Hierarchical) {
-        solve_hierarchical(world, o, run, observer);
-    } else {
-        solve_uniform(world, o, run, observer);
-    }
-
+    // the patch size, and the traced scene and grid the rays and queries run in: meshing
     Stopwatch clock;
+    if (observer.stage) observer.stage("meshing");
+    run.patch_size = patch_size_for(world, o.patches);
+    const TraceScene trace(world, false, 0);
+    const UniformGrid grid(trace);
+    const RadiosityWorld traced{trace, grid};
+    if (o.form_factors == FormFactorMethod::Hierarchical)
+        solve_hierarchical(world, traced, o, run, clock, observer);
+    else
+        solve_uniform(world, traced, o, run, clock, observer);
+
+    clock.restart();
     run.exposure =
         o.exposure > 0 ? o.exposure : automatic_exposure(run.mesh, run.solution.radiosity);
     run.patches = patch_scene(world, run.mesh, run.solution.radiosity, run.exposure);

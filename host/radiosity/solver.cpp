@@ -7,10 +7,6 @@ namespace fb89::host {
 
 namespace {
 
-double max_component(const glm::dvec3& v) {
-    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-}
-
 // E and ρ of every patch, from its element.
 struct PatchTerms {
     std::vector<glm::dvec3> emission, reflectance;

@@ -18,6 +18,8 @@
 // with no emission has B = 0 and needs no iteration.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -25,6 +27,11 @@
 #include "host/radiosity/mesh.h"
 
 namespace fb89::host {
+
+// The largest absolute component: how the solvers measure a colour's change or size.
+inline double max_component(const glm::dvec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
 
 struct RadiositySolution {
     std::vector<glm::dvec3> radiosity;  // per patch

@@ -100,11 +100,12 @@ TEST(BadInputStream, TruncationWritesNothingAndSalvageKeepsCompleteFrames) {
             << r.err;
         if (cut.frames == 0) {
             EXPECT_FALSE(fs::exists(png)) << "no complete frame: nothing to write";
-            if (!header_cut)
+            if (!header_cut) {
                 EXPECT_NE(r.err.find("fb89: error: " + path + ": no complete frame; " + png +
                                      " not written"),
                           std::string::npos)
                     << r.err;
+            }
         } else {
             ASSERT_TRUE(fs::exists(png));
             const auto image = fb89::controller::read_png(png);

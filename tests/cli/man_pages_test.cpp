@@ -94,10 +94,12 @@ TEST(ManPages, EveryPageHasExamplesWhoseCommandsAndOptionsExist) {
             ASSERT_EQ(known.count(used), 1u) << line;
             const std::string help = fb89::testing::run_fb89(used + " --help").out;
             // its options, up to a "--" that hands the rest to another program
-            while (words >> word && word != "--")
-                if (word.rfind("--", 0) == 0)
+            while (words >> word && word != "--") {
+                if (word.rfind("--", 0) == 0) {
                     EXPECT_TRUE(names(help, word.substr(0, word.find('='))))
                         << "fb89-" << command << "(1): " << line << ": " << word;
+                }
+            }
         }
         EXPECT_GE(shown, 1) << "fb89-" << command << "(1)";
     }

@@ -57,8 +57,8 @@ TEST_P(GoldenDepthCommands, ControllerDepthGivesTheZBuffersIdsButForCountedTies)
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GoldenDepthCommands, ::testing::ValuesIn(inputs()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                             std::string name = std::filesystem::path(info.param).stem().string();
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                             std::string name = std::filesystem::path(param.param).stem().string();
                              for (char& c : name)
                                  if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                              return name;

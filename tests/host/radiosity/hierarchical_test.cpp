@@ -179,7 +179,7 @@ TEST(Hierarchical, CeilingLitCubeAtTheRootsIsTheSixPatchSolution) {
 TEST(Hierarchical, EnergyIsConservedInAClosedCube) {
     const World w(cube(0.6, 0, 1, 0));
     // coarse links use a source's mean radiosity, so the balance is looser at a large ε
-    for (const auto [eps, bound] : {std::pair{0.1, 0.06}, {0.01, 0.01}, {0.002, 0.01}}) {
+    for (const auto& [eps, bound] : {std::pair{0.1, 0.06}, {0.01, 0.01}, {0.002, 0.01}}) {
         const HierarchicalResult r = w.solve(fine(eps, 1.0 / 1024));
         double emitted = 0, absorbed = 0;
         for (size_t k = 0; k < r.leaves.patches.size(); ++k) {
