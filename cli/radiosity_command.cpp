@@ -15,7 +15,8 @@
 //   hierarchical  hierarchical radiosity (host/radiosity/hierarchical.h): BF-refined links
 //             (--epsilon), --link-rays visibility rays each, elements no smaller than
 //             --min-area (default: a quarter of the patch area --patches asks for); it
-//             meshes and solves itself, so --solver and --adaptive do not apply
+//             meshes and solves itself, so --solver and --adaptive do not apply;
+//             --shaft-culling spares the rays of links whose shaft no other piece meets
 // A scene with no emitting face is an error (exit 2): its radiosity is black everywhere.
 // --adaptive T re-meshes where neighbouring patches differ by more than T (relative) and
 // solves again, --adaptive-passes times or until nothing more is split.
@@ -161,18 +162,23 @@ nlohmann::json stats_json(const RadiosityArgs& args, const RadiosityRun& run,
     if (args.ff == "hemicube") j["radiosity"]["hemicube_res"] = args.options.hemicube_res;
     if (const auto& h = run.result.hierarchy) {
         j["radiosity"]["solver"] = "push-pull";
-        j["radiosity"]["hierarchical"] = {{"epsilon", args.options.hierarchical.epsilon},
-                                          {"link_rays", args.options.hierarchical.link_rays},
-                                          {"roots", h->roots},
-                                          {"elements", h->nodes},
-                                          {"leaves", h->leaves},
-                                          {"links", h->links},
-                                          {"refinements", h->refinements},
-                                          {"oracle_calls", h->oracle_calls},
-                                          {"link_form_factors", h->form_factors},
-                                          {"rays", h->rays},
-                                          {"passes", h->passes},
-                                          {"budget_hit", h->budget_hit}};
+        j["radiosity"]["hierarchical"] = {
+            {"epsilon", args.options.hierarchical.epsilon},
+            {"link_rays", args.options.hierarchical.link_rays},
+            {"roots", h->roots},
+            {"elements", h->nodes},
+            {"leaves", h->leaves},
+            {"links", h->links},
+            {"refinements", h->refinements},
+            {"oracle_calls", h->oracle_calls},
+            {"link_form_factors", h->form_factors},
+            {"rays", h->rays},
+            {"shaft_culling", args.options.hierarchical.shaft_culling},
+            {"shafts", h->shafts},
+            {"shafts_clear", h->shafts_clear},
+            {"shaft_tests", h->shaft_tests},
+            {"passes", h->passes},
+            {"budget_hit", h->budget_hit}};
     }
     if (args.options.adaptive > 0)
         j["radiosity"]["adaptive"] = {{"threshold", args.options.adaptive},
@@ -371,6 +377,10 @@ void register_radiosity(CLI::App& app, int& exit_code) {
                         "Hierarchical: elements of at most this area are not split (default: a "
                         "quarter of the patch area --patches asks for)")
             ->check(CLI::Range(1e-12, 1e12));
+    CLI::Option* shafts =
+        sub->add_flag("--shaft-culling", args->options.hierarchical.shaft_culling,
+                      "Hierarchical: a link whose shaft (Haines and Wallace 1991) no other "
+                      "piece meets is clear without its rays; the same result, fewer rays");
     CLI::Option* max_links =
         sub->add_option("--max-links", args->options.hierarchical.max_links,
                         "Hierarchical: stop refining (with a note) at this many links")
@@ -431,7 +441,7 @@ void register_radiosity(CLI::App& app, int& exit_code) {
         if (res->count() > 0 && args->ff != "hemicube")
             throw UsageError("--hemicube-res: only --ff hemicube uses a hemicube");
         const bool hierarchical = args->ff == "hierarchical";
-        for (const CLI::Option* o : {epsilon, link_rays, min_area, max_links})
+        for (const CLI::Option* o : {epsilon, link_rays, min_area, max_links, shafts})
             if (o->count() > 0 && !hierarchical)
                 throw UsageError(o->get_name() + ": only --ff hierarchical uses it");
         for (const CLI::Option* o : {solver, adaptive})

@@ -105,8 +105,8 @@ VisibilityRun run_visibility(const Room& room, bool hybrid) {
 // to half the room's patch side (pipeline.h's default).
 constexpr std::array<double, 3> kHierarchicalEpsilons{0.05, 0.01, 0.002};
 
-std::string hierarchical_name(double epsilon) {
-    return fmt::format("hierarchical e={:g}", epsilon);
+std::string hierarchical_name(double epsilon, bool shafts = false) {
+    return fmt::format("hierarchical e={:g}{}", epsilon, shafts ? " shafts" : "");
 }
 
 struct HierarchicalRun {
@@ -114,9 +114,11 @@ struct HierarchicalRun {
     host::Timing time;
 };
 
-HierarchicalRun run_hierarchical(const Room& room, double epsilon, double tolerance = 1e-4) {
+HierarchicalRun run_hierarchical(const Room& room, double epsilon, double tolerance = 1e-4,
+                                 bool shafts = false) {
     host::HierarchicalOptions o;
     o.epsilon = epsilon;
+    o.shaft_culling = shafts;
     o.tolerance = tolerance;
     o.min_area = room.patch_size * room.patch_size / 4;
     HierarchicalRun run;
@@ -136,18 +138,25 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
     Table table({"scene", "faces", "patches", "facing_pairs", "method", "rays", "volume_queries",
                  "empty_queries", "pairs_by_queries", "links", "elements", "ff_cpu_ms",
                  "ratio_to_flux", "same_delta"});
-    constexpr size_t kUniform = 2;  // flux, hybrid; then the hierarchical runs
-    const size_t methods = kUniform + kHierarchicalEpsilons.size();
+    // flux, hybrid; then the hierarchical runs, and natively the same with shaft culling (the
+    // same links and radiosities, fewer rays; the period guest does not run it)
+    constexpr size_t kUniform = 2;
+    const size_t hierarchies = kHierarchicalEpsilons.size() * (s.period ? 1 : 2);
+    const size_t methods = kUniform + hierarchies;
+    auto epsilon_of = [](size_t m) {
+        return kHierarchicalEpsilons[(m - kUniform) % kHierarchicalEpsilons.size()];
+    };
+    auto shafts_of = [](size_t m) { return m - kUniform >= kHierarchicalEpsilons.size(); };
     for (const auto& file : s.scenes) {
         const Room room = load_room(file, patches);
         std::vector<std::vector<host::Timing>> times(methods);
         VisibilityRun flux, hybrid;
-        std::vector<host::HierarchicalResult> hierarchical(kHierarchicalEpsilons.size());
+        std::vector<host::HierarchicalResult> hierarchical(hierarchies);
         interleave(methods, s.period ? 0 : s.repeat, file, s.progress && !s.period,
                    [&](size_t m, bool timed) {
                        if (m >= kUniform) {
                            HierarchicalRun run =
-                               run_hierarchical(room, kHierarchicalEpsilons[m - kUniform]);
+                               run_hierarchical(room, epsilon_of(m), 1e-4, shafts_of(m));
                            if (timed) times[m].push_back(run.time);
                            hierarchical[m - kUniform] = std::move(run.result);
                            return;
@@ -183,9 +192,9 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
                 table.add({file, std::to_string(room.scene.face_count),
                            std::to_string(room.mesh.patches.size()),
                            std::to_string(flux.counts.facing_pairs),
-                           hierarchical_name(kHierarchicalEpsilons[m - kUniform]),
-                           std::to_string(h.rays), "", "", "", std::to_string(h.links),
-                           std::to_string(h.leaves), fixed(ms[m], 2), ratio, ""});
+                           hierarchical_name(epsilon_of(m), shafts_of(m)), std::to_string(h.rays),
+                           "", "", "", std::to_string(h.links), std::to_string(h.leaves),
+                           fixed(ms[m], 2), ratio, ""});
                 continue;
             }
             const VisibilityRun& r = m == 0 ? flux : hybrid;

@@ -9,6 +9,8 @@
 #include <glm/geometric.hpp>
 
 #include "host/radiosity/exact.h"
+#include "host/radiosity/shaft.h"
+#include "host/trace/trace_scene.h"
 
 namespace fb89::host {
 
@@ -27,6 +29,7 @@ struct Node {
     double s0 = 0, s1 = 1, t0 = 0, t1 = 1;
     Patch shape;               // corners, area, centre
     double radius = 0;         // centre to the farthest corner
+    PieceBox box{};            // its corners' bounding box
     uint32_t first_child = 0;  // children are contiguous
     uint32_t children = 0;     // 0, 2 or 4
     glm::dvec3 radiosity{0};   // the area average of its leaves'
@@ -54,7 +57,9 @@ double rotation(uint32_t p, uint32_t q, uint32_t salt) {
 class Hierarchy {
   public:
     Hierarchy(const Mesh& mesh, const RadiosityWorld& world, const HierarchicalOptions& o)
-        : m_mesh(mesh), m_options(o), m_rays(mesh, world) {
+        : m_mesh(mesh), m_options(o), m_rays(mesh, world), m_scene(world.scene) {
+        // a shaft's slack: what the segment query trims off its ends, and rounding
+        m_slack = 8 * world.scene.tolerance();
         for (const Element& e : mesh.elements)
             m_max_emission = std::max(m_max_emission, max_component(e.emission));
         for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
@@ -132,8 +137,28 @@ class Hierarchy {
         n.shape.corners = region_corners(m_mesh.elements[n.root], n.s0, n.s1, n.t0, n.t1);
         set_shape(n.shape);
         n.radius = 0;
-        for (const glm::dvec3& c : n.shape.corners)
+        n.box = {n.shape.corners[0], n.shape.corners[0]};
+        for (int k = 0; k < n.shape.corner_count; ++k) {
+            const glm::dvec3& c = n.shape.corners[k];
             n.radius = std::max(n.radius, glm::length(c - n.shape.centre));
+            n.box.lo = glm::min(n.box.lo, c);
+            n.box.hi = glm::max(n.box.hi, c);
+        }
+    }
+
+    // Whether no piece but the two nodes' own meets the shaft between them: then no segment
+    // between them is blocked, and the link needs no rays.
+    bool shaft_clear(const Node& a, uint32_t skip_a, const Node& b, uint32_t skip_b) {
+        ++counts.shafts;
+        const Shaft shaft(a.box, b.box);
+        const auto pieces = static_cast<uint32_t>(m_scene.faces().size());
+        for (uint32_t piece = 0; piece < pieces; ++piece) {
+            if (piece == skip_a || piece == skip_b) continue;
+            ++counts.shaft_tests;
+            if (shaft.may_meet(m_scene.box(piece), m_slack)) return false;
+        }
+        ++counts.shafts_clear;
+        return true;
     }
 
     std::vector<glm::dvec3> polygon(const Node& n) const {
@@ -247,6 +272,11 @@ class Hierarchy {
         const Element& ea = m_mesh.elements[a.root];
         const Element& eb = m_mesh.elements[b.root];
         const int k = m_options.link_rays;
+        if (m_options.shaft_culling && shaft_clear(a, ea.piece, b, eb.piece)) {
+            m_nodes[p].links.push_back({q, f});
+            ++m_link_count;
+            return;
+        }
         int clear = 0;
         for (int i = 0; i < k; ++i) {
             glm::dvec3 from = a.shape.centre, to = b.shape.centre;
@@ -270,7 +300,8 @@ class Hierarchy {
             clear += !m_rays.blocked(from, to, ea.piece, eb.piece);
         }
         if (clear == 0) return;
-        m_nodes[p].links.push_back({q, f * clear / k});
+        // all clear: f itself, as shaft culling gives it
+        m_nodes[p].links.push_back({q, clear == k ? f : f * clear / k});
         ++m_link_count;
     }
 
@@ -323,6 +354,8 @@ class Hierarchy {
     const Mesh& m_mesh;
     const HierarchicalOptions& m_options;
     FluxTracer m_rays;
+    const TraceScene& m_scene;
+    double m_slack = 0;
     std::vector<Node> m_nodes;
     uint32_t m_roots = 0;
     uint64_t m_link_count = 0;

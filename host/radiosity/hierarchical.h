@@ -34,7 +34,14 @@
 // than their ray caster; trees are over the mesh's planar elements (one per face piece) rather
 // than input quadrilaterals only; budgets on nodes and links stop refinement (with a note)
 // instead of running out of memory as ε → 0, where links grow as n² again (Garmann 1995).
-// No clustering (Smits, Arvo and Salesin 1992) and no shaft culling (Haines and Wallace 1991).
+// Shaft culling (Haines and Wallace 1991, the decahedral query's descendant) is an option: before
+// a link casts its rays, the shaft between the two nodes' bounding boxes (their union box cut
+// by planes through an edge of each) is tested against every other piece's bounding box, and a
+// link no piece can block is clear without rays. The shaft holds every segment between the
+// nodes, so the links, their factors and the radiosities are the same either way; only rays are
+// saved (and box tests spent). Ours tests the scene's pieces in a flat list, without the
+// candidate lists a parent link could pass its children. No clustering (Smits, Arvo and
+// Salesin 1992).
 #pragma once
 
 #include <cstdint>
@@ -51,11 +58,12 @@
 namespace fb89::host {
 
 struct HierarchicalOptions {
-    double epsilon = 0.01;    // BF refinement: of the largest emission
-    double min_area = 0;      // nodes at most this area are not split (0: no limit but depth)
-    int link_rays = 4;        // rays per link for its visibility (1: centre to centre)
-    int max_passes = 8;       // BF refinement passes (solve, then judge the links again)
-    double tolerance = 1e-4;  // of the largest emission, as the other solvers
+    double epsilon = 0.01;       // BF refinement: of the largest emission
+    double min_area = 0;         // nodes at most this area are not split (0: no limit but depth)
+    int link_rays = 4;           // rays per link for its visibility (1: centre to centre)
+    bool shaft_culling = false;  // a link whose shaft no other piece meets casts no rays
+    int max_passes = 8;          // BF refinement passes (solve, then judge the links again)
+    double tolerance = 1e-4;     // of the largest emission, as the other solvers
     int max_iterations = 1000;
     uint64_t max_nodes = 2'000'000;  // budgets: refinement stops where one would be passed
     uint64_t max_links = 20'000'000;
@@ -70,6 +78,9 @@ struct HierarchicalCounts {
     uint64_t oracle_calls = 0;  // form-factor estimates with the BF test
     uint64_t form_factors = 0;  // exact link factors computed (links made, over all passes)
     uint64_t rays = 0;          // visibility rays, all passes
+    uint64_t shafts = 0;        // with shaft culling: shafts built (one a link's visibility)
+    uint64_t shafts_clear = 0;  // of them, those no other piece met: links without rays
+    uint64_t shaft_tests = 0;   // piece boxes tested against shafts
     int passes = 0;             // refinement passes run (the first included)
     int solve_iterations = 0;   // gather and push-pull sweeps, all passes
     bool budget_hit = false;

@@ -59,6 +59,7 @@ TEST(RadiosityCommand, BadOptionsExitTwoNamingTheOption) {
     expect_usage_error("radiosity " + kGarish + " --ff hierarchical --solver progressive",
                        "--solver");
     expect_usage_error("radiosity " + kGarish + " --ff hierarchical --adaptive 0.2", "--adaptive");
+    expect_usage_error("radiosity " + kGarish + " --shaft-culling", "--shaft-culling");
 }
 
 TEST(RadiosityCommand, HierarchicalRendersTheRoomAndReportsItsLinks) {
@@ -84,6 +85,33 @@ TEST(RadiosityCommand, HierarchicalRendersTheRoomAndReportsItsLinks) {
     ASSERT_EQ(budget.exit_code, 0) << budget.err;
     EXPECT_NE(budget.out.find("budget reached"), std::string::npos) << budget.out;
     EXPECT_NE((budget.err + budget.out).find("reached its budget"), std::string::npos);
+}
+
+// --shaft-culling: the same room, image and links, fewer rays; the shafts counted.
+TEST(RadiosityCommand, ShaftCullingRendersTheSameRoomWithFewerRays) {
+    fs::path plain_png = scratch("plain.png"), culled_png = scratch("culled.png");
+    fs::path plain_stats = scratch("plain.json"), culled_stats = scratch("culled.json");
+    const std::string run =
+        "radiosity " + kGarish + kSmall + "-q --ff hierarchical --epsilon 0.05 ";
+    ASSERT_EQ(
+        fb89(run + "--png " + plain_png.string() + " --stats " + plain_stats.string()).exit_code,
+        0);
+    CliRun r = fb89(run + "--shaft-culling --png " + culled_png.string() + " --stats " +
+                    culled_stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto plain = nlohmann::json::parse(slurp(plain_stats))["radiosity"]["hierarchical"];
+    const auto culled = nlohmann::json::parse(slurp(culled_stats))["radiosity"]["hierarchical"];
+    EXPECT_FALSE(plain["shaft_culling"].get<bool>());
+    EXPECT_TRUE(culled["shaft_culling"].get<bool>());
+    EXPECT_EQ(culled["links"], plain["links"]);
+    EXPECT_EQ(culled["leaves"], plain["leaves"]);
+    EXPECT_EQ(plain["shafts"], 0);
+    EXPECT_LE(culled["shafts"].get<int>(), culled["link_form_factors"].get<int>());
+    EXPECT_GT(culled["shafts_clear"].get<int>(), 0);
+    EXPECT_EQ(culled["rays"].get<int>(),
+              4 * (culled["shafts"].get<int>() - culled["shafts_clear"].get<int>()));
+    EXPECT_LT(culled["rays"].get<int>(), plain["rays"].get<int>());
+    EXPECT_EQ(slurp(culled_png), slurp(plain_png));
 }
 
 TEST(RadiosityCommand, SceneWithoutEmitterIsAnError) {

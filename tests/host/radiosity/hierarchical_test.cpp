@@ -13,6 +13,7 @@
 
 #include "host/radiosity/exact.h"
 #include "host/radiosity/pipeline.h"
+#include "host/radiosity/shaft.h"
 #include "host/trace/grid.h"
 #include "host/trace/trace_scene.h"
 
@@ -239,6 +240,71 @@ TEST(Hierarchical, LinkVisibilityIsTheShareOfClearRays) {
     o.link_rays = 1;  // the centre ray passes the blocker's edge: all or nothing
     const double centre = mean_on(w.solve(o), 1);
     EXPECT_TRUE(centre == 0 || std::abs(centre - unblocked) < 1e-6) << centre;
+}
+
+// The shaft holds every segment between its two boxes, and cuts off the union box's corners
+// that the segments do not reach.
+TEST(Shaft, HoldsEverySegmentBetweenItsBoxesAndNotTheUnionBoxsCorners) {
+    const PieceBox a{{0, 0, 0}, {1, 1, 0}};  // a unit square at z = 0
+    const PieceBox b{{3, 0, 2}, {4, 1, 2}};  // another at z = 2, three along x
+    const Shaft shaft(a, b);
+    EXPECT_GT(shaft.planes(), 0);
+    uint32_t seed = 12345;
+    auto uniform = [&seed] {
+        seed = seed * 1664525u + 1013904223u;
+        return (seed >> 8) * 0x1.0p-24;
+    };
+    for (int i = 0; i < 2000; ++i) {
+        const dvec3 p(uniform(), uniform(), 0), q(3 + uniform(), uniform(), 2);
+        const dvec3 x = p + uniform() * (q - p);
+        EXPECT_TRUE(shaft.may_meet({x, x}, 0)) << x.x << " " << x.y << " " << x.z;
+    }
+    // in the union box, beside B but near A's height: outside the hull, so outside the shaft
+    EXPECT_FALSE(shaft.may_meet({{3.2, 0.2, 0.2}, {3.8, 0.8, 0.4}}, 1e-9));
+    EXPECT_FALSE(shaft.may_meet({{0.1, 0.2, 1.6}, {0.6, 0.8, 1.9}}, 1e-9));  // its other corner
+    EXPECT_TRUE(shaft.may_meet({{0.6, 0.2, 0.2}, {1.2, 0.8, 0.4}}, 1e-9));   // on the way
+    EXPECT_TRUE(shaft.may_meet({{-5, -5, 0.9}, {9, 9, 1.1}}, 0));            // a wall across it
+    EXPECT_FALSE(shaft.may_meet({{0, 2, 0}, {4, 3, 2}}, 1e-9));              // above the union
+    // slack: a box just beyond a side meets it with enough slack
+    EXPECT_FALSE(shaft.may_meet({{0, 1.01, 0}, {1, 1.02, 0}}, 0.001));
+    EXPECT_TRUE(shaft.may_meet({{0, 1.01, 0}, {1, 1.02, 0}}, 0.1));
+}
+
+// Shaft culling changes only the rays: the same links, factors and radiosities, with no ray
+// where nothing stands between two squares and every ray where something might.
+TEST(Hierarchical, ShaftCullingSparesRaysAndChangesNothingElse) {
+    Scene open;
+    add_quad(open, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, 0, 1);
+    add_quad(open, {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, 0.5, 0);
+    Scene blocked = open;  // and a plate half across the gap
+    add_quad(blocked, {-1, 0.5, -1}, {-1, 0.5, 2}, {0.5, 0.5, 2}, {0.5, 0.5, -1}, 0.3, 0);
+    for (const Scene* s : {&open, &blocked}) {
+        const World w(*s);
+        HierarchicalOptions o = fine(1e-3, 1.0 / 64);
+        o.link_rays = 4;
+        const HierarchicalResult plain = w.solve(o);
+        o.shaft_culling = true;
+        const HierarchicalResult culled = w.solve(o);
+        EXPECT_EQ(plain.counts.shafts, 0u);
+        EXPECT_EQ(culled.counts.links, plain.counts.links);
+        EXPECT_EQ(culled.counts.leaves, plain.counts.leaves);
+        EXPECT_EQ(culled.counts.form_factors, plain.counts.form_factors);
+        ASSERT_EQ(culled.solution.radiosity.size(), plain.solution.radiosity.size());
+        for (size_t i = 0; i < plain.solution.radiosity.size(); ++i)
+            EXPECT_EQ(culled.solution.radiosity[i], plain.solution.radiosity[i]) << i;
+        EXPECT_EQ(culled.counts.shafts, culled.counts.form_factors);
+        // the rays cast are those of the links whose shaft something met
+        EXPECT_EQ(culled.counts.rays, (culled.counts.shafts - culled.counts.shafts_clear) * 4);
+        if (s == &open) {
+            EXPECT_EQ(culled.counts.rays, 0u);
+            EXPECT_EQ(culled.counts.shafts_clear, culled.counts.shafts);
+            EXPECT_EQ(culled.counts.shaft_tests, 0u);  // no piece but the two ends
+        } else {
+            EXPECT_GT(culled.counts.shaft_tests, 0u);
+            EXPECT_GT(culled.counts.rays, 0u);
+            EXPECT_LT(culled.counts.rays, plain.counts.rays);
+        }
+    }
 }
 
 // Where it fails: close facing faces at a tiny ε refine without end; the budget stops it with
