@@ -87,7 +87,8 @@ void register_experiment(CLI::App& app, int& exit_code) {
         ->capture_default_str();
     sub->add_option("--patches", args->request.patches,
                     "radiosity, ff-error, radiosity-error: patches asked per room (0: what "
-                    "gives the paper's 832 and 1,348 on the two rooms; 250 for the error "
+                    "gives the paper's 832 and 1,348 on the two rooms, and 4700 on the "
+                    "exhibition hall; 250 a room and 1430 on the hall for the error "
                     "experiments)")
         ->check(cli_check(limits::kPatches));
     sub->add_option("--reference-rays", args->request.reference_rays,
