@@ -138,10 +138,10 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
     Table table({"scene", "faces", "patches", "facing_pairs", "method", "rays", "volume_queries",
                  "empty_queries", "pairs_by_queries", "links", "elements", "ff_cpu_ms",
                  "ratio_to_flux", "same_delta"});
-    // flux, hybrid; then the hierarchical runs, and natively the same with shaft culling (the
-    // same links and radiosities, fewer rays; the period guest does not run it)
+    // flux, hybrid; then the hierarchical runs, and the same with shaft culling (the same
+    // links and radiosities, fewer rays)
     constexpr size_t kUniform = 2;
-    const size_t hierarchies = kHierarchicalEpsilons.size() * (s.period ? 1 : 2);
+    const size_t hierarchies = kHierarchicalEpsilons.size() * 2;
     const size_t methods = kUniform + hierarchies;
     auto epsilon_of = [](size_t m) {
         return kHierarchicalEpsilons[(m - kUniform) % kHierarchicalEpsilons.size()];
@@ -175,10 +175,13 @@ Table experiment_radiosity(const ExperimentSettings& s, int patches) {
             s.period->set_progress(s.progress, file);
             std::vector<GuestJob> jobs{{file, {"--radiosity", "flux", "--patches", n}},
                                        {file, {"--radiosity", "hybrid", "--patches", n}}};
-            for (double e : kHierarchicalEpsilons)
-                jobs.push_back({file,
-                                {"--radiosity", "hierarchical", "--patches", n, "--epsilon",
-                                 fmt::format("{:g}", e)}});
+            for (size_t m = kUniform; m < methods; ++m) {
+                GuestJob job{file,
+                             {"--radiosity", "hierarchical", "--patches", n, "--epsilon",
+                              fmt::format("{:g}", epsilon_of(m))}};
+                if (shafts_of(m)) job.options.push_back("--shaft-culling");
+                jobs.push_back(std::move(job));
+            }
             const auto costs = s.period->run(jobs);
             const int hs = static_cast<int>(period::Phase::HiddenSurface);
             for (size_t m = 0; m < methods; ++m)

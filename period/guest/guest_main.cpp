@@ -55,6 +55,7 @@ struct GuestArgs {
     std::string radiosity;  // flux, hybrid or hierarchical: §5 instead of a frame
     int patches = 800;
     double epsilon = host::HierarchicalOptions{}.epsilon;
+    bool shaft_culling = false;
 };
 
 host::MethodOptions method_options(const GuestArgs& a) {
@@ -88,6 +89,7 @@ int run_radiosity(const GuestArgs& a) {
             host::mesh_scene(scene, {std::numeric_limits<double>::infinity(), 64});
         host::HierarchicalOptions o;
         o.epsilon = a.epsilon;
+        o.shaft_culling = a.shaft_culling;
         const double size = host::patch_size_for(scene, a.patches);
         o.min_area = size * size / 4;
         mark(Phase::HiddenSurface);
@@ -175,6 +177,8 @@ int main(int argc, char** argv) {
                    "hierarchical: hierarchical radiosity, solved")
         ->check(CLI::IsMember({"flux", "hybrid", "hierarchical"}));
     app.add_option("--epsilon", a.epsilon, "Hierarchical radiosity: BF refinement's epsilon");
+    app.add_flag("--shaft-culling", a.shaft_culling,
+                 "Hierarchical radiosity: links no piece can block cast no rays");
     app.add_option("--patches", a.patches, "Radiosity: about this many patches");
     app.add_option("--stream", a.stream, "Where the command stream goes ('-' for stdout)");
     try {

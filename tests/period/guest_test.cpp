@@ -139,6 +139,18 @@ TEST_P(PeriodGuest, HierarchicalRadiosityLinksAndCastsAsNatively) {
                         std::to_string(native.counts.rays) + " iterations " +
                         std::to_string(native.solution.iterations) + "\n");
     EXPECT_GT(native.counts.links, 0u);
+    // with shaft culling: the same links and sweeps, the native's fewer rays
+    o.shaft_culling = true;
+    const host::HierarchicalResult culled = host::hierarchical_radiosity(roots, {trace, grid}, o);
+    const GuestRun shafts = run_guest(
+        parts(), room,
+        {"--radiosity", "hierarchical", "--patches", "120", "--epsilon", "0.2", "--shaft-culling"});
+    EXPECT_EQ(std::string(shafts.stream.begin(), shafts.stream.end()),
+              "leaves " + std::to_string(native.counts.leaves) + " links " +
+                  std::to_string(native.counts.links) + " rays " +
+                  std::to_string(culled.counts.rays) + " iterations " +
+                  std::to_string(native.solution.iterations) + "\n");
+    EXPECT_LT(culled.counts.rays, native.counts.rays);
 }
 
 TEST_P(PeriodGuest, TheSameRunTwiceGivesByteIdenticalCounts) {
