@@ -1,8 +1,9 @@
 // Running fb89's host code on an emulated period host: the guest program (period/guest),
 // cross-built for the host's instruction set (period/isa.h), under its QEMU user-mode
 // emulator with the counting plugin (period/plugin). The guest runs in the scene's folder
-// with an empty environment and writes its command stream to a pipe, so that its counts do
-// not depend on where the checkout or the output lives.
+// with an empty environment and a fixed seed for the emulator's random bytes, and writes its
+// command stream to a pipe, so that its counts do not depend on where the checkout or the
+// output lives, nor vary from run to run.
 #pragma once
 
 #include <cstdint>

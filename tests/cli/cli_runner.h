@@ -44,6 +44,14 @@ inline std::filesystem::path test_dir() {
     return dir;
 }
 
+// `xvfb-run` on a free display, 24-bit so colours survive, with its X authority file in this
+// test's folder: left to itself, xvfb-run makes a temporary folder for it and, when removing
+// that folder fails, exits 5 in place of the command's status and leaves its server running.
+inline std::string xvfb_run() {
+    return "xvfb-run -a -f " + (test_dir() / "Xauthority").string() +
+           " -s '-screen 0 1280x1024x24' ";
+}
+
 // Runs `prefix fb89 args` in a shell; `prefix` may set a directory or environment.
 inline CliRun run_fb89(const std::string& args, const std::string& prefix = "") {
     const std::filesystem::path dir = test_dir();

@@ -21,10 +21,10 @@ TEST(ControllerView, ShowsALiveStreamAndKeepsItsFrame) {
     const std::string fb89 = FB89_CLI_PATH;
     const std::string repo = fs::path(FB89_SCENES_DIR).parent_path().string();
     const std::string script =
-        "cd " + repo + "\nrm -f " + sock +
-        "\n(xvfb-run -a -s '-screen 0 1280x1024x24' timeout 120 " + fb89 + " controller --listen " +
-        sock + " --view --once --png " + (dir / "live.png").string() + " > " +
-        (dir / "controller.out").string() + " 2>&1; echo $? > " + (dir / "controller.rc").string() +
+        "cd " + repo + "\nrm -f " + sock + "\n(" + fb89::testing::xvfb_run() + "timeout 120 " +
+        fb89 + " controller --listen " + sock + " --view --once --png " +
+        (dir / "live.png").string() + " > " + (dir / "controller.out").string() +
+        " 2>&1; echo $? > " + (dir / "controller.rc").string() +
         ") & for i in $(seq 1 900); do [ -S " + sock + " ] && break; sleep 0.1; done; timeout 60 " +
         fb89 + " render scenes/A.json --size 256x195 -q --connect " + sock + " --png " +
         (dir / "host.png").string() + " 2> " + (dir / "host.err").string() + "; echo $? > " +

@@ -27,9 +27,10 @@ bool have_xvfb_run() {
     return fb89::testing::on_path("xvfb-run");
 }
 
-// xvfb-run on a free display, 24-bit so colours survive; a generous time-out.
-const std::string kUnderXvfb =
-    "timeout 120 xvfb-run -a -s '-screen 0 1280x1024x24' env SDL_VIDEODRIVER=x11 ";
+// The viewer under Xvfb, with SDL told to use it; a generous time-out.
+std::string under_xvfb() {
+    return "timeout 120 " + xvfb_run() + "env SDL_VIDEODRIVER=x11 ";
+}
 
 // Renders scene A at `size` into a stream in this test's folder.
 fs::path record_stream(const std::string& size) {
@@ -85,7 +86,7 @@ TEST(ViewCommand, ScreenshotAfterPlayingToTheEndMatchesReplayPng) {
     ASSERT_EQ(replay.exit_code, 0) << replay.err;
     const CliRun r = run_fb89("view " + stream.string() + " --screenshot " + shot.string() +
                                   " --exit-at-end --speed 1000000",
-                              kUnderXvfb);
+                              under_xvfb());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_TRUE(fs::exists(shot));
     expect_same_image(controller::read_png(shot), controller::read_png(ref));
@@ -101,7 +102,7 @@ TEST(ViewCommand, ScreenshotWithoutTheOverlayIsTheFrameAloneWhateverTheStartPosi
     fs::remove(shot);
     const CliRun r = run_fb89("view " + stream.string() + " --screenshot " + shot.string() +
                                   " --exit-at-end --start-call 3",
-                              kUnderXvfb);
+                              under_xvfb());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     expect_same_image(controller::read_png(shot), replayed_frame(stream));
 }
@@ -116,9 +117,9 @@ TEST(ViewCommand, ScreenshotWithTheOverlayIsTheTintedImage) {
     fs::remove(plain);
     fs::remove(tinted);
     const std::string play = "view " + stream.string() + " --exit-at-end --screenshot ";
-    const CliRun a = run_fb89(play + plain.string(), kUnderXvfb);
+    const CliRun a = run_fb89(play + plain.string(), under_xvfb());
     ASSERT_EQ(a.exit_code, 0) << a.err;
-    const CliRun b = run_fb89(play + tinted.string() + " --overlay", kUnderXvfb);
+    const CliRun b = run_fb89(play + tinted.string() + " --overlay", under_xvfb());
     ASSERT_EQ(b.exit_code, 0) << b.err;
     const controller::PngImage with = controller::read_png(tinted);
     const controller::PngImage without = controller::read_png(plain);
@@ -156,7 +157,7 @@ TEST(ViewCommand, AScaleBelowOneShrinksTheFrame) {
     fs::remove(shot);
     const CliRun r = run_fb89("view " + stream.string() + " --scale 0.5 --screenshot " +
                                   shot.string() + " --exit-at-end --speed 1000000",
-                              kUnderXvfb);
+                              under_xvfb());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const controller::PngImage half = controller::read_png(shot);
     EXPECT_EQ(half.width, 320u);

@@ -22,8 +22,10 @@ namespace fs = std::filesystem;
 
 constexpr protocol::Rgb kStatusInk{230, 230, 230}, kPanelInk{255, 230, 140};
 
-// xvfb-run on a free display, 24-bit so colours survive; a generous time-out.
-const std::string kXvfb = "xvfb-run -a -s '-screen 0 1280x1024x24' env SDL_VIDEODRIVER=x11 ";
+// The viewer under Xvfb, with SDL told to use it.
+std::string under_xvfb() {
+    return xvfb_run() + "env SDL_VIDEODRIVER=x11 ";
+}
 
 // Renders scene A at `size` with send times (so the viewer shows the pipeline line) into
 // `name` in this test's folder.
@@ -48,7 +50,7 @@ Shots play(const fs::path& stream, double scale, const std::string& more = "") {
     const CliRun r = run_fb89("view " + stream.string() + " --scale " + std::to_string(scale) +
                                   " --exit-at-end --speed 1000000 --screenshot " + image.string() +
                                   " --window-screenshot " + window.string() + " " + more,
-                              "timeout 120 " + kXvfb);
+                              "timeout 120 " + under_xvfb());
     EXPECT_EQ(r.exit_code, 0) << r.err;
     if (!fs::exists(window) || !fs::exists(image)) return {};
     return {controller::read_png(window), controller::read_png(image)};
@@ -166,7 +168,8 @@ TEST_P(DamagedStreamAtScale, TheErrorLineIsWholeInsideTheWindow) {
     fs::create_directories(cut.parent_path());
     const std::string bytes = slurp(full);
     std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
-    const CliRun told = run_fb89("view " + cut.string() + " --exit-at-end", "timeout 120 " + kXvfb);
+    const CliRun told =
+        run_fb89("view " + cut.string() + " --exit-at-end", "timeout 120 " + under_xvfb());
     ASSERT_EQ(told.exit_code, 2) << told.err;
     ASSERT_EQ(told.err.rfind("fb89 view: ", 0), 0u) << told.err;
     const std::string error = told.err.substr(11, told.err.find('\n') - 11);
@@ -184,7 +187,8 @@ TEST_P(DamagedStreamAtScale, TheErrorLineIsWholeInsideTheWindow) {
         << "for i in $(seq 1 600); do [ -n \"$(ls -A " << shots.string()
         << ")\" ] && break; sleep 0.1; done\n"
         << "kill -TERM $pid; wait $pid; echo $? > " << rc.string() << "\n";
-    const std::string run = "timeout 120 " + kXvfb + "sh " + (test_dir() / "run.sh").string();
+    const std::string run =
+        "timeout 120 " + under_xvfb() + "sh " + (test_dir() / "run.sh").string();
     ASSERT_EQ(std::system(run.c_str()), 0);
     EXPECT_EQ(slurp(rc), "0\n") << "asked to quit (SIGTERM), the viewer exits 0";
     ASSERT_TRUE(fs::exists(window));
