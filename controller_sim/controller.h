@@ -77,6 +77,10 @@ struct FrameResult {
 
 // 1234567 -> "1,234,567", for the tables of the controller and the stream tools.
 std::string grouped(uint64_t v);
+// How the profile draws spans and clears a frame of width x height, in words for the
+// summary ("drawn as: DRAW_SPAN by FILL XY of one row (TI's draw_line); FRAME_BEGIN clears
+// through the VRAMs' serial registers (390 VRAM rows, TI's clear_page)").
+std::string drawn_as_text(const CostProfile& p, uint32_t width, uint32_t height);
 
 struct ControllerStats {
     CostProfile profile;

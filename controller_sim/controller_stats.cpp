@@ -87,6 +87,56 @@ void append_row(std::string& out, const char* name, const OpcodeCounters& c, dou
 
 }  // namespace
 
+namespace {
+
+// How the profile draws spans and clears a frame of width x height, by name:
+// {"DRAW_SPAN": "FILL XY", "FRAME_BEGIN": "serial-register transfers", ...}.
+json drawn_as_json(const CostProfile& p, uint32_t width, uint32_t height) {
+    json j{{"DRAW_SPAN", p.span_as == SpanAs::Fill ? "FILL XY, one row" : "LINE"}};
+    if (p.gsp.empty()) {
+        j["FRAME_BEGIN"] = "FILL XY";
+        return j;
+    }
+    const uint64_t rows = vram_rows(width, height, p.bpp);
+    if (p.clear_as == ClearAs::SerialRegister && rows <= kVramRows && width > 0 && height > 0) {
+        j["FRAME_BEGIN"] = "serial-register transfers";
+        j["vram_rows"] = rows;
+    } else {
+        j["FRAME_BEGIN"] = p.clear_as == ClearAs::Fill ? "FILL XY" : "FILL XY (larger than the VRAM)";
+    }
+    return j;
+}
+
+}  // namespace
+
+std::string drawn_as_text(const CostProfile& p, uint32_t width, uint32_t height) {
+    const json j = drawn_as_json(p, width, height);
+    std::string clear = j["FRAME_BEGIN"].get<std::string>();
+    if (j.contains("vram_rows"))
+        clear = fmt::format("through the VRAMs' serial registers ({} VRAM rows, TI's clear_page)",
+                            j["vram_rows"].get<uint64_t>());
+    else
+        clear = "by " + clear + (p.gsp.empty() ? "" : " (TI's clear_screen)");
+    return fmt::format("drawn as: DRAW_SPAN by {}; FRAME_BEGIN clears {}",
+                       p.span_as == SpanAs::Fill ? "FILL XY of one row (TI's draw_line)"
+                                                 : "LINE (a vector draw)",
+                       clear);
+}
+
+namespace {
+
+// The largest frame the stats saw (the clear's rows follow from it).
+std::pair<uint32_t, uint32_t> largest_frame(const std::vector<FrameResult>& frames) {
+    uint32_t width = 0, height = 0;
+    for (const FrameResult& f : frames) {
+        width = std::max(width, f.width);
+        height = std::max(height, f.height);
+    }
+    return {width, height};
+}
+
+}  // namespace
+
 std::string grouped(uint64_t v) {
     const std::string digits = std::to_string(v);
     std::string out;
@@ -102,7 +152,9 @@ nlohmann::json ControllerStats::to_json() const {
     json frames_json = json::array();
     for (const FrameResult& f : frames)
         frames_json.push_back(frame_json(profile, f));
+    const auto [w, h] = largest_frame(frames);
     return json{{"profile", profile.to_json()},
+                {"drawn_as", drawn_as_json(profile, w, h)},
                 {"frames_closed", frames_closed},
                 {"frames_incomplete", frames_incomplete},
                 {"frame_open", frame_open},
@@ -117,6 +169,10 @@ nlohmann::json ControllerStats::to_json() const {
 
 std::string ControllerStats::summary() const {
     std::string out = fmt::format("controller: {}\n", profile.to_string());
+    {
+        const auto [w, h] = largest_frame(frames);
+        out += drawn_as_text(profile, w, h) + "\n";
+    }
     out += fmt::format("{:<12} {:>12} {:>15} {:>13} {:>15} {:>13} {:>11} {:>9} {:>9}\n", "opcode",
                        "commands", "pixels", "bytes", "cycles", "modelled ms", "bus ms", "clipped",
                        "outside");
@@ -147,7 +203,7 @@ std::string ControllerStats::summary() const {
             }
         out += fmt::format(
             "depth: {} tests, {} nearer (drawn), {} as near as the word they met (kept: ties of "
-            "the {}-bit word); the buffer takes {:.2f} MB of the board's memory at {}x{}\n",
+            "the {}-bit word); the buffer takes {:.2f} MB of the board's DRAM at {}x{}\n",
             grouped(depth.tests), grouped(depth.nearer), grouped(depth.equal), profile.depth_bits,
             static_cast<double>(profile.depth_buffer_bytes(width, height)) / 1e6, width, height);
     }

@@ -34,7 +34,7 @@ uint64_t row_cycles(const CostProfile& p, uint64_t x, uint64_t w) {
 uint32_t setup_of(const CostProfile& p, protocol::Opcode op) {
     switch (op) {
         case protocol::Opcode::FrameBegin:
-            return p.c_frame_begin_setup;
+            return p.clear_as == ClearAs::Fill ? p.c_frame_begin_setup : p.c_frame_begin_srt_setup;
         case protocol::Opcode::FillRect:
             return p.c_setup;
         case protocol::Opcode::DrawSpan:
@@ -68,9 +68,19 @@ uint64_t draw_span_cycles(const CostProfile& p, uint32_t x, uint32_t n) {
 
 uint64_t frame_begin_cycles(const CostProfile& p, uint32_t width, uint32_t height) {
     if (width == 0 || height == 0) return outside_cycles(p, protocol::Opcode::FrameBegin);
-    return uint64_t{p.c_cmd} + p.c_frame_begin_setup +
-           host_word_cycles(p, protocol::Opcode::FrameBegin) +
-           uint64_t{height} * row_cycles(p, 0, width);
+    const uint64_t base = uint64_t{p.c_cmd} + host_word_cycles(p, protocol::Opcode::FrameBegin);
+    const uint64_t by_fill = uint64_t{height} * row_cycles(p, 0, width);
+    if (p.clear_as == ClearAs::Fill) return base + p.c_frame_begin_setup + by_fill;
+    const uint64_t rows = vram_rows(width, height, p.bpp);
+    if (rows > kVramRows) return base + p.c_frame_begin_large_setup + by_fill;
+    return base + p.c_frame_begin_srt_setup + srt_clear_cycles(p, rows);
+}
+
+uint64_t srt_clear_cycles(const CostProfile& p, uint64_t rows) {
+    // the first row at 16 bits a pixel: whole words of the bus, one FILL row
+    const uint64_t row_fill = p.c_row + uint64_t{p.c_op} * (kVramRowBits / p.bus_bits);
+    // one register-to-memory cycle a further row, each a FILL row of one word
+    return row_fill + (rows - 1) * (p.c_row + uint64_t{p.c_op});
 }
 
 uint64_t frame_end_cycles(const CostProfile& p) {

@@ -28,8 +28,15 @@ uint64_t fill_rect_cycles(const CostProfile& p, const PixelRect& r);
 // C_cmd + C_line_setup + the host's words + C_line_pix * n; as a fill, one row of FILL after
 // the span's own set-up.
 uint64_t draw_span_cycles(const CostProfile& p, uint32_t x, uint32_t n);
-// FRAME_BEGIN: its set-up and the clear, a full-screen fill; no pixels for a 0-pixel frame.
+// FRAME_BEGIN: its set-up and the clear; no pixels for a 0-pixel frame. The clear is the
+// profile's clear_as: through the VRAMs' serial registers (srt_clear_cycles) where the frame
+// lies in the board's VRAM, else (and with "fill") one FILL over the frame.
 uint64_t frame_begin_cycles(const CostProfile& p, uint32_t width, uint32_t height);
+// The serial-register clear's memory cycles for `rows` VRAM rows (rows >= 1): the first row
+// filled as 16-bit pixels (kVramRowBits / bus_bits whole words, one FILL row), then one
+// register-to-memory cycle for each other row (a FILL row of one word). Its set-up, with
+// the memory-to-register cycle's PIXT, is the listing's FRAME_BEGIN path.
+uint64_t srt_clear_cycles(const CostProfile& p, uint64_t rows);
 // FRAME_END: C_cmd, its set-up and its host word.
 uint64_t frame_end_cycles(const CostProfile& p);
 // A drawing command with nothing inside the framebuffer: C_cmd, the host's words and (with

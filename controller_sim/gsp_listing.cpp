@@ -264,6 +264,49 @@ class Pricer {
             p.queued = m_memory.pixel_write_states;
             return p;
         }
+        if (m == "PIXT" && n == 2 && reg(1) && ops[0].starts_with("*") &&
+            is_register(std::string_view(ops[0]).substr(1))) {
+            // PIXT *Rs,Rd: a pixel read, 4 states with its read cycle (SPVS002C p. 11); with
+            // DPYCTL's SRT set the read is the VRAMs' memory-to-register cycle (the clear)
+            one_file(in, std::string_view(ops[0]).substr(1), ops[1]);
+            Price p = simple(1, 2 + m_memory.cycle_states,
+                             fmt::format("[DS] p. 11, PIXT *Rs,Rd: 4 (2 + its read cycle, {} "
+                                         "states here)",
+                                         m_memory.cycle_states));
+            p.kind = Kind::MemoryRead;
+            return p;
+        }
+        if ((m == "MMTM" || m == "MMFM") && n >= 2 && reg(0) && upper(ops[0]) == "SP") {
+            // n registers of 32 bits, two memory cycles each: 2 + 4n and 3 + 4n states at
+            // two states a cycle (User's Guide via TMS34010_sv, "Turn 6 leads")
+            const uint32_t regs = static_cast<uint32_t>(n - 1);
+            for (std::size_t i = 1; i < n; ++i)
+                if (!reg(i)) fail(in, "MMTM and MMFM take SP and registers of one file");
+            for (std::size_t i = 2; i < n; ++i) one_file(in, ops[1], ops[i]);
+            const uint32_t fixed = m == "MMTM" ? 2 : 3;
+            Price p = simple(2, fixed + regs * 2 * m_memory.cycle_states,
+                             fmt::format("[UG] {} SP,{} registers: {} + 4n at 2 states a cycle "
+                                         "(two memory cycles a register, {} states each here{})",
+                                         m, regs, fixed, m_memory.cycle_states,
+                                         c20 ? "; the 34010's count" : ""));
+            p.kind = Kind::MemoryRead;  // its memory cycles are in its count
+            return p;
+        }
+        if (m == "CALLA" && n == 1) {
+            Price p = simple(3, 6,
+                             fmt::format("[DS] p. 14, CALLA Address: 6 (the return address "
+                                         "pushed){}",
+                                         c20 ? "; the 34010's count" : ""));
+            p.kind = Kind::Jump;
+            p.target = ops[0];
+            return p;
+        }
+        if (m == "RETS" && n <= 1) {
+            Price p = simple(1, 7, fmt::format("[DS] p. 14, RETS: 7{}",
+                                               c20 ? "; the 34010's count" : ""));
+            p.kind = Kind::Dispatch;  // back to the caller: the path's end
+            return p;
+        }
         if (m == "JUMP" && n == 1 && reg(0)) {
             Price p = by_chip(1, 2, "[DS] p. 14, JUMP Rs", 2, "[UG20] p. 13-141, JUMP Rs");
             p.kind = Kind::Dispatch;
@@ -277,6 +320,14 @@ class Pricer {
                                    "model's"
                                  : "[EMU] FILL XY's own set-up, MAME's fill(): 4 + 2 (XY) + 2; "
                                    "its pixels are the memory model's");
+            p.kind = Kind::Graphics;
+            p.graphics = "FILL";
+            return p;
+        }
+        if (m == "FILL" && n == 1 && upper(ops[0]) == "L") {
+            Price p = simple(1, 6,
+                             "[EMU] FILL L's own set-up, MAME's fill(): 4 + 2 (no XY "
+                             "conversion); its pixels are the memory model's");
             p.kind = Kind::Graphics;
             p.graphics = "FILL";
             return p;
@@ -328,6 +379,40 @@ class Pricer {
             fail(in, "only MOVE crosses between the A and B files");
     }
 
+    // Which register file a register is in: the B file's names and Bn; SP is in both.
+    static char file_of(std::string_view r) {
+        const std::string u = upper(r);
+        if (u == "SP") return 'S';
+        return u[0] == 'B' || std::find(std::begin(kBFileNames), std::end(kBFileNames), u) !=
+                                  std::end(kBFileNames)
+                   ? 'B'
+                   : 'A';
+    }
+    // Two registers of one instruction word must be in one file (its R bit selects the file
+    // for both): TI's assembler refuses, e.g., MOVE *A0+,DADDR,1 with "REGISTERS IN OPPOSITE
+    // FILES". SP belongs to both.
+    void one_file(const Instruction& in, std::string_view a, std::string_view b) const {
+        const char fa = file_of(a), fb = file_of(b);
+        if (fa != 'S' && fb != 'S' && fa != fb)
+            fail(in, "registers in opposite files: the chip has no such form (only MOVE Rs,Rd "
+                     "crosses between the A and B files)");
+    }
+    // The register of an indirect operand: *Rn, *Rn+, *-Rn or *Rn(displacement).
+    std::string_view indirect(const Instruction& in, std::string_view where) const {
+        std::string_view r = where.substr(1);
+        if (r.starts_with("-"))
+            r.remove_prefix(1);
+        else if (r.ends_with("+"))
+            r.remove_suffix(1);
+        else if (const std::size_t open = r.find('('); open != std::string_view::npos) {
+            if (!r.ends_with(")") || !parse_number(r.substr(open + 1, r.size() - open - 2)))
+                fail(in, "a displacement is *Rn(number)");
+            r = r.substr(0, open);
+        }
+        if (!is_register(r)) fail(in, "an indirect operand is *Rn, *Rn+, *-Rn or *Rn(disp)");
+        return r;
+    }
+
     // A memory MOVE's field select, direction and memory operand; fails for any other form.
     struct MoveOperands {
         std::size_t field;
@@ -344,7 +429,9 @@ class Pricer {
         const bool read = memory(ops[0]) && is_register(ops[1]);
         const bool write = is_register(ops[0]) && memory(ops[1]);
         if (!read && !write) fail(in, "a MOVE is register to memory or memory to register here");
-        return {field, read, read ? std::string_view(ops[0]) : std::string_view(ops[1])};
+        const std::string_view where = read ? std::string_view(ops[0]) : std::string_view(ops[1]);
+        if (where.starts_with("*")) one_file(in, indirect(in, where), read ? ops[1] : ops[0]);
+        return {field, read, where};
     }
 
     // MOVE with a memory operand: the data sheet's tables give no figure ("depends on field
@@ -353,11 +440,7 @@ class Pricer {
     // (p. 10) and overlaps the instructions after it until the next memory access.
     Price memory_move(const Instruction& in) const {
         const auto [field, read, where] = move_operands(in);
-        if (where.starts_with("*")) {
-            std::string_view r = where.substr(1);
-            if (r.ends_with("+")) r.remove_suffix(1);
-            if (!is_register(r)) fail(in, "an indirect operand is *Rn or *Rn+");
-        }
+        if (where.starts_with("*")) indirect(in, where);
         bool io = false;
         if (where.starts_with("@")) {
             const uint64_t address = value(in, where.substr(1));
@@ -368,7 +451,7 @@ class Pricer {
         const uint32_t per_word = io ? m_memory.io_cycle_states : m_memory.cycle_states;
         const uint32_t issue = m_end == TimingEnd::High ? 2 : 1;
         Price p;
-        p.words = where.starts_with("@") ? 3 : 1;
+        p.words = where.starts_with("@") ? 3 : where.ends_with(")") ? 2 : 1;
         p.kind = read ? Kind::MemoryRead : Kind::MemoryWrite;
         const std::string what = fmt::format(
             "[EST] {} state{} to issue (band 1-2; DS p. 12: 'depends on field size and alignment') "
@@ -412,9 +495,7 @@ class Pricer {
         const bool absolute = where.starts_with("@");
         bool across = false;  // a 32-bit field across a long word: case 3
         if (where.starts_with("*")) {
-            std::string_view r = where.substr(1);
-            if (r.ends_with("+")) r.remove_suffix(1);
-            if (!is_register(r)) fail(in, "an indirect operand is *Rn or *Rn+");
+            indirect(in, where);
             across = kFieldBits[field] == 32 && m_end == TimingEnd::High;
         } else {
             const uint64_t address = value(in, where.substr(1));
@@ -424,7 +505,7 @@ class Pricer {
         }
         const uint32_t wait = io || m_memory.cycle_states <= 2 ? 0 : m_memory.cycle_states - 2;
         Price p;
-        p.words = absolute ? 3 : 1;
+        p.words = absolute ? 3 : where.ends_with(")") ? 2 : 1;
         p.kind = read ? Kind::MemoryRead : Kind::MemoryWrite;
         std::string form;
         uint32_t visible = 0, hidden = 0;
@@ -691,7 +772,7 @@ uint32_t working_set_words(const std::map<std::string, CountedPath>& paths,
 std::span<const CachedWork> cached_work() {
     static const std::vector<CachedWork> work = {
         {"the tiling commands' executive",
-         {"COMMON", "FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN:line", "DRAW_SPAN:fill", "FRAME_END"}},
+         {"COMMON", "FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN:fill", "FRAME_END"}},
         {"a DEPTH_SPAN and its pixel loop",
          {"COMMON", "DEPTH_SPAN", "ZPIXEL16:nearer", "ZPIXEL16:farther", "ZSPAN_EXIT"}},
         {"a FACE's row loop",

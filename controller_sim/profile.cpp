@@ -39,7 +39,7 @@ constexpr const char* kUnlimited = "unlimited";
 // The value of command_buffer_bytes for a buffer without a bound.
 constexpr const char* kUnbounded = "unbounded";
 
-constexpr std::array<std::string_view, 30> kKnownKeys = {"name",
+constexpr std::array<std::string_view, 31> kKnownKeys = {"name",
                                                          "description",
                                                          "f_cyc_hz",
                                                          "bpp",
@@ -68,7 +68,8 @@ constexpr std::array<std::string_view, 30> kKnownKeys = {"name",
                                                          "page_mode_states",
                                                          "host_port_bytes_per_s",
                                                          "depth_bits",
-                                                         "gsp_chip"};
+                                                         "gsp_chip",
+                                                         "clear_as"};
 
 // A profile's cycle figures given directly (no "gsp"), and derived from the listing (with it).
 constexpr std::array<std::string_view, 5> kGivenCycles = {"C_cmd", "C_setup", "C_op",
@@ -321,6 +322,15 @@ const char* to_string(SpanAs s) {
     return s == SpanAs::Line ? "line" : "fill";
 }
 
+const char* to_string(ClearAs c) {
+    return c == ClearAs::SerialRegister ? "srt" : "fill";
+}
+
+uint64_t vram_rows(uint32_t width, uint32_t height, uint32_t bpp) {
+    const uint64_t pitch_bits = std::bit_ceil(uint64_t{width}) * bpp;
+    return (uint64_t{height} * pitch_bits + kVramRowBits - 1) / kVramRowBits;
+}
+
 CostProfile parse_profile(std::string_view json_text, std::string_view origin,
                           std::string_view default_name) {
     json j;
@@ -391,12 +401,17 @@ CostProfile parse_profile(std::string_view json_text, std::string_view origin,
         if (j.contains("host_port_bytes_per_s"))
             p.host_port_rated_bytes_per_s =
                 r.number_in("host_port_bytes_per_s", false, kMinRate, kMaxRate);
+        const std::string clear_as = r.text("clear_as", "fill");
+        if (clear_as == "srt")
+            p.clear_as = ClearAs::SerialRegister;
+        else if (clear_as != "fill")
+            r.fail("clear_as", "expected \"srt\" (the VRAMs' serial registers) or \"fill\"");
     } else {
         for (std::string_view model : kMemoryModel)
             if (j.contains(model))
                 r.fail(model, "only a profile with \"gsp\" (a listing) has a memory model");
         for (std::string_view field : {"C_line_extra", "byte_strobes", "page_mode_states",
-                                       "host_port_bytes_per_s", "gsp_chip"})
+                                       "host_port_bytes_per_s", "gsp_chip", "clear_as"})
             if (j.contains(field)) r.fail(field, "only a profile with \"gsp\" (a listing) has it");
         p.c_cmd = r.cycles("C_cmd");
         p.c_setup = r.cycles("C_setup");
@@ -501,8 +516,13 @@ void derive_figures(CostProfile& p) {
                                                  name, *graphics ? graphics : "no FILL or LINE"));
         return static_cast<uint32_t>(it->second.cycles);
     };
-    p.c_cmd = path("COMMON", "");
-    p.c_frame_begin_setup = path("FRAME_BEGIN", "FILL");
+    p.c_cmd = path("COMMON", "") + (p.listing_dear ? path("TIGA_CALL", "") : 0);
+    p.c_frame_begin_setup = path("FRAME_BEGIN:fill", "FILL");
+    p.c_frame_begin_srt_setup = path("FRAME_BEGIN", "FILL");
+    p.c_frame_begin_large_setup = path("FRAME_BEGIN:large", "FILL");
+    p.c_tiga_call = path("TIGA_CALL", "");
+    // TIGA's call around each command is the dear end of the listing's band; the lean
+    // executive, the cheap end and the estimate (docs/COST_MODEL.md, "TIGA's call")
     p.c_setup = path("FILL_RECT", "FILL");
     p.c_line_setup = path("DRAW_SPAN:line", "LINE");
     p.c_span_fill_setup = path("DRAW_SPAN:fill", "FILL");
@@ -640,6 +660,7 @@ nlohmann::json CostProfile::to_json() const {
         j["C_line_extra"] = c_line_extra;
         j["byte_strobes"] = byte_strobes;
         j["page_mode_states"] = page_mode_states;
+        j["clear_as"] = controller::to_string(clear_as);
         if (host_port_rated_bytes_per_s > 0)
             j["host_port_bytes_per_s"] = host_port_rated_bytes_per_s;
         // What the listing and the memory model come to; ignored when the file is read.
@@ -647,6 +668,9 @@ nlohmann::json CostProfile::to_json() const {
                         {"C_row", c_row},
                         {"C_setup", c_setup},
                         {"C_frame_begin_setup", c_frame_begin_setup},
+                        {"C_frame_begin_srt_setup", c_frame_begin_srt_setup},
+                        {"C_frame_begin_large_setup", c_frame_begin_large_setup},
+                        {"C_tiga_call", c_tiga_call},
                         {"C_line_setup", c_line_setup},
                         {"C_span_fill_setup", c_span_fill_setup},
                         {"C_frame_end_setup", c_frame_end_setup},
@@ -697,10 +721,11 @@ std::string CostProfile::to_string() const {
                                   memory_cycle_states, wait_states, 100 * stolen_share);
     return fmt::format(
         "{} ({:g} MHz, {} bpp on a {}-bit bus, {}: C_cmd {}, C_setup {}, C_op {}/{} partial, "
-        "C_row {}, spans as {}, C_line_setup {}, C_line_pix {}, host word {}, bus {} + {:g} "
-        "us/command)",
+        "C_row {}, spans as {}, clear by {}, C_line_setup {}, C_line_pix {}, host word {}, bus "
+        "{} + {:g} us/command)",
         name, f_cyc_hz / 1e6, bpp, bus_bits, model, c_cmd, c_setup, c_op, c_op_partial, c_row,
-        controller::to_string(span_as), c_line_setup, c_line_pix, c_host_word, bus,
+        controller::to_string(span_as), controller::to_string(clear_as), c_line_setup,
+        c_line_pix, c_host_word, bus,
         t_handshake_s * 1e6);
 }
 

@@ -28,9 +28,26 @@ namespace fb89::controller {
 // version 1).
 inline constexpr uint64_t kUnboundedBuffer = std::numeric_limits<uint64_t>::max();
 
-// How DRAW_SPAN is tiled: as a vector draw (the user's card) or as a one-row fill.
+// How DRAW_SPAN is tiled: as a one-row fill (TI's draw_line for a horizontal line,
+// EXTPRIMS/DRAWLINE.ASM) or as a vector draw with LINE.
 enum class SpanAs { Line, Fill };
 const char* to_string(SpanAs s);  // "line", "fill"
+
+// How FRAME_BEGIN clears the frame: through the VRAMs' serial registers (TI's clear_page on
+// its TIGA development board, TDB10/OEMPRIMS/CLEARPAG.ASM) or with one FILL over the frame
+// (TI's clear_screen, CLEARSCR.ASM).
+enum class ClearAs { SerialRegister, Fill };
+const char* to_string(ClearAs c);  // "srt", "fill"
+
+// The board the listing's serial-register clear is written for, TI's TIGA development
+// board (TDB10/README.1ST; CLEARFRM.ASM): a VRAM row, the same row of every 256K x 4 part of
+// its two banks, is 16,384 bits, and its 1 MB of VRAM is 512 such rows. A TMS34020 board
+// with one 32-bit bank of the same parts has the same rows.
+inline constexpr uint32_t kVramRowBits = 16384;
+inline constexpr uint32_t kVramRows = 512;
+// The VRAM rows a frame of width x height at bpp takes (its pitch the width rounded up to a
+// power of two, as the listing's DPTCH).
+uint64_t vram_rows(uint32_t width, uint32_t height, uint32_t bpp);
 
 struct CostProfile {
     std::string name;
@@ -61,7 +78,16 @@ struct CostProfile {
     // The figures the cost model charges (derived, or given by a profile without "gsp").
     uint32_t c_cmd = 0;                // per command: the loop's fetch and dispatch
     uint32_t c_setup = 0;              // FILL_RECT's set-up, FILL's own included
-    uint32_t c_frame_begin_setup = 0;  // FRAME_BEGIN's, before its clear's pixels
+    uint32_t c_frame_begin_setup = 0;  // FRAME_BEGIN's, before its clear's pixels (by FILL)
+    ClearAs clear_as = ClearAs::Fill;  // "clear_as": "srt" or "fill" ("fill" when absent)
+    // FRAME_BEGIN's through the serial registers: its row fill's, its memory-to-register
+    // cycle's and its register-to-memory FILL's set-ups; and a frame too large for the
+    // VRAM's, which goes on to the FILL clear
+    uint32_t c_frame_begin_srt_setup = 0;
+    uint32_t c_frame_begin_large_setup = 0;
+    // TIGA's call around a primitive (the listing's TIGA_CALL), in C_cmd at the dear end of
+    // the listing's band only; 0 without a listing
+    uint32_t c_tiga_call = 0;
     uint32_t c_span_fill_setup = 0;    // DRAW_SPAN's as a one-row fill
     uint32_t c_frame_end_setup = 0;    // FRAME_END's
     uint32_t c_op = 0;                 // per aligned word FILL writes

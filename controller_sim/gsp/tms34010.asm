@@ -9,14 +9,31 @@
 ; --listing` prints it with each line's cycles and source. The counted paths are named
 ; by the ";@path" lines; a conditional jump on a path says in its comment which way the
 ; path goes ("taken" or "not taken"). A path ends where it jumps back to `next` (the
-; handlers) or dispatches (the loop).
+; handlers) or dispatches (the loop). TI's own assembler (GSPA 2.00, 1987) assembles it
+; with no error and no warning, with the B file's names set as TI's sources set them
+; (SADDR = B0 ... PATTRN = B13).
+;
+; The handlers follow TI's own practice for this chip, as TI's TMS340 Graphics Library
+; (TIGA r2.01, 1990) and its port to TI's TIGA development board program it; each handler
+; names the file it follows (docs/COST_MODEL.md, "TI's practice"). Read for facts; the code
+; is fb89's.
+;
+; The board is TI's TIGA development board (TDB10/README.1ST): a TMS34010 at INCLK 50.35
+; MHz, 1 MB of VRAM in two banks of 256K x 4 parts, all of it the frame buffer from
+; VRAM_START, and DRAM from address 0 for the program, the ring and data (TDB10/OEMPRIMS/
+; CLEARFRM.ASM). A VRAM row, the same row of every part of both banks, is 16,384 bits:
+; two lines of the 1024 x 780 x 8 frame, whose 390 rows fill 780 of the VRAM's 1,024 lines.
+; The depth buffer (1.6 MB at 16 bits) lies in DRAM at ZBASE: it cannot be in VRAM (the
+; frame leaves 244 KB of it), and the TDB's 1 MB of DRAM is too small for it, so fb89's
+; board is the TDB with 4 MB of DRAM in the same place.
 ;
 ; Set once at start-up, outside the counted paths: field 0 is 16 bits and field 1 32 bits
-; (SETF 16,0,0 and SETF 32,0,1), PSIZE and DPTCH for the frame, the window to the frame
-; with clipping on (CONTROL's W = 3), and the registers below.
+; (SETF 16,0,0 and SETF 32,0,1), PSIZE and DPTCH for the frame (FPSHIFT: log2 of DPTCH),
+; OFFSET = VRAM_START, the window to the frame with clipping on (CONTROL's W = 3), and the
+; registers below.
 ;   A0  the ring's read pointer (a bit address)     A1  the host's write pointer, last read
 ;   A2  the ring's end                              A3  the ring's start
-;   A4  the dispatch table                          A5-A8  scratch
+;   A4  the dispatch table                          A5-A9  scratch
 ; and in the depth commands' pixel loop
 ;   A8  the depth word's address    A10 the pixel's address    A11 Z    A12 Z's step
 ;   A13 the pixels left             A14 the colour word        A7  where the loop returns
@@ -41,7 +58,12 @@ FRAME_NO  .equ  00001020h        ; the frame being drawn, for the host to read
 HSTCTLL   .equ  0C00000F0h       ; host control, low byte: the message to the host
 MSG_FRAME .equ  0010h            ; MSGOUT = 1: a frame is done
 PSIZE     .equ  0C0000150h       ; the pixel size
-ZBASE     .equ  00400000h        ; the depth buffer, above the frame
+ZBASE     .equ  00400000h        ; the depth buffer, in DRAM
+VRAM_START .equ 010000000h       ; the frame buffer: the TDB's VRAM (CLEARFRM.ASM)
+DPYCTL    .equ  0C0000080h       ; display control: ENV, SRE, SRT (TI's GSPREG.INC)
+FPSHIFT   .equ  00001140h        ; log2 of the frame's pitch in bits (13: 1,024 pixels of 8)
+ENV_DSTBM .equ  00001160h        ; TIGA's environment: the destination bit-map (TIGA_CALL)
+ENV_ORIGIN .equ 00001180h        ; and the viewport's origin
 ZSHIFT    .equ  00001040h        ; the depth word: 0 for 16 bits, 1 for 32
 ZPITCH    .equ  00001060h        ; log2 of the depth buffer's row, in bits
 FACE_REF  .equ  00001080h        ; a FACE's reference pixel, y:x
@@ -54,6 +76,8 @@ EDGES     .equ  00002000h        ; its edges, 4 longs each: x, remainder, x step
 
 ;@path COMMON next
 ;@path FRAME_BEGIN frame_begin
+;@path FRAME_BEGIN:fill frame_begin_fill
+;@path FRAME_BEGIN:large frame_begin take fb_fill
 ;@path FILL_RECT fill_rect
 ;@path DRAW_SPAN:line span_line
 ;@path DRAW_SPAN:fill span_fill
@@ -75,6 +99,7 @@ EDGES     .equ  00002000h        ; its edges, 4 longs each: x, remainder, x step
 ;@path FACE:span face_test zloop16
 ;@path FACE:empty face_test face_row take face_empty
 ;@path FACE:done face_row take face_done
+;@path TIGA_CALL tiga_call
 
 next:     CMP    A1,A0           ; at the host's last known write pointer?
           JRNE   more            ; taken: a command is waiting
@@ -89,22 +114,102 @@ fetch:    MOVE   *A0+,A5,0       ; the opcode word
           MOVE   *A5,A5,1        ; the handler's address
           JUMP   A5              ; dispatch
 
+; FRAME_BEGIN clears the frame through the VRAMs' serial registers, as TI's port of its
+; library to the development board does (TDB10/OEMPRIMS/CLEARPAG.ASM, clear_page, and
+; CLEARFRM.ASM; SPVU027 pp. 3-20 and 6-5): one VRAM row filled with the background as
+; 16-bit pixels, one memory-to-register cycle (a pixel read with DPYCTL's SRT set) that
+; loads that row into every part's serial register, then one register-to-memory cycle a
+; VRAM row (a FILL one pixel wide, SRT still set) for the frame's other rows. The display
+; is off meanwhile (ENV and SRE clear, as TI's routines leave them). A frame larger than
+; the VRAM is cleared by FILL (FRAME_BEGIN:fill), as is every frame when the profile's
+; clear_as is "fill": TI's clear_screen (TDB10/OEMPRIMS/CLEARSCR.ASM), one FILL XY.
 frame_begin:
           MOVE   *A0+,A5,0       ; the frame's number
           MOVE   A5,@FRAME_NO,0  ; kept for the host (a write: queued)
-          MOVE   *A0+,DYDX,1     ; DYDX = height:width, the whole frame
-          CLR    DADDR           ; from 0:0
+          MOVE   *A0+,A6,1       ; height:width, the whole frame
           MOVE   *A0+,A5,0       ; the background's colour word
-          MOVE   A5,A6
-          SLL    16,A6
-          OR     A6,A5           ; the pixel in all 32 bits
+          MOVE   A5,A7
+          SLL    16,A7
+          OR     A7,A5           ; the pixel in all 32 bits
           MOVE   A5,COLOR1
+          MOVE   A6,A7
+          SRL    16,A7           ; the height
+          MOVE   @FPSHIFT,A9,0
+          SLL    A9,A7           ; the frame's bits
+          ADDI   3FFFh,A7
+          SRL    14,A7           ; its VRAM rows, 16,384 bits each
+          CMPI   512,A7          ; more than the VRAM's 512?
+          JRHI   fb_fill         ; not taken: the frame lies in VRAM
+          MOVE   DPTCH,A8        ; the frame's pitch, kept
+          MOVE   OFFSET,DADDR    ; the first VRAM row
+          MOVI   10400h,A5
+          MOVE   A5,DYDX         ; DYDX = 1:1024, a VRAM row of 16-bit pixels
+          MOVI   4000h,A5
+          MOVE   A5,DPTCH        ; a VRAM row a "line"
+          MOVK   16,A5
+          MOVE   A5,@PSIZE,0     ; 16-bit pixels: every write a whole word
+          FILL   L               ; the first row in the background
+          MOVE   @DPYCTL,A9,0    ; the display's setting, kept
+          MOVE   A9,A5
+          ANDI   06FFFh,A5       ; video and the display's own transfers off (ENV, SRE)
+          ORI    0800h,A5        ; SRT: a pixel access is a serial-register transfer
+          MOVE   A5,@DPYCTL,0
+          MOVE   OFFSET,DADDR
+          PIXT   *DADDR,B14      ; its read: the memory-to-register cycle
+          MOVE   OFFSET,A5
+          ADDI   4000h,A5
+          MOVE   A5,DADDR        ; the second row
+          SUBK   1,A7
+          SLL    16,A7
+          ADDK   1,A7
+          MOVE   A7,DYDX         ; DYDX = rows - 1 : 1
+          FILL   L               ; a register-to-memory cycle a row
+          MOVE   A9,@DPYCTL,0    ; the display back
+          MOVE   A8,DPTCH        ; the frame's pitch and pixel size back
+          MOVK   8,A5
+          MOVE   A5,@PSIZE,0
+          JRUC   next
+
+frame_begin_fill:
+          MOVE   *A0+,A5,0       ; the frame's number
+          MOVE   A5,@FRAME_NO,0
+          MOVE   *A0+,A6,1       ; height:width
+          MOVE   *A0+,A5,0       ; the background's colour word
+          MOVE   A5,A7
+          SLL    16,A7
+          OR     A7,A5
+          MOVE   A5,COLOR1
+fb_fill:  MOVE   A6,DYDX         ; the whole frame
+          CLR    DADDR           ; from 0:0
           FILL   XY              ; the clear
           JRUC   next
 
 fill_rect:
-          MOVE   *A0+,DADDR,1    ; DADDR = y:x
-          MOVE   *A0+,DYDX,1     ; DYDX = h:w
+          MOVE   *A0+,A5,1       ; y:x (a memory field goes to a register of its
+          MOVE   A5,DADDR        ; pointer's file, then across: GSPA refuses *A0+,DADDR)
+          MOVE   *A0+,A5,1
+          MOVE   A5,DYDX         ; h:w
+          MOVE   *A0+,A5,0       ; the colour word
+          MOVE   A5,A6
+          SLL    16,A6
+          OR     A6,A5
+          MOVE   A5,COLOR1
+          FILL   XY
+          JRUC   next
+
+; DRAW_SPAN: a horizontal line, which TI's draw_line draws with FILL XY, not LINE
+; (EXTPRIMS/DRAWLINE.ASM: a horizontal or vertical line found by CMPXY, DYDX its length + 1
+; in x and y by SUBXY and ADDI 010001h); ours are all horizontal and left to right. LINE
+; stays the profile's other choice ("span_as": "line", DRAW_SPAN:line).
+span_fill:
+          MOVE   *A0+,A6,1       ; y:x0
+          MOVE   A6,DADDR
+          MOVE   *A0+,A7,0       ; x1
+          MOVE   A6,A5
+          MOVX   A7,A5           ; y:x1
+          SUBXY  A6,A5           ; 0:(x1 - x0)
+          ADDI   10001h,A5       ; 1:n
+          MOVE   A5,DYDX
           MOVE   *A0+,A5,0       ; the colour word
           MOVE   A5,A6
           SLL    16,A6
@@ -114,9 +219,9 @@ fill_rect:
           JRUC   next
 
 span_line:
-          MOVE   *A0+,DADDR,1    ; DADDR = y:x0
+          MOVE   *A0+,A6,1       ; y:x0
+          MOVE   A6,DADDR
           MOVE   *A0+,A7,0       ; x1
-          MOVE   DADDR,A6
           SLL    16,A6
           SRL    16,A6           ; x0
           SUB    A6,A7
@@ -133,24 +238,6 @@ span_line:
           OR     A6,A5
           MOVE   A5,COLOR1
           LINE   0
-          JRUC   next
-
-span_fill:
-          MOVE   *A0+,DADDR,1    ; DADDR = y:x0
-          MOVE   *A0+,A7,0       ; x1
-          MOVE   DADDR,A6
-          SLL    16,A6
-          SRL    16,A6           ; x0
-          SUB    A6,A7
-          ADDK   1,A7            ; n = x1 - x0 + 1
-          ADDI   10000h,A7       ; one row: DYDX = 1:n
-          MOVE   A7,DYDX
-          MOVE   *A0+,A5,0       ; the colour word
-          MOVE   A5,A6
-          SLL    16,A6
-          OR     A6,A5
-          MOVE   A5,COLOR1
-          FILL   XY
           JRUC   next
 
 frame_end:
@@ -427,7 +514,37 @@ face_empty:
 face_done:
           JRUC   next
 
+;--- TIGA's call around a primitive: the set-up band's dear end -----------------------------
+; Never run by this executive: what TIGA's graphics manager adds around each primitive it
+; calls for a C packet, priced like the rest and added to C_cmd at the dear end of the
+; listing's band (docs/COST_MODEL.md, "TIGA's call"). Its instruction mix is that of TI's
+; C-callable primitives (TIGA r2.01, EXTPRIMS/FILLRECT.ASM and DRAWLINE.ASM): the call,
+; the registers the primitive alters saved and restored (MMTM, MMFM), four arguments popped
+; off the C stack and paired into XY words, the environment's destination bit-map tested
+; and its viewport origin added to both points, the C stack pointer restored, the return.
+tiga_call: CALLA tiga_prim       ; the graphics manager calls the primitive
+tiga_prim: MMTM  SP,A0,A1
+          MMTM   SP,B2,B7,B10,B11,B12,B13,B14
+          MOVE   *-A14,A0,1      ; x
+          MOVE   *-A14,A1,1      ; y
+          SLL    16,A1
+          MOVY   A1,A0           ; y:x
+          MOVE   *-A14,A1,1      ; the second x (or the width)
+          MOVE   *-A14,A8,1      ; the second y (or the height)
+          SLL    16,A8
+          MOVY   A8,A1
+          MOVE   @ENV_DSTBM,A8,1 ; drawing to the screen?
+          JRNZ   tiga_ret        ; not taken: it is
+          MOVE   @ENV_ORIGIN,A8,1
+          ADDXY  A8,A0           ; the viewport's origin added
+          ADDXY  A8,A1
+tiga_ret: MMFM   SP,B2,B7,B10,B11,B12,B13,B14
+          MMFM   SP,A0,A1
+          MOVE   *SP(32),A14,1   ; the C stack pointer back
+          RETS   2
+
 ; by opcode (MARKER, 4, is never sent; 6 and 7 are the stream's time records); DRAW_SPAN's
-; entry is span_fill when the profile draws spans as one-row fills
-table:    .long  0, frame_begin, fill_rect, span_line, 0, frame_end, 0, 0, depth_clear
+; entry is span_line when the profile draws spans with LINE, FRAME_BEGIN's frame_begin_fill
+; when it clears by FILL
+table:    .long  0, frame_begin, fill_rect, span_fill, 0, frame_end, 0, 0, depth_clear
           .long  depth_span, face

@@ -127,12 +127,12 @@ TEST(Controller, WithAListingAnOutsideCommandStillPaysItsSetUpAndHostWords) {
     c.draw_span(DrawSpan{8, 0, 15, kRed});
     c.frame_end(FrameEnd{});
     EXPECT_EQ(totals(c, Opcode::FillRect).cycles, outside_cycles(p, Opcode::FillRect));
-    EXPECT_EQ(totals(c, Opcode::FillRect).cycles, 18u + 27u + 6u * 2u);
-    EXPECT_EQ(totals(c, Opcode::DrawSpan).cycles, 18u + 32u + 5u * 2u);
+    EXPECT_EQ(totals(c, Opcode::FillRect).cycles, 18u + 29u + 6u * 2u);
+    EXPECT_EQ(totals(c, Opcode::DrawSpan).cycles, 18u + 33u + 5u * 2u);  // its FILL's set-up
     EXPECT_EQ(totals(c, Opcode::FrameEnd).cycles, 18u + 5u + 2u);
     EXPECT_EQ(totals(c, Opcode::FrameBegin).cycles, frame_begin_cycles(p, 16, 8));
     EXPECT_NEAR(c.stats().controller_busy_us,
-                static_cast<double>(frame_begin_cycles(p, 16, 8) + 57 + 60 + 25) * us_per_cycle(p),
+                static_cast<double>(frame_begin_cycles(p, 16, 8) + 59 + 61 + 25) * us_per_cycle(p),
                 1e-9);
 }
 
@@ -344,9 +344,10 @@ void expect_same_run(const Controller& a, const Controller& b, const std::string
 
 std::vector<CostProfile> batch_profiles() {
     CostProfile slow_bus = default_profile();
-    slow_bus.name = "slow bus, spans as fills, 4 bpp";
+    slow_bus.name = "slow bus, spans as lines, the clear by FILL, 4 bpp";
     slow_bus.b_bus_bytes_per_s = 1e6;
-    slow_bus.span_as = SpanAs::Fill;
+    slow_bus.span_as = SpanAs::Line;
+    slow_bus.clear_as = ClearAs::Fill;
     slow_bus.bpp = 4;
     derive_figures(slow_bus);
     return {default_profile(), first_model(), load_profile("ideal"), slow_bus};

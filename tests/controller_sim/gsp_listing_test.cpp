@@ -53,16 +53,86 @@ TEST(GspListing, TheLoopIsCountedInstructionByInstruction) {
 
 TEST(GspListing, EachHandlerEndsWithItsJumpBackAndNamesItsGraphicsInstruction) {
     const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
-    for (const char* name :
-         {"FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN:line", "DRAW_SPAN:fill", "FRAME_END"})
+    for (const char* name : {"FRAME_BEGIN", "FRAME_BEGIN:fill", "FRAME_BEGIN:large", "FILL_RECT",
+                             "DRAW_SPAN:line", "DRAW_SPAN:fill", "FRAME_END"})
         EXPECT_EQ(paths.at(name).lines.back().text, "JRUC   next") << name;
     EXPECT_EQ(paths.at("FILL_RECT").graphics, "FILL");
     EXPECT_EQ(paths.at("DRAW_SPAN:line").graphics, "LINE");
     EXPECT_EQ(paths.at("DRAW_SPAN:fill").graphics, "FILL");
+    EXPECT_EQ(paths.at("FRAME_BEGIN").graphics, "FILL");
     EXPECT_EQ(paths.at("FRAME_END").graphics, "");
-    // two 32-bit reads, a 16-bit one, four register moves, FILL XY's 8 [EMU], JRUC 2
-    EXPECT_EQ(cycles_of(paths.at("FILL_RECT")), (std::vector<uint32_t>{5, 5, 3, 1, 1, 1, 1, 8, 2}));
-    EXPECT_EQ(paths.at("FILL_RECT").cycles, 27u);
+    // two 32-bit reads, each moved across to the B file (GSPA refuses *A0+,DADDR), a 16-bit
+    // read, four register moves, FILL XY's 8 [EMU], JRUC 2
+    EXPECT_EQ(cycles_of(paths.at("FILL_RECT")),
+              (std::vector<uint32_t>{5, 1, 5, 1, 3, 1, 1, 1, 1, 8, 2}));
+    EXPECT_EQ(paths.at("FILL_RECT").cycles, 29u);
+    // TI's draw_line's way (DRAWLINE.ASM): y:x0 to DADDR, x1, MOVX, SUBXY, ADDI 010001h (a
+    // long immediate, 3), the colour widened, FILL XY
+    EXPECT_EQ(cycles_of(paths.at("DRAW_SPAN:fill")),
+              (std::vector<uint32_t>{5, 1, 3, 1, 1, 1, 3, 1, 3, 1, 1, 1, 1, 8, 2}));
+    EXPECT_EQ(paths.at("DRAW_SPAN:fill").cycles, 33u);
+}
+
+// The serial-register clear (TI's clear_page, CLEARPAG.ASM), instruction by instruction at
+// M = 2: the three reads, the colour widened, the VRAM rows from the height and FPSHIFT,
+// the VRAM's 512 rows compared, the row fill's set-up (MOVI IL 3, MOVI IW 2, MOVK, the
+// PSIZE write queued before FILL L's 6), DPYCTL read (an I/O cycle) and written with SRT,
+// PIXT's read 4 (the memory-to-register cycle) after the last of that write's queue, the
+// second row, DYDX = rows - 1 : 1, FILL L, the display, pitch and pixel size back.
+TEST(GspListing, TheSerialRegisterClearIsCountedInstructionByInstruction) {
+    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    EXPECT_EQ(cycles_of(paths.at("FRAME_BEGIN")),
+              (std::vector<uint32_t>{3, 1, 5 + 2, 3, 1, 1, 1, 1, 1, 1, 3, 1, 2, 1, 2, 1, 1, 1,
+                                     3, 1, 2, 1, 1, 1, 6 + 2, 3, 1, 3, 3, 1, 1, 4 + 1, 1, 2, 1,
+                                     1, 1, 1, 1, 6, 1, 1, 1, 1, 2}));
+    EXPECT_EQ(paths.at("FRAME_BEGIN").cycles, 86u);
+    // the FILL clear (TI's clear_screen): the three reads, the colour, DYDX, DADDR, FILL XY
+    EXPECT_EQ(paths.at("FRAME_BEGIN:fill").cycles, 30u);
+    // a frame larger than the VRAM: the serial clear's first part, then the FILL clear's
+    EXPECT_EQ(paths.at("FRAME_BEGIN:large").cycles, 43u);
+}
+
+// TIGA's call around a primitive (TIGA_CALL, the band's dear end): CALLA 6, MMTM of 2 and
+// 7 registers (2 + 4n), four 32-bit pops (5 each), SLL and MOVY twice, two globals read
+// (5 each), JRNZ not taken 1, ADDXY twice, MMFM of 7 and 2 (3 + 4n), the stack pointer's
+// read with a displacement 5, RETS 7: 137 states, TI's own mix of about 115 to 140.
+TEST(GspListing, TigasCallAroundAPrimitiveIsCountedFromItsInstructionMix) {
+    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    EXPECT_EQ(cycles_of(paths.at("TIGA_CALL")),
+              (std::vector<uint32_t>{6, 10, 30, 5, 5, 1, 1, 5, 5, 1, 1, 5, 1, 5, 1, 1, 31, 11, 5,
+                                     7}));
+    EXPECT_EQ(paths.at("TIGA_CALL").cycles, 137u);
+    // at the band's dear end (a wait state, a MOVE's issue 2): 194
+    EXPECT_EQ(count_paths(tms34010(), MemoryTiming{3, 2}, TimingEnd::High).at("TIGA_CALL").cycles,
+              194u);
+}
+
+// TI's assembler refuses a memory MOVE between an A-file pointer and a B-file register
+// ("REGISTERS IN OPPOSITE FILES"): the chip has no such form, and neither does the pricer.
+TEST(GspListing, APointerAndARegisterInOppositeFilesAreRefusedAsTisAssemblerRefusesThem) {
+    const auto error = [](std::string_view text) -> std::string {
+        try {
+            (void)count_paths(Listing{"bad", text}, MemoryTiming{2, 2});
+        } catch (const std::runtime_error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string header = ";@path COMMON next\n;@path X x\nnext:     JUMP   A5\n";
+    for (const char* move : {"MOVE   *A0+,DADDR,1", "MOVE   *A0+,B5,1", "MOVE   DYDX,*A2,1",
+                             "MOVE   *B0,A1,0", "PIXT   *DADDR,A5"}) {
+        const std::string e = error(header + "x:        " + move + "\n          JRUC   next\n");
+        EXPECT_NE(e.find("bad.asm line 4"), std::string::npos) << move << ": " << e;
+        EXPECT_NE(e.find("opposite files"), std::string::npos) << move << ": " << e;
+    }
+    // the same file, and SP with either, are fine
+    for (const char* move : {"MOVE   *A0+,A5,1", "MOVE   *B0+,DADDR,1", "MOVE   *SP(32),A14,1",
+                             "MMTM   SP,B2,B7", "PIXT   *DADDR,B14"})
+        EXPECT_EQ(error(header + "x:        " + move + "\n          JRUC   next\n"), "") << move;
+    // MMTM's registers come from one file
+    EXPECT_NE(error(header + "x:        MMTM   SP,A0,B7\n          JRUC   next\n")
+                  .find("opposite files"),
+              std::string::npos);
 }
 
 // FRAME_BEGIN writes the frame's number and reads the next word at once: the write is
@@ -73,7 +143,7 @@ TEST(GspListing, AQueuedWriteOverlapsRegisterInstructionsAndDelaysTheNextAccess)
     const auto begin = cycles_of(paths.at("FRAME_BEGIN"));
     ASSERT_GE(begin.size(), 3u);
     EXPECT_EQ(begin[1], 1u);       // MOVE A5,@FRAME_NO,0: issued, its cycle queued
-    EXPECT_EQ(begin[2], 5u + 2u);  // MOVE *A0+,DYDX,1 waits 2 states for it
+    EXPECT_EQ(begin[2], 5u + 2u);  // MOVE *A0+,A6,1 waits 2 states for it
     EXPECT_EQ(cycles_of(paths.at("FRAME_END")), (std::vector<uint32_t>{2, 1, 2}));
 }
 
@@ -101,7 +171,10 @@ TEST(GspListing, TheProfilesFiguresAreTheListingsSums) {
                                    [](uint64_t s, const CountedLine& l) { return s + l.cycles; });
         };
         EXPECT_EQ(p.c_cmd, sum(paths.at("COMMON"))) << name;
-        EXPECT_EQ(p.c_frame_begin_setup, sum(paths.at("FRAME_BEGIN"))) << name;
+        EXPECT_EQ(p.c_frame_begin_srt_setup, sum(paths.at("FRAME_BEGIN"))) << name;
+        EXPECT_EQ(p.c_frame_begin_setup, sum(paths.at("FRAME_BEGIN:fill"))) << name;
+        EXPECT_EQ(p.c_frame_begin_large_setup, sum(paths.at("FRAME_BEGIN:large"))) << name;
+        EXPECT_EQ(p.c_tiga_call, sum(paths.at("TIGA_CALL"))) << name;
         EXPECT_EQ(p.c_setup, sum(paths.at("FILL_RECT"))) << name;
         EXPECT_EQ(p.c_line_setup, sum(paths.at("DRAW_SPAN:line"))) << name;
         EXPECT_EQ(p.c_span_fill_setup, sum(paths.at("DRAW_SPAN:fill"))) << name;
@@ -120,8 +193,9 @@ TEST(GspListing, TheTms34020PricesTheSameListingByItsOwnTables) {
     const auto paths = count_paths(tms34010(), c20);
     EXPECT_EQ(cycles_of(paths.at("COMMON")), (std::vector<uint32_t>{1, 2, 1, 2, 3, 1, 1, 3, 2}));
     EXPECT_EQ(paths.at("COMMON").lines[4].source.substr(0, 6), "[UG20]");
-    // two 32-bit reads and a 16-bit one, 3 each; four register moves; FILL XY's 8 [EMU]; JRUC 2
-    EXPECT_EQ(cycles_of(paths.at("FILL_RECT")), (std::vector<uint32_t>{3, 3, 3, 1, 1, 1, 1, 8, 2}));
+    // two 32-bit reads and a 16-bit one, 3 each; six register moves; FILL XY's 8 [EMU]; JRUC 2
+    EXPECT_EQ(cycles_of(paths.at("FILL_RECT")),
+              (std::vector<uint32_t>{3, 1, 3, 1, 3, 1, 1, 1, 1, 8, 2}));
     // the 16-bit depth loop, a nearer pixel: the read 3, MOVE, SRL, CMP, JRHS not taken 1
     // each, the depth written 1 (+1 hidden), PIXT 2 [EMU] after the hidden state, its own
     // write hidden behind ADDK; DSJ taken 3

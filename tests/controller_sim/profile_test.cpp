@@ -47,7 +47,7 @@ std::string load_error(const json& j) {
 TEST(Profile, DefaultIsTms34010At50MhzPricedFromTheDataSheet) {
     const CostProfile p = default_profile();
     EXPECT_EQ(p.name, "tms34010-50mhz");
-    EXPECT_EQ(p.f_cyc_hz, 6.25e6);
+    EXPECT_EQ(p.f_cyc_hz, 50.35e6 / 8);  // TI's development board's INCLK, TDB10/README.1ST
     EXPECT_EQ(p.bpp, 8u);
     EXPECT_EQ(p.bus_bits, 16u);
     EXPECT_EQ(p.pixels_per_word(), 2u);
@@ -58,17 +58,21 @@ TEST(Profile, DefaultIsTms34010At50MhzPricedFromTheDataSheet) {
     EXPECT_EQ(p.screen_transfers_per_s, 46'800);
     // derived: the listing's paths and the memory cycles
     EXPECT_EQ(p.c_cmd, 18u);
-    EXPECT_EQ(p.c_setup, 27u);
+    EXPECT_EQ(p.c_setup, 29u);
     EXPECT_EQ(p.c_line_setup, 32u);
     EXPECT_EQ(p.c_op, 2u);
     EXPECT_EQ(p.c_op_partial, 4u);
-    EXPECT_EQ(p.c_row, 0u);
+    EXPECT_EQ(p.c_row, 1u);  // TI's simulator's state a FILL row
     EXPECT_EQ(p.c_line_pix, 4u);
     EXPECT_EQ(p.c_host_word, 2u);
     EXPECT_TRUE(p.outside_pays_setup);
-    EXPECT_EQ(p.span_as, SpanAs::Line);
+    EXPECT_EQ(p.span_as, SpanAs::Fill);  // TI's draw_line
+    EXPECT_EQ(p.clear_as, ClearAs::SerialRegister);  // TI's clear_page
+    EXPECT_EQ(p.c_span_fill_setup, 33u);
+    EXPECT_EQ(p.c_frame_begin_srt_setup, 86u);
+    EXPECT_EQ(p.c_tiga_call, 137u);
     EXPECT_EQ(p.b_bus_bytes_per_s, 8e6);
-    EXPECT_EQ(p.bus_bytes_per_s(), 6.25e6);
+    EXPECT_EQ(p.bus_bytes_per_s(), 2 / (2 * 8 / 50.35e6));  // a word a memory cycle
     EXPECT_EQ(p.t_handshake_s, 1e-6);
     EXPECT_EQ(p.bytes_of(Opcode::FillRect), 12u);
     EXPECT_EQ(p.bytes_of(Opcode::DrawSpan), 10u);
@@ -113,7 +117,8 @@ TEST(Profile, EveryBuiltInFigureCitesItsSource) {
         for (const auto& [field, source] : p.sources)
             EXPECT_TRUE(source.rfind("[DS]", 0) == 0 || source.rfind("[UG]", 0) == 0 ||
                         source.rfind("[UG20]", 0) == 0 || source.rfind("[EMU]", 0) == 0 ||
-                        source.rfind("[EST]", 0) == 0)
+                        source.rfind("[EST]", 0) == 0 || source.rfind("[TI]", 0) == 0 ||
+                        source.rfind("[SIM]", 0) == 0)
                 << name << " " << field << ": " << source;
         if (name == "ideal") continue;
         std::vector<const char*> fields = {
@@ -124,7 +129,8 @@ TEST(Profile, EveryBuiltInFigureCitesItsSource) {
         else
             fields.insert(fields.end(),
                           {"bus_bits", "gsp", "memory_cycle_states", "wait_states",
-                           "refresh_every_states", "screen_transfers_per_s", "C_line_extra"});
+                           "refresh_every_states", "screen_transfers_per_s", "C_line_extra",
+                           "clear_as"});
         for (const char* field : fields)
             EXPECT_TRUE(p.sources.contains(field)) << name << " has no source for " << field;
     }
@@ -236,7 +242,9 @@ TEST(Profile, BandsHoldTheirFiguresAndSayWhy) {
     EXPECT_EQ(dear.refresh_every_states, 32u);
     EXPECT_EQ(dear.c_op, 3u);
     EXPECT_EQ(dear.c_line_pix, 2u * 3u + 2u);
-    EXPECT_EQ(dear.c_cmd, 18u + 3u + 2u);  // wait states on its reads, a state more to issue each
+    // wait states on its reads, a state more to issue each; and TIGA's call around it
+    EXPECT_EQ(dear.c_cmd, 18u + 3u + 2u + 194u);
+    EXPECT_EQ(band_end(p, false).c_cmd, 18u);  // the lean executive
     EXPECT_EQ(dear.b_bus_bytes_per_s, 4e6);
     EXPECT_EQ(dear.t_handshake_s, 3e-6);
     EXPECT_EQ(band_end(p, false).c_line_setup, 30u);  // LINE's own set-up at 2
