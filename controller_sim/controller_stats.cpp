@@ -102,7 +102,8 @@ json drawn_as_json(const CostProfile& p, uint32_t width, uint32_t height) {
         j["FRAME_BEGIN"] = "serial-register transfers";
         j["vram_rows"] = rows;
     } else {
-        j["FRAME_BEGIN"] = p.clear_as == ClearAs::Fill ? "FILL XY" : "FILL XY (larger than the VRAM)";
+        j["FRAME_BEGIN"] =
+            p.clear_as == ClearAs::Fill ? "FILL XY" : "FILL XY (larger than the VRAM)";
     }
     return j;
 }
@@ -117,10 +118,10 @@ std::string drawn_as_text(const CostProfile& p, uint32_t width, uint32_t height)
                             j["vram_rows"].get<uint64_t>());
     else
         clear = "by " + clear + (p.gsp.empty() ? "" : " (TI's clear_screen)");
-    return fmt::format("drawn as: DRAW_SPAN by {}; FRAME_BEGIN clears {}",
-                       p.span_as == SpanAs::Fill ? "FILL XY of one row (TI's draw_line)"
-                                                 : "LINE (a vector draw)",
-                       clear);
+    return fmt::format(
+        "drawn as: DRAW_SPAN by {}; FRAME_BEGIN clears {}",
+        p.span_as == SpanAs::Fill ? "FILL XY of one row (TI's draw_line)" : "LINE (a vector draw)",
+        clear);
 }
 
 namespace {

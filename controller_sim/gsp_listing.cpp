@@ -282,7 +282,8 @@ class Pricer {
             const uint32_t regs = static_cast<uint32_t>(n - 1);
             for (std::size_t i = 1; i < n; ++i)
                 if (!reg(i)) fail(in, "MMTM and MMFM take SP and registers of one file");
-            for (std::size_t i = 2; i < n; ++i) one_file(in, ops[1], ops[i]);
+            for (std::size_t i = 2; i < n; ++i)
+                one_file(in, ops[1], ops[i]);
             const uint32_t fixed = m == "MMTM" ? 2 : 3;
             Price p = simple(2, fixed + regs * 2 * m_memory.cycle_states,
                              fmt::format("[UG] {} SP,{} registers: {} + 4n at 2 states a cycle "
@@ -302,8 +303,8 @@ class Pricer {
             return p;
         }
         if (m == "RETS" && n <= 1) {
-            Price p = simple(1, 7, fmt::format("[DS] p. 14, RETS: 7{}",
-                                               c20 ? "; the 34010's count" : ""));
+            Price p = simple(
+                1, 7, fmt::format("[DS] p. 14, RETS: 7{}", c20 ? "; the 34010's count" : ""));
             p.kind = Kind::Dispatch;  // back to the caller: the path's end
             return p;
         }
@@ -394,8 +395,9 @@ class Pricer {
     void one_file(const Instruction& in, std::string_view a, std::string_view b) const {
         const char fa = file_of(a), fb = file_of(b);
         if (fa != 'S' && fb != 'S' && fa != fb)
-            fail(in, "registers in opposite files: the chip has no such form (only MOVE Rs,Rd "
-                     "crosses between the A and B files)");
+            fail(in,
+                 "registers in opposite files: the chip has no such form (only MOVE Rs,Rd "
+                 "crosses between the A and B files)");
     }
     // The register of an indirect operand: *Rn, *Rn+, *-Rn or *Rn(displacement).
     std::string_view indirect(const Instruction& in, std::string_view where) const {

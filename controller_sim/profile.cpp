@@ -724,9 +724,8 @@ std::string CostProfile::to_string() const {
         "C_row {}, spans as {}, clear by {}, C_line_setup {}, C_line_pix {}, host word {}, bus "
         "{} + {:g} us/command)",
         name, f_cyc_hz / 1e6, bpp, bus_bits, model, c_cmd, c_setup, c_op, c_op_partial, c_row,
-        controller::to_string(span_as), controller::to_string(clear_as), c_line_setup,
-        c_line_pix, c_host_word, bus,
-        t_handshake_s * 1e6);
+        controller::to_string(span_as), controller::to_string(clear_as), c_line_setup, c_line_pix,
+        c_host_word, bus, t_handshake_s * 1e6);
 }
 
 std::vector<std::string> list_profiles() {

@@ -88,11 +88,11 @@ struct CostProfile {
     // TIGA's call around a primitive (the listing's TIGA_CALL), in C_cmd at the dear end of
     // the listing's band only; 0 without a listing
     uint32_t c_tiga_call = 0;
-    uint32_t c_span_fill_setup = 0;    // DRAW_SPAN's as a one-row fill
-    uint32_t c_frame_end_setup = 0;    // FRAME_END's
-    uint32_t c_op = 0;                 // per aligned word FILL writes
-    uint32_t c_op_partial = 0;         // per partial word (read, modify, write)
-    uint32_t c_row = 0;                // per FILL row (a page-mode row's first word's extra too)
+    uint32_t c_span_fill_setup = 0;  // DRAW_SPAN's as a one-row fill
+    uint32_t c_frame_end_setup = 0;  // FRAME_END's
+    uint32_t c_op = 0;               // per aligned word FILL writes
+    uint32_t c_op_partial = 0;       // per partial word (read, modify, write)
+    uint32_t c_row = 0;              // per FILL row (a page-mode row's first word's extra too)
     SpanAs span_as = SpanAs::Line;
     uint32_t c_line_setup = 0;        // DRAW_SPAN's as a line, LINE's own included
     uint32_t c_line_pix = 0;          // per LINE pixel

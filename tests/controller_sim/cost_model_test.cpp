@@ -199,7 +199,7 @@ TEST(CostModel, BusTimeIsBytesOverTheChipsPortPlusHandshake) {
     EXPECT_DOUBLE_EQ(p.bus_bytes_per_s(), 6.29375e6);
     EXPECT_NEAR(bus_seconds(p, 12) * 1e6, 12 / 6.29375 + 1, 1e-12);  // FILL_RECT
     EXPECT_NEAR(bus_seconds(p, 2) * 1e6, 2 / 6.29375 + 1, 1e-12);    // FRAME_END
-    EXPECT_EQ(bus_seconds(p, 0), 0.0);                            // MARKER is not sent
+    EXPECT_EQ(bus_seconds(p, 0), 0.0);                               // MARKER is not sent
     // the ISA board's host is slower than the port
     EXPECT_DOUBLE_EQ(load_profile("tms34010-isa").bus_bytes_per_s(), 2.58e6);
 }

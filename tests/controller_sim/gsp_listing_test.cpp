@@ -82,9 +82,9 @@ TEST(GspListing, EachHandlerEndsWithItsJumpBackAndNamesItsGraphicsInstruction) {
 TEST(GspListing, TheSerialRegisterClearIsCountedInstructionByInstruction) {
     const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
     EXPECT_EQ(cycles_of(paths.at("FRAME_BEGIN")),
-              (std::vector<uint32_t>{3, 1, 5 + 2, 3, 1, 1, 1, 1, 1, 1, 3, 1, 2, 1, 2, 1, 1, 1,
-                                     3, 1, 2, 1, 1, 1, 6 + 2, 3, 1, 3, 3, 1, 1, 4 + 1, 1, 2, 1,
-                                     1, 1, 1, 1, 6, 1, 1, 1, 1, 2}));
+              (std::vector<uint32_t>{3, 1,     5 + 2, 3, 1, 1, 1, 1, 1, 1,     3, 1, 2, 1, 2,
+                                     1, 1,     1,     3, 1, 2, 1, 1, 1, 6 + 2, 3, 1, 3, 3, 1,
+                                     1, 4 + 1, 1,     2, 1, 1, 1, 1, 1, 6,     1, 1, 1, 1, 2}));
     EXPECT_EQ(paths.at("FRAME_BEGIN").cycles, 86u);
     // the FILL clear (TI's clear_screen): the three reads, the colour, DYDX, DADDR, FILL XY
     EXPECT_EQ(paths.at("FRAME_BEGIN:fill").cycles, 30u);
@@ -98,9 +98,9 @@ TEST(GspListing, TheSerialRegisterClearIsCountedInstructionByInstruction) {
 // read with a displacement 5, RETS 7: 137 states, TI's own mix of about 115 to 140.
 TEST(GspListing, TigasCallAroundAPrimitiveIsCountedFromItsInstructionMix) {
     const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
-    EXPECT_EQ(cycles_of(paths.at("TIGA_CALL")),
-              (std::vector<uint32_t>{6, 10, 30, 5, 5, 1, 1, 5, 5, 1, 1, 5, 1, 5, 1, 1, 31, 11, 5,
-                                     7}));
+    EXPECT_EQ(
+        cycles_of(paths.at("TIGA_CALL")),
+        (std::vector<uint32_t>{6, 10, 30, 5, 5, 1, 1, 5, 5, 1, 1, 5, 1, 5, 1, 1, 31, 11, 5, 7}));
     EXPECT_EQ(paths.at("TIGA_CALL").cycles, 137u);
     // at the band's dear end (a wait state, a MOVE's issue 2): 194
     EXPECT_EQ(count_paths(tms34010(), MemoryTiming{3, 2}, TimingEnd::High).at("TIGA_CALL").cycles,
@@ -130,9 +130,9 @@ TEST(GspListing, APointerAndARegisterInOppositeFilesAreRefusedAsTisAssemblerRefu
                              "MMTM   SP,B2,B7", "PIXT   *DADDR,B14"})
         EXPECT_EQ(error(header + "x:        " + move + "\n          JRUC   next\n"), "") << move;
     // MMTM's registers come from one file
-    EXPECT_NE(error(header + "x:        MMTM   SP,A0,B7\n          JRUC   next\n")
-                  .find("opposite files"),
-              std::string::npos);
+    EXPECT_NE(
+        error(header + "x:        MMTM   SP,A0,B7\n          JRUC   next\n").find("opposite files"),
+        std::string::npos);
 }
 
 // FRAME_BEGIN writes the frame's number and reads the next word at once: the write is

@@ -66,7 +66,7 @@ TEST(Profile, DefaultIsTms34010At50MhzPricedFromTheDataSheet) {
     EXPECT_EQ(p.c_line_pix, 4u);
     EXPECT_EQ(p.c_host_word, 2u);
     EXPECT_TRUE(p.outside_pays_setup);
-    EXPECT_EQ(p.span_as, SpanAs::Fill);  // TI's draw_line
+    EXPECT_EQ(p.span_as, SpanAs::Fill);              // TI's draw_line
     EXPECT_EQ(p.clear_as, ClearAs::SerialRegister);  // TI's clear_page
     EXPECT_EQ(p.c_span_fill_setup, 33u);
     EXPECT_EQ(p.c_frame_begin_srt_setup, 86u);
@@ -127,10 +127,9 @@ TEST(Profile, EveryBuiltInFigureCitesItsSource) {
         if (p.gsp.empty())
             fields.insert(fields.end(), {"C_cmd", "C_setup", "C_op", "C_line_setup", "C_line_pix"});
         else
-            fields.insert(fields.end(),
-                          {"bus_bits", "gsp", "memory_cycle_states", "wait_states",
-                           "refresh_every_states", "screen_transfers_per_s", "C_line_extra",
-                           "clear_as"});
+            fields.insert(fields.end(), {"bus_bits", "gsp", "memory_cycle_states", "wait_states",
+                                         "refresh_every_states", "screen_transfers_per_s",
+                                         "C_line_extra", "clear_as"});
         for (const char* field : fields)
             EXPECT_TRUE(p.sources.contains(field)) << name << " has no source for " << field;
     }
