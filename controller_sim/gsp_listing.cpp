@@ -1,10 +1,10 @@
 // Counting the GSP's command executive (see gsp_listing.h and docs/COST_MODEL.md).
 //
-// The listing is read line by line: "NAME .equ VALUE" defines a symbol, "label:" a label,
-// other directives (".long") are data, and every other line is one instruction. Each
-// instruction is priced by the form of its operands from the data sheet's tables; a form the
-// tables do not give is an error, so nothing is priced by a default.
+// The listing's text is read by gsp_listing_text.cpp. Each instruction is priced here by the
+// form of its operands from the data sheet's tables; a form the tables do not give is an
+// error, so nothing is priced by a default. Each path is then walked with the write queue.
 #include "controller_sim/gsp_listing.h"
+#include "controller_sim/gsp_listing_text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -19,6 +19,17 @@ namespace fb89::controller {
 
 namespace {
 
+using listing_text::Instruction;
+using listing_text::is_register;
+using listing_text::kBFileNames;
+using listing_text::kConditions;
+using listing_text::parse;
+using listing_text::parse_number;
+using listing_text::Parsed;
+using listing_text::PathSpec;
+using listing_text::trim;
+using listing_text::upper;
+
 // The two fields' sizes the executive sets at start-up (SETF 16,0,0 and SETF 32,0,1).
 constexpr uint32_t kFieldBits[2] = {16, 32};
 // On-chip I/O registers: 0C0000000h to 0C00001FFh (SPVS002C p. 10, figure 6).
@@ -26,84 +37,7 @@ constexpr uint64_t kIoFirst = 0xC0000000, kIoLast = 0xC00001FF;
 // A path longer than this has a loop in it.
 constexpr int kMaxPathSteps = 1000;
 
-// The B file's names in TI's documents (SADDR = B0 ... PATTRN = B13).
-constexpr std::string_view kBFileNames[] = {"SADDR",  "SPTCH", "DADDR", "DPTCH",  "OFFSET",
-                                            "WSTART", "WEND",  "DYDX",  "COLOR0", "COLOR1",
-                                            "COUNT",  "INC1",  "INC2",  "PATTRN"};
-
-constexpr std::string_view kConditions[] = {"UC", "EQ", "NE", "LO", "HS", "LT", "GE", "LE",
-                                            "GT", "C",  "NC", "Z",  "NZ", "P",  "N",  "NN",
-                                            "V",  "NV", "HI", "LS", "MI", "PL"};
-
-std::string upper(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    return out;
-}
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
-        s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
-        s.remove_suffix(1);
-    return s;
-}
-
-bool is_register(std::string_view s) {
-    const std::string u = upper(s);
-    if (u == "SP") return true;
-    if (std::find(std::begin(kBFileNames), std::end(kBFileNames), u) != std::end(kBFileNames))
-        return true;
-    if (u.size() < 2 || u.size() > 3 || (u[0] != 'A' && u[0] != 'B')) return false;
-    if (!std::all_of(u.begin() + 1, u.end(), [](char c) { return std::isdigit(c) != 0; }))
-        return false;
-    return std::stoi(u.substr(1)) <= 14;
-}
-
-// A number as the TI assembler writes it: decimal, or hexadecimal with a trailing h.
-std::optional<uint64_t> parse_number(std::string_view s) {
-    s = trim(s);
-    if (s.empty() || !std::isdigit(static_cast<unsigned char>(s[0]))) return std::nullopt;
-    const bool hex = s.back() == 'h' || s.back() == 'H';
-    if (hex) s.remove_suffix(1);
-    uint64_t v = 0;
-    for (char c : s) {
-        const int d = std::isdigit(static_cast<unsigned char>(c))
-                          ? c - '0'
-                          : (hex && std::isxdigit(static_cast<unsigned char>(c))
-                                 ? std::tolower(static_cast<unsigned char>(c)) - 'a' + 10
-                                 : -1);
-        if (d < 0) return std::nullopt;
-        v = v * (hex ? 16 : 10) + static_cast<uint64_t>(d);
-        if (v > 0xFFFFFFFFu) return std::nullopt;
-    }
-    return v;
-}
-
 enum class Kind { Register, MemoryRead, MemoryWrite, Branch, Jump, Dispatch, Graphics };
-
-struct Instruction {
-    int line = 0;
-    std::string label;  // "" when the line has none
-    std::string mnemonic;
-    std::vector<std::string> operands;
-    std::string comment;
-    std::string text;  // mnemonic and operands as written
-};
-
-struct PathSpec {
-    std::string name, start;
-    std::string end;                 // "" : to a dispatch or a jump back to COMMON's label
-    std::vector<std::string> taken;  // "take LABEL": jumps to these are taken on this path
-};
-
-struct Parsed {
-    std::vector<Instruction> code;              // in listing order
-    std::map<std::string, std::size_t> labels;  // label -> index into code
-    std::map<std::string, uint64_t> symbols;    // .equ
-    std::vector<PathSpec> paths;
-};
 
 // What one instruction costs, before the write queue is applied.
 struct Price {
@@ -371,13 +305,8 @@ class Pricer {
         return true;
     }
     void same_file(const Instruction& in) const {
-        const auto file = [](std::string_view r) {
-            const std::string u = upper(r);
-            return u[0] == 'B' || std::find(std::begin(kBFileNames), std::end(kBFileNames), u) !=
-                                      std::end(kBFileNames);
-        };
-        if (file(in.operands[0]) != file(in.operands[1]))
-            fail(in, "only MOVE crosses between the A and B files");
+        const char a = file_of(in.operands[0]), b = file_of(in.operands[1]);
+        if (a != b && a != 'S' && b != 'S') fail(in, "only MOVE crosses between the A and B files");
     }
 
     // Which register file a register is in: the B file's names and Bn; SP is in both.
@@ -545,99 +474,6 @@ class Pricer {
     TimingEnd m_end;
     std::map<int, uint32_t> m_word_at;  // the 34020's: each instruction's word, by line
 };
-
-Parsed parse(const Listing& listing) {
-    Parsed out;
-    int number = 0;
-    std::string pending_label;
-    std::string_view text = listing.text;
-    const auto fail = [&](std::string_view what) {
-        throw std::runtime_error(
-            fmt::format("listing {}.asm line {}: {}", listing.name, number, what));
-    };
-    while (!text.empty()) {
-        const std::size_t eol = text.find('\n');
-        std::string_view line = text.substr(0, eol);
-        text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
-        ++number;
-        std::string_view comment;
-        if (const std::size_t semi = line.find(';'); semi != std::string_view::npos) {
-            comment = trim(line.substr(semi + 1));
-            line = line.substr(0, semi);
-        }
-        if (comment.starts_with("@path")) {
-            std::vector<std::string> words;
-            std::string_view rest = trim(comment.substr(5));
-            while (!rest.empty()) {
-                const std::size_t space = rest.find(' ');
-                words.emplace_back(rest.substr(0, space));
-                rest = space == std::string_view::npos ? std::string_view{}
-                                                       : trim(rest.substr(space + 1));
-            }
-            if (words.size() < 2) fail("@path takes a name and a label");
-            PathSpec spec{words[0], words[1], "", {}};
-            std::size_t i = 2;
-            if (i < words.size() && words[i] != "take") spec.end = words[i++];
-            for (; i < words.size(); i += 2) {
-                if (words[i] != "take" || i + 1 >= words.size())
-                    fail("@path NAME START [END] [take LABEL]...");
-                spec.taken.push_back(words[i + 1]);
-            }
-            out.paths.push_back(std::move(spec));
-            continue;
-        }
-        std::string_view code = line;
-        std::string label;
-        if (!code.empty() && !std::isspace(static_cast<unsigned char>(code[0]))) {
-            std::size_t end = 0;
-            while (end < code.size() && !std::isspace(static_cast<unsigned char>(code[end])))
-                ++end;
-            std::string_view first = code.substr(0, end);
-            code = trim(code.substr(end));
-            if (first.ends_with(":")) {
-                label = std::string(first.substr(0, first.size() - 1));
-            } else if (code.starts_with(".equ")) {
-                const auto v = parse_number(code.substr(4));
-                if (!v) fail("a .equ takes a number");
-                out.symbols[std::string(first)] = *v;
-                continue;
-            } else {
-                fail(fmt::format("{}: a label ends with ':'", first));
-            }
-        }
-        code = trim(code);
-        if (!label.empty()) {
-            if (!pending_label.empty()) fail("two labels for one instruction");
-            pending_label = label;
-        }
-        if (code.empty() || code.starts_with(".")) {
-            if (code.starts_with(".")) pending_label.clear();  // a label on data
-            continue;
-        }
-        Instruction in;
-        in.line = number;
-        in.label = pending_label;
-        pending_label.clear();
-        in.comment = std::string(comment);
-        in.text = std::string(code);
-        std::size_t space = 0;
-        while (space < code.size() && !std::isspace(static_cast<unsigned char>(code[space])))
-            ++space;
-        in.mnemonic = upper(code.substr(0, space));
-        std::string_view ops = trim(code.substr(space));
-        while (!ops.empty()) {
-            const std::size_t comma = ops.find(',');
-            in.operands.emplace_back(trim(ops.substr(0, comma)));
-            ops = comma == std::string_view::npos ? std::string_view{} : ops.substr(comma + 1);
-        }
-        if (!in.label.empty()) {
-            if (out.labels.count(in.label)) fail(fmt::format("label {} defined twice", in.label));
-            out.labels[in.label] = out.code.size();
-        }
-        out.code.push_back(std::move(in));
-    }
-    return out;
-}
 
 // Walks one path from its label, pricing each instruction and applying the write queue:
 // a queued write's states overlap the register instructions after it and are waited for

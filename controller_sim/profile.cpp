@@ -516,13 +516,13 @@ void derive_figures(CostProfile& p) {
                                                  name, *graphics ? graphics : "no FILL or LINE"));
         return static_cast<uint32_t>(it->second.cycles);
     };
-    p.c_cmd = path("COMMON", "") + (p.listing_dear ? path("TIGA_CALL", "") : 0);
+    // TIGA's call around each command is the dear end of the listing's band; the lean
+    // executive, the cheap end and the estimate (docs/COST_MODEL.md, "TIGA's call")
+    p.c_tiga_call = path("TIGA_CALL", "");
+    p.c_cmd = path("COMMON", "") + (p.listing_dear ? p.c_tiga_call : 0);
     p.c_frame_begin_setup = path("FRAME_BEGIN:fill", "FILL");
     p.c_frame_begin_srt_setup = path("FRAME_BEGIN", "FILL");
     p.c_frame_begin_large_setup = path("FRAME_BEGIN:large", "FILL");
-    p.c_tiga_call = path("TIGA_CALL", "");
-    // TIGA's call around each command is the dear end of the listing's band; the lean
-    // executive, the cheap end and the estimate (docs/COST_MODEL.md, "TIGA's call")
     p.c_setup = path("FILL_RECT", "FILL");
     p.c_line_setup = path("DRAW_SPAN:line", "LINE");
     p.c_span_fill_setup = path("DRAW_SPAN:fill", "FILL");

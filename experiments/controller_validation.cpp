@@ -130,22 +130,14 @@ void add_ti_rows(std::vector<ValidationRow>& out, const CostProfile& after,
          "115 to 140", kNone, static_cast<double>(after.c_tiga_call), true,
          after.c_tiga_call >= 100 && after.c_tiga_call <= 160, true});
     // PIXT: the simulator timed the XY form (PIXT Rs,*Rd.XY: 6 states warm, 7 cold, at
-    // 8 bpp); the listing's depth loop uses the linear form, priced as its issue and the
-    // pixel's read-modify-write (the ZPIXEL16:nearer path's PIXT line, its queued write
-    // paid): set beside it, not checked, the forms differing by the XY conversion
-    {
-        const auto paths = controller::count_paths(controller::builtin_listing(after.gsp),
-                                                   controller::memory_timing(after));
-        const auto memory = controller::memory_timing(after);
-        double pixt = kNone;
-        for (const controller::CountedLine& l : paths.at("ZPIXEL16:nearer").lines)
-            if (l.text.rfind("PIXT", 0) == 0) pixt = 1 + memory.pixel_write_states;
-        add(
-            {"PIXT of one pixel, 8 bpp (the simulator: the XY form; the model: the linear form "
-             "the depth loop uses, its write included)",
-             "states", "[SIM] TI's GSPSIM 1.04, tests/ti-gsp/fills.asm m15-m16", "6", kNone, pixt,
-             false, true, true});
-    }
+    // 8 bpp); the listing's depth loop uses the linear form, priced as one state to issue
+    // and the pixel's write (a read-modify-write at 8 bpp): set beside it, not checked, the
+    // forms differing by the XY conversion
+    add(
+        {"PIXT of one pixel, 8 bpp (the simulator: the XY form; the model: the linear form "
+         "the depth loop uses, its write included)",
+         "states", "[SIM] TI's GSPSIM 1.04, tests/ti-gsp/fills.asm m15-m16", "6", kNone,
+         1.0 + controller::memory_timing(after).pixel_write_states, false, true, true});
     // The simulator's FILLs and LINE beside the model's: the instruction's own set-up (the
     // listing's) and its pixels (the memory model's).
     for (const SimulatorRun& run : kSimulator) {
