@@ -101,7 +101,7 @@ RenderArgs render_args(const std::string& scene, const py::object& method, const
     a.method = text(method, "method");
     a.size = size_text(size);
     a.host = text(host, "host");
-    a.controller = text(controller, "controller");
+    a.controller = text(controller, "profile");
     a.repeat = static_cast<int>(whole_number(repeat, frontend::limits::kRenderRepeat));
     a.threshold = threshold_text(threshold, "threshold");
     a.beam_threshold = threshold_text(beam_threshold, "beam_threshold");
@@ -132,7 +132,7 @@ std::shared_ptr<RenderOutcome> render(const RenderArgs& a) {
         frontend::check_host_name(a.host);
         return 0;
     });
-    named("controller", [&] {
+    named("profile", [&] {
         frontend::check_profile_name(a.controller);
         return 0;
     });
@@ -148,7 +148,7 @@ std::shared_ptr<RenderOutcome> render(const RenderArgs& a) {
     host::validate(options);
 
     // a profile or host that is not one is a usage mistake, as on the command line
-    out->profile = frontend::profile_option(a.controller, "controller");
+    out->profile = frontend::profile_option(a.controller, "profile");
     const std::string& controller_profile = a.controller;
     const std::string& host = a.host;
     const std::string& method = a.method;
@@ -229,6 +229,8 @@ void register_errors(py::module_& m);
 void register_stream_calls(py::module_& m);
 void register_streams(py::module_& m);
 void register_runs(py::module_& m);
+void register_commands(py::module_& m);
+void register_info(py::module_& m);
 
 PYBIND11_MODULE(_fb89, m) {
     m.doc() =
@@ -287,7 +289,9 @@ PYBIND11_MODULE(_fb89, m) {
         .def_readonly("scene", &RenderOutcome::scene, "The scene file rendered.")
         .def_readonly("method", &RenderOutcome::method)
         .def_readonly("host", &RenderOutcome::host)
-        .def_readonly("controller", &RenderOutcome::controller)
+        .def_readonly("profile", &RenderOutcome::controller,
+                      "The controller's cost profile (render's --profile).")
+        .def_readonly("controller", &RenderOutcome::controller, "The profile's old name.")
         .def_property_readonly(
             "image",
             [](py::object self) { return rgb_view(self.cast<RenderOutcome&>().image, self); },
@@ -442,6 +446,8 @@ PYBIND11_MODULE(_fb89, m) {
     register_streams(m);
     register_stream_calls(m);
     register_runs(m);
+    register_commands(m);
+    register_info(m);
 }
 
 }  // namespace fb89::python

@@ -46,7 +46,7 @@ void fill(frontend::RunRequest& r, const std::vector<std::string>& scenes, const
         r.scenes.push_back(frontend::resolve_scene(scene));
     r.size = size_text(size);
     r.repeat = static_cast<int>(whole_number(repeat, limits::kRepeat));
-    r.profile = text(controller, "controller");
+    r.profile = text(controller, "profile");
     r.host.host = text(host, "host");
     r.host.jobs = static_cast<int>(whole_number(jobs, limits::kJobs));
     r.host.results = path_text(results, "results", true);

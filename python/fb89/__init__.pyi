@@ -11,6 +11,7 @@ FILL_RECT: int
 DRAW_SPAN: int
 MARKER: int
 FRAME_END: int
+DEFAULT_PROFILE: str
 DEFAULT_CONTROLLER: str
 
 class Error(Exception): ...
@@ -63,6 +64,7 @@ class Render:
     scene: str
     method: str
     host: str
+    profile: str
     controller: str
     stream: Stream
     @property
@@ -119,9 +121,36 @@ class Comparison:
 
 class Replay:
     image: npt.NDArray[np.uint8]
-    checksum: int
+    checksum: str  # 16 hex digits, as fb89 replay prints it
     stats: dict[str, Any]
     pipelines: list[dict[str, Any]] | None
+
+class Radiosity:
+    scene: str
+    ff: str
+    profile: str
+    summary: str
+    controller_summary: str
+    notes: list[str]
+    stream: Stream
+    @property
+    def image(self) -> npt.NDArray[np.uint8]: ...
+    @property
+    def ids(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def stats(self) -> dict[str, Any]: ...
+    @property
+    def counts(self) -> dict[str, Any]: ...
+    @property
+    def times(self) -> dict[str, Any]: ...
+    @property
+    def controller_figures(self) -> dict[str, Any]: ...
+
+class Validation:
+    table: Table
+    text: str
+    all_pass: bool
+    listing: str | None
 
 class Diff:
     frames: list[dict[str, Any]]
@@ -136,34 +165,57 @@ def profiles() -> list[str]: ...
 def experiments() -> list[str]: ...
 def load_scene(scene: SceneLike, *, name: str = ...) -> Scene: ...
 def render(scene: SceneLike, *, method: str = ..., size: Size = ..., host: str = ...,
-           controller: str = ..., repeat: int = ..., threshold: Threshold = ...,
+           profile: str | None = ..., repeat: int = ..., threshold: Threshold = ...,
            beam_threshold: Threshold = ..., reflections: int | None = ...,
-           buffer: Buffer = ...) -> Render: ...
+           buffer: Buffer = ..., controller: str | None = ...) -> Render: ...
 def experiment(name: str, scenes: SceneLike | Sequence[SceneLike] | None = ..., *,
-               size: Size = ..., repeat: int = ..., controller: str = ...,
+               size: Size = ..., repeat: int = ..., profile: str | None = ...,
                threshold: Threshold = ..., beam_threshold: Threshold = ...,
                sizes: Sequence[Size] | None = ..., out_dir: str | os.PathLike[str] = ...,
                accel: str = ..., patches: int = ..., reference_rays: int = ...,
                host: str = ..., jobs: int = ..., results: str | os.PathLike[str] | None = ...,
-               progress: Progress = ...) -> Table: ...
+               progress: Progress = ..., controller: str | None = ...) -> Table: ...
 def sweep(what: str, scenes: SceneLike | Sequence[SceneLike], *, start: float = ...,
           stop: float = ..., steps: int = ..., window_test: str = ...,
-          depth_estimate: str = ..., size: Size = ..., repeat: int = ..., controller: str = ...,
-          host: str = ..., jobs: int = ..., results: str | os.PathLike[str] | None = ...,
-          progress: Progress = ...) -> Table: ...
-def compare(scene: SceneLike, *, size: Size = ..., repeat: int = ..., controller: str = ...,
+          depth_estimate: str = ..., size: Size = ..., repeat: int = ...,
+          profile: str | None = ..., host: str = ..., jobs: int = ...,
+          results: str | os.PathLike[str] | None = ..., progress: Progress = ...,
+          controller: str | None = ...) -> Table: ...
+def compare(scene: SceneLike, *, size: Size = ..., repeat: int = ..., profile: str | None = ...,
             threshold: Threshold = ..., beam_threshold: Threshold = ..., host: str = ...,
             jobs: int = ..., results: PathLike | None = ..., sheet: PathLike | None = ...,
             csv: PathLike | None = ..., json: PathLike | None = ...,
-            progress: Progress = ...) -> Comparison: ...
+            progress: Progress = ..., controller: str | None = ...) -> Comparison: ...
 def calibrate(method: str = ..., scenes: SceneLike | Sequence[SceneLike] | None = ..., *,
               start: float = ..., stop: float = ..., steps: int = ..., repeat: int = ...,
               tolerance: float = ..., host: str = ..., jobs: int = ...,
               results: str | os.PathLike[str] | None = ..., save: bool = ...,
               progress: Progress = ...) -> Calibration: ...
-def replay(stream: Stream | str | os.PathLike[str], *, controller: str = ...,
-           buffer: Buffer = ..., timeline: PathLike | None = ...) -> Replay: ...
+def replay(stream: Stream | str | os.PathLike[str], *, profile: str | None = ...,
+           buffer: Buffer = ..., timeline: PathLike | None = ...,
+           controller: str | None = ...) -> Replay: ...
 def trim(stream: Stream | str | os.PathLike[str], output: str | os.PathLike[str], *,
          calls: str | None = ..., frames: str | None = ..., salvage: bool = ...) -> dict[str, Any]: ...
 def diff(a: Stream | str | os.PathLike[str], b: Stream | str | os.PathLike[str], *,
          image: str | os.PathLike[str] | None = ...) -> Diff: ...
+def radiosity(scene: SceneLike, *, ff: str = ..., patches: int | None = ...,
+              epsilon: float | None = ..., link_rays: int | None = ...,
+              min_area: float | None = ..., shaft_culling: bool = ...,
+              max_links: int | None = ..., hemicube_res: int | None = ...,
+              solver: str | None = ..., tolerance: float | None = ...,
+              max_iterations: int | None = ..., adaptive: float | None = ...,
+              adaptive_passes: int | None = ..., exposure: float | None = ..., size: Size = ...,
+              profile: str | None = ..., png: PathLike | None = ..., ids: PathLike | None = ...,
+              ids_view: PathLike | None = ..., stream: PathLike | None = ...,
+              stats: PathLike | None = ..., progress: Progress = ...,
+              controller: str | None = ...) -> Radiosity: ...
+ModelValues = None | float | str | Sequence[float | str]
+def model(*, es: ModelValues = ..., fv: ModelValues = ..., d: ModelValues = ...,
+          fw: ModelValues = ..., ew: ModelValues = ...,
+          faces: ModelValues = ...) -> Table | tuple[Table, Table]: ...
+def host_validate(*, profile: PathLike | Sequence[PathLike] | None = ...,
+                  classes: int | None = ..., progress: Progress = ...) -> Validation: ...
+def controller_validate(*, profile: str | None = ..., listing: bool = ...,
+                        controller: str | None = ...) -> Validation: ...
+def info(stream: Stream | str | os.PathLike[str], *, profile: str | None = ...,
+         controller: str | None = ...) -> dict[str, Any]: ...

@@ -135,7 +135,7 @@ def test_errors_are_python_exceptions_with_the_command_lines_messages(tmp_path):
         fb89.Stream.open(str(tmp_path / "missing.fb89"))
     with pytest.raises(fb89.OptionError, match="host"):
         fb89.render("demo", host="sun5-60")
-    with pytest.raises(fb89.OptionError, match="controller"):
+    with pytest.raises(fb89.OptionError, match="^profile: "):
         fb89.render("demo", controller="tms9918")
     with pytest.raises(fb89.OptionError, match="does not use it"):
         fb89.render("demo", method="zbuffer", threshold="paper")
@@ -496,7 +496,7 @@ def test_an_unknown_method_host_profile_or_scene_gets_the_nearest_name():
     cases = [
         ({"method": "zbufer"}, "method: unknown method 'zbufer'; did you mean 'zbuffer'?"),
         ({"host": "sun4-26"}, "host: unknown host 'sun4-26'; did you mean 'sun4-260'?"),
-        ({"controller": "idael"}, "controller: unknown profile 'idael'; did you mean 'ideal'?"),
+        ({"profile": "idael"}, "profile: unknown profile 'idael'; did you mean 'ideal'?"),
     ]
     for kwargs, said in cases:
         with pytest.raises(fb89.OptionError) as e:

@@ -85,7 +85,7 @@ def test_a_fraction_is_not_an_integer_as_on_the_command_line():
     (lambda: fb89.render("demo", repeat="3"), "repeat"),
     (lambda: fb89.render("demo", repeat=True), "repeat"),
     (lambda: fb89.render("demo", method=3), "method"),
-    (lambda: fb89.render("demo", controller=None), "controller"),
+    (lambda: fb89.render("demo", profile=3), "profile"),
     (lambda: fb89.render("demo", size=5), "size"),
     (lambda: fb89.render("demo", method="hybrid", threshold=[1]), "threshold"),
     (lambda: fb89.render("demo", buffer=[4096]), "buffer"),
@@ -145,7 +145,7 @@ def test_a_bad_profile_is_an_option_error_everywhere(tmp_path):
                  lambda: fb89.experiment("fig2.1", ["A"], controller="tms9918", progress=False),
                  lambda: fb89.sweep("threshold", "A", controller="tms9918", progress=False),
                  lambda: fb89.compare("A", controller="tms9918", progress=False)):
-        with pytest.raises(fb89.OptionError, match="^controller: .*tms9918"):
+        with pytest.raises(fb89.OptionError, match="^profile: .*tms9918"):
             call()
 
 

@@ -241,6 +241,23 @@ TEST(RadiosityCommand, IdsWritesThePatchSceneFaceIdBufferAndIdsViewItsColours) {
     }
 }
 
+// The hierarchy's leaves differ in size where they meet (T-junctions); the room is closed
+// to the camera, so every pixel of its id buffer is some patch's, as with a uniform mesh.
+TEST(RadiosityCommand, HierarchicalPatchesCoverEveryPixelOfTheClosedRoom) {
+    for (const std::string ff : {"hierarchical", "hybrid"}) {
+        const fs::path ids = scratch("covered." + ff + ".png");
+        CliRun r = fb89("radiosity " + kGarish + " -q --ff " + ff + " --ids " + ids.string());
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const auto image = fb89::controller::read_png(ids);
+        ASSERT_EQ(image.channels, 3u);
+        int background = 0;
+        for (size_t k = 0; k < image.pixels.size(); k += 3)
+            background +=
+                image.pixels[k] == 0 && image.pixels[k + 1] == 0 && image.pixels[k + 2] == 0;
+        EXPECT_EQ(background, 0) << ff << ": pixels no patch covers";
+    }
+}
+
 TEST(RadiosityCommand, OtherFormFactorsRunAndQuietPrintsNothing) {
     for (const std::string ff : {"disk", "exact", "hemicube --hemicube-res 16"}) {
         CliRun r = fb89("radiosity " + kScenes +

@@ -119,4 +119,28 @@ TEST(PatchScene, BlackSolutionStaysBlack) {
 }
 
 }  // namespace
+// A coarse square beside two squares half its height: the finer pair's shared corner lies
+// inside the coarse square's edge, where the raster pipeline would round it apart.
+TEST(PatchScene, TJunctionCornersAreAddedToTheCoarseEdge) {
+    Face coarse, low, high;
+    coarse.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    low.vertices = {{1, 0, 0}, {2, 0, 0}, {2, 0.5, 0}, {1, 0.5, 0}};
+    high.vertices = {{1, 0.5, 0}, {2, 0.5, 0}, {2, 1, 0}, {1, 1, 0}};
+    std::vector<Face> faces{coarse, low, high};
+    close_t_junctions(faces);
+    ASSERT_EQ(faces[0].vertices.size(), 5u);
+    EXPECT_EQ(faces[0].vertices[2], glm::dvec3(1, 0.5, 0));  // between (1,0,0) and (1,1,0)
+    EXPECT_EQ(faces[0].vertices[3], glm::dvec3(1, 1, 0));
+    EXPECT_EQ(faces[1].vertices.size(), 4u);  // the finer ones have no corner inside an edge
+    EXPECT_EQ(faces[2].vertices.size(), 4u);
+}
+
+TEST(PatchScene, FacesMeetingCornerToCornerAreLeftAsTheyAre) {
+    Scene w = world();
+    Mesh m = mesh_of(w);
+    std::vector<glm::dvec3> B(m.patches.size(), glm::dvec3(0.25));
+    for (const Face& f : patch_scene(w, m, B).faces)
+        EXPECT_EQ(f.vertices.size(), 4u);
+}
+
 }  // namespace fb89::host

@@ -1,0 +1,353 @@
+// The two validations as a library (frontend/validations.h): the modelled 1989 hosts against
+// the period's published figures, and the controller's cost model against TI's data sheet.
+#include "frontend/validations.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "controller_sim/gsp_listing.h"
+#include "experiments/controller_validation.h"
+#include "experiments/measure.h"
+#include "frontend/common.h"
+#include "frontend/data_dir.h"
+#include "host/scene/scene.h"
+#include "period/isa.h"
+#include "period/validation.h"
+
+namespace fb89::frontend {
+
+namespace {
+
+struct Row {
+    const period::PublishedFigure* figure = nullptr;
+    std::string profile;
+    double seconds = 0, modelled = 0, error = 0;
+    bool pass = false;
+    uint64_t unpriced = 0;
+};
+
+std::string number4(double v) {
+    return fmt::format("{:.4g}", v);
+}
+
+// The `n` instruction classes of a kernel's timed phase that take most of the modelled time
+// on a profile (at its own clocks), with the rule that prices each: where to look first when
+// a figure is missed.
+std::string class_breakdown(const std::string& kernel, const std::string& asked,
+                            const period::GuestCounts& counts, const period::HostProfile& profile,
+                            int n) {
+    const period::PhaseCounts* timed = counts.phase(static_cast<int>(period::Phase::HiddenSurface));
+    struct Share {
+        std::string key;
+        uint64_t executions;
+        period::KeyPrice price;
+        double us;
+    };
+    std::vector<Share> shares;
+    double total_us = 0;
+    for (const auto& [key, executions] : timed->classes) {
+        const period::KeyPrice k = period::price_key(profile, key);
+        const double us = static_cast<double>(executions) *
+                          (k.cpu / profile.cpu_clock_mhz + k.fpu / profile.fpu_clock_mhz);
+        shares.push_back({key, executions, k, us});
+        total_us += us;
+    }
+    std::sort(shares.begin(), shares.end(),
+              [](const Share& a, const Share& b) { return a.us > b.us; });
+    std::string out = fmt::format(
+        "{} on {} at its own clocks: {:.4g} ms in the timed phase; the classes that take most:\n",
+        kernel, asked, total_us / 1e3);
+    for (int i = 0; i < n && i < static_cast<int>(shares.size()); ++i) {
+        const Share& s = shares[static_cast<size_t>(i)];
+        std::string rule = s.price.rule ? s.price.rule->source : "(no rule: the default)";
+        if (rule.size() > 90) rule = rule.substr(0, 87) + "...";
+        out +=
+            fmt::format("  {:>5.1f}%  {:<26} {:>9} x cpu {:>4g} fpu {:>4g}  {}\n",
+                        100 * s.us / total_us, s.key, s.executions, s.price.cpu, s.price.fpu, rule);
+    }
+    return out;
+}
+
+std::string number(double v) {
+    return std::isnan(v) ? std::string("-") : fmt::format("{:.6g}", v);
+}
+std::string csv_number(double v) {
+    return std::isnan(v) ? std::string() : fmt::format("{:.6g}", v);
+}
+
+// ---- host-validate ----
+
+}  // namespace
+
+ValidationReport host_validation(const HostValidationRequest& a) {
+    const auto note = [&](const std::string& text) {
+        if (a.note) a.note(text);
+    };
+    const period::ValidationData data = period::builtin_validation();
+
+    // The profiles: those asked for, else every one a figure names, in order.
+    std::vector<std::string> wanted = a.profiles;
+    if (wanted.empty()) {
+        std::set<std::string> seen;
+        for (const auto& f : data.figures)
+            for (const auto& p : f.profiles)
+                if (seen.insert(p).second) wanted.push_back(p);
+    }
+    std::vector<std::pair<std::string, period::HostProfile>> profiles;
+    for (const std::string& name : wanted) {
+        try {
+            profiles.emplace_back(name, period::load_host_profile(name));
+        } catch (const std::runtime_error& e) {
+            throw UsageError(
+                std::string(a.spelling == Spelling::Option ? "--profile: " : "profile: ") +
+                e.what());
+        }
+    }
+
+    // The figures each profile is set beside: those naming it, by the name asked for or its
+    // own; a profile that no figure names (a candidate table in a file) is set beside every
+    // compared figure.
+    std::vector<std::vector<const period::PublishedFigure*>> figures_of;
+    for (const auto& [asked, profile] : profiles) {
+        std::vector<const period::PublishedFigure*> figures;
+        for (const auto& f : data.figures)
+            for (const auto& p : f.profiles)
+                if (p == asked || p == profile.name) {
+                    figures.push_back(&f);
+                    break;
+                }
+        if (figures.empty()) {
+            note(fmt::format("no figure names profile {}: comparing it with all", asked));
+            for (const auto& f : data.figures)
+                if (!f.profiles.empty()) figures.push_back(&f);
+        }
+        figures_of.push_back(std::move(figures));
+    }
+
+    // Each kernel a compared figure needs, run once on each instruction set that needs it.
+    std::map<std::pair<std::string, std::string>, period::KernelRun> runs;  // (isa, kernel)
+    for (size_t i = 0; i < profiles.size(); ++i) {
+        const period::InstructionSet& isa = period::instruction_set(profiles[i].second.isa);
+        for (const period::PublishedFigure* f : figures_of[i]) {
+            const std::pair key{std::string(isa.name), f->kernel};
+            if (runs.contains(key)) continue;
+            const period::ValidationKernel& k = data.kernel(f->kernel);
+            note(fmt::format("running {} on the emulated {}", k.program, isa.description));
+            runs.emplace(key, period::run_validation_kernel(period::find_emulator_parts(isa), k));
+            const period::KernelRun& run = runs.at(key);
+            const auto* timed = run.counts.phase(static_cast<int>(period::Phase::HiddenSurface));
+            note(fmt::format("  {} timed instructions; it says: {}", timed->instructions,
+                             run.output.substr(0, run.output.find('\n'))));
+        }
+    }
+
+    std::vector<Row> rows;
+    for (size_t i = 0; i < profiles.size(); ++i) {
+        const auto& [asked, profile] = profiles[i];
+        for (const period::PublishedFigure* f : figures_of[i]) {
+            const period::ValidationKernel& k = data.kernel(f->kernel);
+            const period::KernelRun& run = runs.at({profile.isa, f->kernel});
+            Row r;
+            r.figure = f;
+            r.profile = asked;
+            r.seconds = period::timed_seconds(run.counts, profile, f->clock_mhz);
+            r.modelled = period::modelled_value(k, f->unit, r.seconds);
+            r.error = period::relative_error(r.modelled, f->value);
+            r.pass = period::passes(*f, r.error);
+            r.unpriced = period::price(run.counts, profile)
+                             .phases[static_cast<int>(period::Phase::HiddenSurface)]
+                             .unpriced;
+            rows.push_back(r);
+        }
+    }
+
+    bool all_pass = true;
+    std::string table = fmt::format("{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<13} {}\n",
+                                    "kernel", "profile", "clock", "modelled", "published", "unit",
+                                    "error", "check", "source");
+    for (const Row& r : rows) {
+        const auto& f = *r.figure;
+        all_pass = all_pass && r.pass;
+        table += fmt::format(
+            "{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>+7.1f}%  {:<13} {} [{}]{}\n", f.kernel,
+            r.profile, f.clock_mhz > 0 ? fmt::format("{:g}MHz", f.clock_mhz) : "own",
+            number4(r.modelled), number4(f.value), f.unit, 100 * r.error,
+            std::string(period::check_name(f.check)) +
+                (f.tolerance != period::kValidationTolerance
+                     ? fmt::format(" {:.0f}%", 100 * f.tolerance)
+                     : "") +
+                (r.pass ? "" : "!"),
+            f.cite, f.id, r.unpriced ? fmt::format(" ({} executions unpriced)", r.unpriced) : "");
+    }
+    // The same benchmark on two machines, each compared with its own figure at its own
+    // clocks: the ratio of the machines' speeds, modelled against published. The ratios
+    // validation.json names are checks; the other pairs are shown for what they say.
+    const auto row_of = [&](const std::string& figure_id) -> const Row* {
+        for (const Row& r : rows)
+            if (r.figure->id == figure_id) return &r;
+        return nullptr;
+    };
+    std::string ratios, ratio_csv;
+    for (const period::RatioCheck& c : data.ratios) {
+        const Row *one = row_of(c.numerator), *other = row_of(c.denominator);
+        if (!one || !other) continue;  // a profile of it was not asked for
+        const double modelled = one->modelled / other->modelled,
+                     published = one->figure->value / other->figure->value;
+        const double error = period::relative_error(modelled, published);
+        const bool pass = std::fabs(error) <= c.tolerance;
+        all_pass = all_pass && pass;
+        ratios += fmt::format(
+            "  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%, within {:.0f}%{}) [{}]\n",
+            one->figure->kernel, one->profile, other->profile, modelled, published, 100 * error,
+            100 * c.tolerance, pass ? "" : " !", c.id);
+        ratio_csv +=
+            fmt::format("{},{}/{},{},ratio,{},ratio,,{:.6g},{:.6g},{:.6f},within,{},{} / {}\n",
+                        one->figure->kernel, one->profile, other->profile, c.id,
+                        csv_field(one->figure->benchmark), modelled, published, error,
+                        pass ? "yes" : "no", one->figure->id, other->figure->id);
+    }
+    // the other pairs of machines, shown for what they say, and where one machine has several
+    // figures of a program, how far apart those lie
+    std::vector<period::ModelledFigure> modelled;
+    for (const Row& r : rows)
+        modelled.push_back({r.figure, r.profile, r.modelled});
+    for (const period::UncheckedRatio& u : period::unchecked_ratios(modelled, data.ratios)) {
+        const double low = period::relative_error(u.modelled, u.published_high),
+                     high = period::relative_error(u.modelled, u.published_low);
+        ratios += u.pairs == 1
+                      ? fmt::format("  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%)\n",
+                                    u.kernel, u.numerator, u.denominator, u.modelled,
+                                    u.published_low, 100 * low)
+                      : fmt::format(
+                            "  {} {} / {}: modelled {:.3g}, published {:.3g} to {:.3g} "
+                            "over {} pairs of figures ({:+.1f}% to {:+.1f}%)\n",
+                            u.kernel, u.numerator, u.denominator, u.modelled, u.published_low,
+                            u.published_high, u.pairs, 100 * low, 100 * high);
+    }
+    std::string spreads;
+    for (const period::FigureSpread& f : period::figure_spreads(modelled))
+        spreads += fmt::format("  {} {}: {} figures, {} to {} {} ({:.1f}% apart); modelled {}\n",
+                               f.kernel, f.profile, f.figures, number4(f.low), number4(f.high),
+                               f.unit, 100 * (f.high / f.low - 1), number4(f.modelled));
+    if (!ratios.empty())
+        table += "the same program on two machines, the ratio of their figures:\n" + ratios;
+    if (!spreads.empty())
+        table += "one machine's several published figures of one program (compilers, systems):\n" +
+                 spreads;
+    // What each profile makes of each kernel at its own clocks, in the kernel's usual unit.
+    table += "modelled at the profiles' own clocks:\n";
+    for (const auto& [asked, profile] : profiles) {
+        std::string line;
+        for (const auto& [isa_kernel, run] : runs) {
+            const auto& [isa, kernel] = isa_kernel;
+            if (isa != profile.isa) continue;
+            const period::ValidationKernel& k = data.kernel(kernel);
+            const double value =
+                period::modelled_value(k, k.unit, period::timed_seconds(run.counts, profile));
+            line +=
+                fmt::format("{}{} {} {}", line.empty() ? "" : ", ", kernel, number4(value), k.unit);
+        }
+        table += fmt::format("  {}: {}\n", asked, line);
+    }
+    std::string context;
+    for (const auto& f : data.figures)
+        if (f.profiles.empty())
+            context += fmt::format("  {}: {} {} on {} ({})\n", f.id, number4(f.value), f.unit,
+                                   f.machine, f.cite);
+    if (!context.empty())
+        table += "not compared (context only: see each figure's note):\n" + context;
+    table += fmt::format(
+        "error = modelled / published - 1; within: |error| <= the figure's tolerance, at_most: "
+        "error <= +tolerance, at_least: error >= -tolerance (the tolerance {:.0f}% unless the "
+        "check names its own); '!' marks a failed check. clock: the profile's cycles timed at "
+        "the figure's machine's clock.\n",
+        100 * period::kValidationTolerance);
+    std::string sources = "sources:\n";
+    std::set<std::string> listed;
+    for (const Row& r : rows)
+        if (listed.insert(r.figure->id).second)
+            sources +=
+                fmt::format("  [{}] {}: {}\n", r.figure->id, r.figure->machine, r.figure->source);
+
+    ValidationReport report;
+    {
+        std::string csv =
+            "kernel,profile,figure,machine,benchmark,unit,clock_mhz,modelled,published,error,"
+            "check,pass,source\n";
+        for (const Row& r : rows) {
+            const auto& f = *r.figure;
+            csv += fmt::format("{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6f},{},{},{}\n", f.kernel,
+                               r.profile, f.id, csv_field(f.machine), csv_field(f.benchmark),
+                               f.unit, f.clock_mhz > 0 ? number4(f.clock_mhz) : "", r.modelled,
+                               f.value, r.error, period::check_name(f.check), r.pass ? "yes" : "no",
+                               csv_field(f.source));
+        }
+        report.csv = csv + ratio_csv;
+    }
+    if (a.classes > 0)
+        for (const auto& [asked, profile] : profiles)
+            for (const auto& [isa_kernel, run] : runs)
+                if (isa_kernel.first == profile.isa)
+                    table +=
+                        class_breakdown(isa_kernel.second, asked, run.counts, profile, a.classes);
+    report.text = table + sources;
+    report.all_pass = all_pass;
+    return report;
+}
+
+// ---- controller-validate ----
+
+ValidationReport controller_validation(const ControllerValidationRequest& a) {
+    const char* option = a.spelling == Spelling::Option ? "--profile" : "profile";
+    const controller::CostProfile after = profile_option(a.profile, option);
+    if (after.gsp.empty())
+        throw UsageError(
+            fmt::format("{}: {} gives its cycle figures itself (no \"gsp\" listing): there is no "
+                        "memory-cycle model to check",
+                        option, after.name));
+    const controller::CostProfile before = controller::load_profile("tms34010-mame");
+    const controller::CostProfile tms34020 = controller::load_profile("tms34020-40mhz");
+
+    // The demo's Z-buffer frame, rendered here once, for the 34020 : 34010 ratio.
+    host::Scene scene;
+    experiments::ExperimentSettings settings;
+    const host::ScreenScene screen =
+        experiments::load_screen(bundled_scene("demo.json"), settings, scene);
+    const auto measured =
+        experiments::measure_interleaved(screen, {host::Method::ZBuffer}, 1, "demo", false);
+    const auto rows =
+        experiments::controller_validation(after, before, tms34020, measured.at(0).commands);
+
+    bool all_pass = true;
+    std::string table = fmt::format(
+        "The controller against its sources: {} now, before it the first cost model "
+        "(tms34010-mame)\n\n",
+        after.name);
+    std::string csv = "figure,unit,source,stated,before,after,checked,pass,before_pass\n";
+    for (const auto& r : rows) {
+        all_pass = all_pass && r.pass;
+        const std::string verdict = !r.checked ? "" : r.pass ? "  ok" : "  MISSED";
+        const std::string was = !r.checked ? "" : r.before_pass ? "" : " (missed)";
+        table += fmt::format("{} ({})\n    {}{}\n    before {}{}, now {}{}\n", r.figure, r.unit,
+                             r.source, r.stated.empty() ? "" : fmt::format(" -- {}", r.stated),
+                             number(r.before), was, number(r.after), verdict);
+        csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", csv_field(r.figure), csv_field(r.unit),
+                           csv_field(r.source), csv_field(r.stated), csv_number(r.before),
+                           csv_number(r.after), r.checked ? "yes" : "no", r.pass ? "yes" : "no",
+                           r.before_pass ? "yes" : "no");
+    }
+    ValidationReport report;
+    report.text = table;
+    report.csv = csv;
+    report.all_pass = all_pass;
+    if (a.listing)
+        report.listing = controller::annotated_listing(controller::builtin_listing(after.gsp),
+                                                       controller::memory_timing(after));
+    return report;
+}
+
+}  // namespace fb89::frontend
