@@ -220,12 +220,13 @@ def ff_error(folder):
     """§5: form-factor and radiosity error against time per method."""
     rows = read(os.path.join(folder, "radiosity_error.csv"))
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, axes = plt.subplots(1, 2, figsize=(14, 6.4))
     for column, ax, label in (("ff_error", axes[0], "form-factor error (area-weighted mean |F - F_ref| row sum)"),
                               ("radiosity_rms_error", axes[1], "radiosity error (relative RMS)")):
         # the form-factor panel times the form factors; the radiosity panel every stage
         # (form factors and solve; the adaptive mesh and the hierarchy whole)
         time = "cpu_ms" if column == "ff_error" else "total_cpu_ms"
+        labels = []  # (x, y, method), placed once the axes are drawn
         for scene, marker in zip(scenes, "os^v"):
             # a solve that diverged has no error to chart (the table says so)
             sub = [r for r in rows if r["scene"] == scene and r[column] and r.get(time, "")
@@ -239,9 +240,7 @@ def ff_error(folder):
                 if len(series) > 1:
                     ax.plot([x for x, _ in series], [y for _, y in series], color=points.get_facecolor()[0],
                             linewidth=0.8, alpha=0.6)
-            for r in sub:
-                ax.annotate(r["method"], (float(r[time]), float(r[column])), textcoords="offset points",
-                            xytext=(4, 3), fontsize=7)
+            labels += [(float(r[time]), float(r[column]), r["method"]) for r in sub]
         ref = [float(r["reference_error"]) for r in rows]
         if ref:
             ax.axhline(max(ref), color="gray", linestyle=":", linewidth=1) if column == "ff_error" else None
@@ -251,10 +250,69 @@ def ff_error(folder):
                       else "time to the solution, ms (median CPU)")
         ax.set_ylabel(label)
         ax.grid(which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+        # where each panel has no points
+        ax.legend(fontsize=8, loc="upper left" if column == "ff_error" else "lower left")
+        fig.tight_layout()
+        place_labels(ax, labels)
     fig.suptitle("Speed against accuracy in radiosity (dotted: the reference's own error estimate)")
     fig.tight_layout()
     save(fig, os.path.join(folder, "radiosity_error.png"))
+
+
+def place_labels(ax, labels, fontsize=7):
+    """Labels points so that no two labels overlap, nor a label the legend: points within a
+    few pixels of each other share one label ("flux, hybrid"), and each label takes the first
+    of several positions around its point that is free, else the least crowded one."""
+    fig = ax.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    to_pixels = ax.transData.transform
+    groups = []  # [pixel position, (x, y), names]
+    for x, y, name in labels:
+        px = to_pixels((x, y))
+        for g in groups:
+            if abs(g[0][0] - px[0]) < 6 and abs(g[0][1] - px[1]) < 6:
+                if name not in g[2]:
+                    g[2].append(name)
+                break
+        else:
+            groups.append([px, (x, y), [name]])
+    legend = ax.get_legend()
+    taken = [legend.get_window_extent(renderer)] if legend else []
+    points = [g[0] for g in groups]
+    offsets = [(4, 3, "left", "bottom"), (4, -3, "left", "top"), (-4, 3, "right", "bottom"),
+               (-4, -3, "right", "top"), (0, 7, "center", "bottom"), (0, -7, "center", "top"),
+               (10, 10, "left", "bottom"), (10, -10, "left", "top"), (-10, 10, "right", "bottom"),
+               (-10, -10, "right", "top"), (16, 0, "left", "center"), (-16, 0, "right", "center")]
+    for r in (22, 34, 48):  # farther out, with a leader line
+        offsets += [(r, r // 2, "left", "bottom"), (r, -r // 2, "left", "top"),
+                    (-r, r // 2, "right", "bottom"), (-r, -r // 2, "right", "top"),
+                    (0, r, "center", "bottom"), (0, -r, "center", "top")]
+    # the crowded ones first, so that they get the first choice of room
+    order = sorted(range(len(groups)), key=lambda i: -sum(
+        abs(points[i][0] - p[0]) < 60 and abs(points[i][1] - p[1]) < 20 for p in points))
+    for i in order:
+        _, (x, y), names = groups[i]
+        best = None
+        for dx, dy, ha, va in offsets:
+            leader = dict(arrowstyle="-", color="gray", linewidth=0.5) if abs(dx) + abs(dy) > 30 else None
+            text = ax.annotate(", ".join(names), (x, y), textcoords="offset points", xytext=(dx, dy),
+                               ha=ha, va=va, fontsize=fontsize, arrowprops=leader)
+            box = text.get_window_extent(renderer).expanded(1.05, 1.1)
+            inside = ax.get_window_extent(renderer)
+            outside = not (inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0
+                           and box.y1 <= inside.y1)
+            clashes = sum(box.overlaps(t) for t in taken) + sum(
+                box.contains(p[0], p[1]) for k, p in enumerate(points) if k != i) + 2 * outside
+            if best is None or clashes < best[0]:
+                if best is not None:
+                    best[1].remove()
+                best = (clashes, text, box)
+            else:
+                text.remove()
+            if clashes == 0:
+                break
+        taken.append(best[2])
 
 
 def split_both_sides(folder):
