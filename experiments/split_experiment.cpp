@@ -6,7 +6,10 @@
 // from the commands' send times (docs/COST_MODEL.md): its frame time, the overlap it
 // achieves, the host's stalls and both sides' utilization; and the band those frame times
 // and the host's ratio to the controller lie in when the controller's estimated figures
-// range over their bands (the profile's "bands": docs/COST_MODEL.md).
+// range over their bands (the profile's "bands": docs/COST_MODEL.md). Every ratio is one
+// way round, host over controller, as its column says: host_over_controller at the
+// estimate, _low with the controller at its dear end, _high at its cheap end (above 1: the
+// host bounds the frame).
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -30,7 +33,7 @@ Table experiment_split(const ExperimentSettings& s) {
                  "controller_ms",
                  "frame_ms",
                  "bound_by",
-                 "ratio",
+                 "host_over_controller",
                  "commands",
                  "sum_ms",
                  "pipeline_ms",
@@ -42,8 +45,8 @@ Table experiment_split(const ExperimentSettings& s) {
                  "controller_ms_high",
                  "pipeline_ms_low",
                  "pipeline_ms_high",
-                 "ratio_low",
-                 "ratio_high",
+                 "host_over_controller_low",
+                 "host_over_controller_high",
                  "bus_bytes"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
     // the controller's estimated figures at the ends of their bands (the profile's "bands")
@@ -82,6 +85,14 @@ Table experiment_split(const ExperimentSettings& s) {
             const auto pipe_low = frame_under(cheap, low);
             const auto pipe_high = frame_under(dear, high);
             const FrameSplit split = frame_split(host_ms, ctl.frame_ms);
+            // host over controller, to three significant figures at least (a face method's
+            // host is a few hundredths of the controller's frame)
+            const auto over_controller = [&](double controller_ms) -> std::string {
+                if (!(controller_ms > 0)) return "";
+                const double v = host_ms / controller_ms;
+                const int digits = v > 0 ? 2 - static_cast<int>(std::floor(std::log10(v))) : 2;
+                return fixed(v, std::max(2, digits));
+            };
             std::vector<std::string> row = {file,
                                             std::string(host::method_info(settings[m].method).name),
                                             host,
@@ -91,7 +102,7 @@ Table experiment_split(const ExperimentSettings& s) {
                                             fixed(ctl.frame_ms, 3),
                                             fixed(split.frame_ms, 3),
                                             split.host_bounds ? "host" : "controller",
-                                            split.ratio > 0 ? fixed(split.ratio, 2) : "",
+                                            over_controller(ctl.frame_ms),
                                             std::to_string(ctl.commands),
                                             fixed(host_ms + ctl.frame_ms, 3)};
             if (pipe) {
@@ -104,17 +115,11 @@ Table experiment_split(const ExperimentSettings& s) {
                 row.resize(row.size() + 5);
             }
             // the band: the controller's frame and the pipeline's at the two ends, and the
-            // host's ratio to the controller between them
+            // host over the controller at them (the dear end gives the low ratio)
             row.insert(row.end(), {fixed(low.frame_ms, 3), fixed(high.frame_ms, 3)});
             for (const auto* end : {&pipe_low, &pipe_high})
                 row.push_back(*end ? fixed((*end)->frame_us / 1e3, 3) : "");
-            // (to three significant figures at least: this machine's are thousandths)
-            const auto ratio_text = [](double v) {
-                const int digits = v > 0 ? 2 - static_cast<int>(std::floor(std::log10(v))) : 2;
-                return fixed(v, std::max(2, digits));
-            };
-            row.insert(row.end(), {high.frame_ms > 0 ? ratio_text(host_ms / high.frame_ms) : "",
-                                   low.frame_ms > 0 ? ratio_text(host_ms / low.frame_ms) : "",
+            row.insert(row.end(), {over_controller(high.frame_ms), over_controller(low.frame_ms),
                                    std::to_string(ctl.bus_bytes)});
             table.add(std::move(row));
         }

@@ -370,7 +370,7 @@ def split_hosts(root):
     # controller at its dear end gives the low ratio); the band's columns come with the
     # pipeline (experiment split on a 1989 host)
     ratio = lambda r: float(r["host_frame_ms"]) / float(r["controller_ms"])  # noqa: E731
-    banded = all("ratio_low" in r for r in tables["sun3-60"])
+    banded = all("host_over_controller_low" in r for r in tables["sun3-60"])
     # the pipeline's frame over max(host, controller), at the estimates and at the band's dear
     # end, in percent
     over = lambda r, col: 100 * (float(r[col]) / float(r["frame_ms"]) - 1)  # noqa: E731
@@ -383,8 +383,8 @@ def split_hosts(root):
                "crossover_median": f"{median(cross):.3g}", "crossover_min": f"{min(cross):.3g}",
                "crossover_max": f"{max(cross):.3g}"}
         if banded:
-            low = [float(base[k]["ratio_low"]) for k in cells]
-            high = [float(base[k]["ratio_high"]) for k in cells]
+            low = [float(base[k]["host_over_controller_low"]) for k in cells]
+            high = [float(base[k]["host_over_controller_high"]) for k in cells]
             row.update({"crossover_median_low": f"{median(low):.3g}",
                         "crossover_median_high": f"{median(high):.3g}",
                         "crossover_min_low": f"{min(low):.3g}",
@@ -404,12 +404,13 @@ def split_hosts(root):
                 row[f"{host}_ratio_median"] = f"{median([ratio(r) for r in mine]):.3g}"
                 row[f"{host}_nearest_scene"] = scene_label(near["scene"])
                 row[f"{host}_nearest_ratio"] = f"{ratio(near):.3g}"
-                if "ratio_low" in near:
-                    row[f"{host}_nearest_ratio_low"] = near["ratio_low"]
-                    row[f"{host}_nearest_ratio_high"] = near["ratio_high"]
+                if "host_over_controller_low" in near:
+                    row[f"{host}_nearest_ratio_low"] = near["host_over_controller_low"]
+                    row[f"{host}_nearest_ratio_high"] = near["host_over_controller_high"]
                     row[f"{host}_host_bound_band"] = \
-                        f"{sum(float(r['ratio_low']) > 1 for r in mine)}-" \
-                        f"{sum(float(r['ratio_high']) > 1 for r in mine)}/{len(cells)}"
+                        f"{sum(float(r['host_over_controller_low']) > 1 for r in mine)}-" \
+                        f"{sum(float(r['host_over_controller_high']) > 1 for r in mine)}/" \
+                        f"{len(cells)}"
                 row[f"{host}_over_max_median_pct"] = \
                     f"{median([over(r, 'pipeline_ms') for r in mine]):.2f}"
                 row[f"{host}_over_max_max_pct"] = f"{max(over(r, 'pipeline_ms') for r in mine):.2f}"
@@ -438,10 +439,10 @@ def split_hosts(root):
             med.append(median(ratios))
             lo.append(med[-1] - ratios[0])
             hi.append(ratios[-1] - med[-1])
-            banded_host = all("ratio_low" in r for r in mine)
-            band_lo.append(med[-1] - (min(float(r["ratio_low"]) for r in mine)
+            banded_host = all("host_over_controller_low" in r for r in mine)
+            band_lo.append(med[-1] - (min(float(r["host_over_controller_low"]) for r in mine)
                                       if banded_host else ratios[0]))
-            band_hi.append((max(float(r["ratio_high"]) for r in mine)
+            band_hi.append((max(float(r["host_over_controller_high"]) for r in mine)
                             if banded_host else ratios[-1]) - med[-1])
         x = [k + (i - (len(methods) - 1) / 2) * 0.08 for k in range(len(hosts))]
         ax.errorbar(x, med, yerr=[band_lo, band_hi], fmt="none", capsize=0, lw=0.6,
