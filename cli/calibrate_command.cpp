@@ -119,9 +119,10 @@ void register_calibrate(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand(
         "calibrate",
         "Choose the hybrid's Expr. 3.1 threshold (or with --method beam the beam-ray "
-        "hybrid's Expr. 2.7 threshold) for this machine (the paper's §3 method) and save it "
-        "where render's --threshold calibrated finds it: $XDG_CONFIG_HOME/fb89/calibration.json, "
-        "else ~/.config/fb89/calibration.json");
+        "hybrid's Expr. 2.7 threshold) for this machine, or the --host given (the paper's §3 "
+        "method), and save it where render's --threshold calibrated (--beam-threshold "
+        "calibrated) finds it for that method and host: $FB89_CALIBRATION if set, else "
+        "$XDG_CONFIG_HOME/fb89/calibration.json, else ~/.config/fb89/calibration.json");
     sub->add_option("--method", a->request.method,
                     "hybrid (Warnock/Z-buffer, §3) or beam (beam-ray, §4; ramp 0, 0.01 ... "
                     "1000, inf; --from/--to/--steps/--tolerance do not apply)")

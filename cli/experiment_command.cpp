@@ -8,6 +8,7 @@
 //   fig3.1  the hybrid's time against its threshold on A and F (paper Fig. 3.1), with
 //           the calibrated and the paper's thresholds, host and controller apart.
 //   hybrid  the calibrated hybrid (and the paper's 0.04) against the Z-buffer per scene.
+//           The experiments of a hybrid say its threshold and where it comes from first.
 //   accuracy  exact and approximate Warnock and hybrid: time, commands, pixels wrong.
 //   fig4.8, fig4.11, fig4.12  the beam-ray hybrid against the ray tracer alone on G, H and
 //           I at 256x195 ... 2048x1560, whole process (paper Figs. 4.8, 4.11, §4's image I).
@@ -25,6 +26,7 @@
 
 #include "cli/commands.h"
 #include "experiments/catalog.h"
+#include "frontend/calibration.h"
 #include "frontend/data_dir.h"
 #include "frontend/period_host.h"
 #include "frontend/runs.h"
@@ -41,12 +43,31 @@ struct ExperimentArgs {
     bool quiet = false;
 };
 
+// The threshold an experiment of a hybrid runs with and where it comes from, as render's
+// first line says it ("hybrid threshold 0.04 (the paper's: not calibrated yet ...)"), or ""
+// for an experiment that takes none.
+std::string threshold_line(const ExperimentRequest& r) {
+    const std::string& n = r.name;
+    std::string source;
+    if (n == "hybrid" || n == "fig3.1" || n == "accuracy") {
+        const double t = resolve_threshold(r.threshold, &source, r.host.host);
+        return fmt::format("hybrid threshold {:.6g} ({})\n", t, source);
+    }
+    if (n == "fig4.7" || n == "fig4.8" || n == "fig4.11" || n == "fig4.12" ||
+        n == "successors-rays") {
+        const double t = resolve_beam_threshold(r.beam_threshold, &source, r.host.host);
+        return fmt::format("beam threshold {:.6g} ({})\n", t, source);
+    }
+    return "";
+}
+
 int experiment_command(ExperimentArgs& args) {
     args.request.progress = !args.quiet && isatty(STDERR_FILENO);
     const RunOutcome out = run_experiment(args.request);
     if (report_emitted(out.settings, args.request.host)) return kSuccess;
     if (!args.csv.empty()) write_text(args.csv, out.table.csv());
-    if (!args.quiet && args.csv != "-") std::cout << out.table.text();
+    if (!args.quiet && args.csv != "-")
+        std::cout << threshold_line(args.request) << out.table.text();
     return kSuccess;
 }
 

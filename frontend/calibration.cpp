@@ -93,12 +93,25 @@ void save_beam_calibration(double threshold, const std::string& details_json,
     save_threshold(keyed("beam_threshold", host), keyed("beam", host), threshold, details_json);
 }
 
+std::string calibrate_command(const std::string& method, const std::string& host) {
+    std::string command = "fb89 calibrate";
+    if (method != "hybrid") command += " --method " + method;
+    if (host != "native") command += " --host " + host;
+    return command;
+}
+
+std::string missing_calibration(const std::string& method, const std::string& host) {
+    return fmt::format("not calibrated yet for method {} on host {}: `{}` makes it", method, host,
+                       calibrate_command(method, host));
+}
+
 namespace {
 
 // A threshold given on the command line: "inf", a number >= 0, or "calibrated" (the saved
 // one, else `fallback`, described as `fallback_name`). Throws UsageError naming `option`.
 double resolve(const std::string& option, const std::string& text, std::optional<double> saved,
-               double fallback, const char* fallback_name, const char* forms, std::string* source) {
+               double fallback, const char* fallback_name, const char* forms, std::string* source,
+               const std::string& missing) {
     auto said = [&](const std::string& s) {
         if (source) *source = s;
     };
@@ -107,7 +120,7 @@ double resolve(const std::string& option, const std::string& text, std::optional
             said("calibrated here");
             return *saved;
         }
-        said(std::string(fallback_name) + ": not calibrated yet, `fb89 calibrate` does it");
+        said(std::string(fallback_name) + ": " + missing);
         return fallback;
     }
     if (text == "inf" || text == "infinity") {
@@ -136,7 +149,8 @@ double resolve_threshold(const std::string& text, std::string* source, const std
     const std::optional<double> saved =
         text == "calibrated" ? calibrated_threshold(host) : std::optional<double>{};
     return resolve("--threshold", text, saved, host::kPaperThreshold, "the paper's",
-                   "a number >= 0, inf, paper or calibrated", source);
+                   "a number >= 0, inf, paper or calibrated", source,
+                   missing_calibration("hybrid", host));
 }
 
 double resolve_beam_threshold(const std::string& text, std::string* source,
@@ -144,7 +158,7 @@ double resolve_beam_threshold(const std::string& text, std::string* source,
     const std::optional<double> saved =
         text == "calibrated" ? calibrated_beam_threshold(host) : std::optional<double>{};
     return resolve("--beam-threshold", text, saved, host::kDefaultBeamThreshold, "the built-in one",
-                   "a number >= 0, inf or calibrated", source);
+                   "a number >= 0, inf or calibrated", source, missing_calibration("beam", host));
 }
 
 }  // namespace fb89::frontend

@@ -19,6 +19,13 @@ void save_calibration(double threshold, const std::string& details_json,
 void save_beam_calibration(double threshold, const std::string& details_json,
                            const std::string& host = "native");
 
+// The command that saves the calibration of `method` (hybrid or beam) on `host`:
+// "fb89 calibrate", "fb89 calibrate --method beam --host sun3-60".
+std::string calibrate_command(const std::string& method, const std::string& host = "native");
+// What a run without that calibration says: "not calibrated yet for method beam on host
+// native: `fb89 calibrate --method beam` makes it".
+std::string missing_calibration(const std::string& method, const std::string& host = "native");
+
 // "--threshold" values: a number, "inf", "paper" (0.04) or "calibrated" (this machine's,
 // else the paper's). Throws UsageError.
 double resolve_threshold(const std::string& text, std::string* source = nullptr,
