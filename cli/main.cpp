@@ -11,6 +11,8 @@
 #include "cli/commands.h"
 #include "controller_sim/profile.h"
 #include "frontend/data_dir.h"
+#include "frontend/names.h"
+#include "frontend/option_limits.h"
 #include "host/scene/scene_error.h"
 #include "protocol/output_file.h"
 #include "protocol/stream_reader.h"
@@ -125,7 +127,8 @@ int main(int argc, char** argv) {
             }
             if (said) return kBadInput;
         }
-        // CLI11's own words, said as fb89 says every usage error: one line, and where to look
+        // CLI11's problems in fb89's words (frontend/option_limits.h), said as fb89 says every
+        // usage error: one line, and where to look
         const bool command = argc > 1 && argv[1][0] != '-';
         // an integer option given a fraction or a word: say that, not "not in range"
         if (command && app.get_subcommand(argv[1])->parsed())
@@ -134,12 +137,14 @@ int main(int argc, char** argv) {
                           << " --help says more)\n";
                 return kBadInput;
             }
-        std::cerr << "fb89: usage: " << (command ? std::string(argv[1]) + ": " : "") << e.what()
+        std::cerr << "fb89: usage: " << (command ? std::string(argv[1]) + ": " : "")
+                  << fb89::frontend::with_nearest_name(fb89::frontend::usage_words(e.what()))
                   << " (fb89 " << (command ? std::string(argv[1]) + " " : "")
                   << "--help says more)\n";
         return kBadInput;
     } catch (const UsageError& e) {
-        std::cerr << "fb89: usage: " << e.what() << "\n";
+        // a name among others it might have been: the nearest of them too
+        std::cerr << "fb89: usage: " << fb89::frontend::with_nearest_name(e.what()) << "\n";
         return kBadInput;
     } catch (const fb89::host::SceneError& e) {
         std::cerr << "fb89: error: " << e.what() << "\n";

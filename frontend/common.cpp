@@ -139,7 +139,17 @@ std::string nearest_hint(const std::string& word, const std::vector<std::string>
         const size_t d = distance(word, k);
         if (d < best_distance) best = k, best_distance = d;
     }
-    return best.empty() ? "" : "; did you mean '" + best + "'?";
+    if (!best.empty()) return "; did you mean '" + best + "'?";
+    // else the names it opens ("tms34020" for "tms34020-40mhz"), up to three of them
+    std::vector<std::string> opened;
+    if (word.size() >= 2)
+        for (const std::string& k : known)
+            if (k.size() > word.size() && k.compare(0, word.size(), word) == 0) opened.push_back(k);
+    if (opened.empty() || opened.size() > 3) return "";
+    std::string list;
+    for (size_t i = 0; i < opened.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == opened.size() ? " or " : ", ") + ("'" + opened[i] + "'");
+    return "; did you mean " + list + "?";
 }
 
 void add_isa_option(CLI::App* sub) {

@@ -66,7 +66,9 @@ bool claims_stdout(std::initializer_list<std::pair<std::string_view, std::string
 // or a line break (RFC 4180).
 std::string csv_field(const std::string& s);
 
-// "; did you mean 'render'?" when a known name is near `word` (edit distance), else "".
+// "; did you mean 'render'?" when a known name is near `word` (at most two edits), else the
+// known names `word` opens when there are one to three ("; did you mean 'tms34020-40mhz'?"),
+// else "".
 std::string nearest_hint(const std::string& word, const std::vector<std::string>& known);
 
 // --isa baseline|v3|v4: the instruction set the tracing kernels run with, for comparison

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <regex>
+#include <sstream>
 
 #include "controller_sim/profile.h"
 #include "frontend/common.h"
@@ -149,6 +151,32 @@ CLI::Validator one_of_validator(const std::string& kind, std::vector<std::string
                    name_list(names) + ")";
         },
         "");
+}
+
+std::string with_nearest_name(const std::string& message) {
+    if (message.find("did you mean") != std::string::npos) return message;
+    std::smatch m;
+    // "unknown filter '/spna'; expected a step or one of /fill /span ..."
+    static const std::regex listed(R"(.*unknown [^']*'([^']*)'; expected .*one of (.*))");
+    if (std::regex_match(message, m, listed)) {
+        std::vector<std::string> names;
+        std::istringstream words(m[2].str());
+        for (std::string w; words >> w;)
+            names.push_back(w);
+        return message + nearest_hint(m[1], names);
+    }
+    // "--isa: expected baseline, v3 or v4, got 'v5'"
+    static const std::regex got(R"((.*expected ([^:;]*), got '([^']*)')(.*))");
+    if (std::regex_match(message, m, got)) {
+        std::vector<std::string> names;
+        const std::string list = std::regex_replace(m[2].str(), std::regex(" or "), ", ");
+        std::istringstream items(list);
+        for (std::string w; std::getline(items, w, ',');)
+            if (const size_t a = w.find_first_not_of(' '); a != std::string::npos)
+                names.push_back(w.substr(a));
+        return m[1].str() + nearest_hint(m[3], names) + m[4].str();
+    }
+    return message;
 }
 
 std::string method_option_help(const std::string& what) {

@@ -50,6 +50,12 @@ CLI::Validator host_profile_validator();
 // One of `names` (a kind of name such as "method"), with the nearest when not.
 CLI::Validator one_of_validator(const std::string& kind, std::vector<std::string> names);
 
+// A message that lists the names it expected beside the one given -- "unknown filter
+// '/spna'; expected a step or one of /fill /span ..." or "expected baseline, v3 or v4, got
+// 'v5'" -- with the nearest of them after it ("; did you mean '/span'?"); any other message,
+// or one that has its guess already, as it is.
+std::string with_nearest_name(const std::string& message);
+
 // The help of the options and arguments that take these names, each listing them all.
 std::string method_option_help(const std::string& what);
 std::string profile_option_help(const std::string& what = "Controller cost profile");

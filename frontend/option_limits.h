@@ -61,6 +61,14 @@ std::optional<std::string> limit_problem(const OptionLimit& limit, double value,
 void check_limit(const OptionLimit& limit, double value, Spelling spelling = Spelling::Option,
                  std::string_view shown = "");
 
+// CLI11's words for a usage error said as fb89 says them, the option first: "--scale: Value 9
+// not in range 0.125000 to 8.000000" -> "--scale: 9 is not in [0.125, 8]"; "--ff: hirarchical
+// not in {flux,hierarchical}" -> "--ff: unknown choice 'hirarchical'; did you mean
+// 'hierarchical'? (flux or hierarchical)"; "--method: At Most 1 required but received 2" ->
+// "--method: given 2 times; give it once"; "--csv excludes --json" -> "--csv and --json
+// exclude each other: give one of them"; and the like. Other text is returned as it is.
+std::string usage_words(const std::string& cli11_text);
+
 // The CLI11 check of an option with this limit: the text must read as a number of the kind
 // ("1.5 is not an integer") and lie within it; CLI11 puts the option's name before the
 // problem ("--repeat: 0 is not in [1, 10000]").

@@ -52,6 +52,26 @@ TEST(NameHints, EveryCommandAnswersANearMissWithTheNearestName) {
         {"sweep threshold A fF", "did you mean 'F'?"},
         {"calibrate cornel_box --dry-run", "did you mean 'cornell_box'?"},
         {"experiment fig2.1 cornell_mirorr", "did you mean 'cornell_mirror'?"},
+        // a name cut short: the names it opens
+        {"render A --profile tms34020", "did you mean 'tms34020-40mhz'?"},
+        {"render A --host sparc", "did you mean 'sparcstation-1' or 'sparcstation-2'?"},
+        // the options with a fixed set of choices
+        {"radiosity garish_room --ff hirarchical",
+         "radiosity: --ff: unknown choice 'hirarchical'; did you mean 'hierarchical'?"},
+        {"radiosity garish_room --solver gaus-seidel", "did you mean 'gauss-seidel'?"},
+        {"render A --accel gird", "--accel: unknown choice 'gird'; did you mean 'grid'?"},
+        {"render A --depth-estimate windw", "did you mean 'window'?"},
+        {"experiment split A --accel bhv", "did you mean 'bvh'?"},
+        {"sweep thresold A", "unknown choice 'thresold'; did you mean 'threshold'?"},
+        {"sweep threshold A --window-test centers", "did you mean 'centres'?"},
+        {"experiment fig2.2", "unknown experiment 'fig2.2'; did you mean 'fig2.1'?"},
+        {"list scene", "did you mean 'scenes'?"},
+        {"rendr A", "unknown command 'rendr'; did you mean 'render'?"},
+        {"dump in.fb89 --calls /spna", "unknown filter '/spna'"},
+        {"dump in.fb89 --calls /spna", "did you mean '/span'?"},
+        {"render A --method raytrace --isa baselin", "did you mean 'baseline'?"},
+        {"host-run --isa spar --results r x", "did you mean 'sparc'?"},
+        {"render A --metod zbuffer", "unknown option '--metod'; did you mean '--method'?"},
     };
     for (const Case& c : cases) {
         const fb89::testing::CliRun r = fb89::testing::run_fb89(c.args);
@@ -60,6 +80,29 @@ TEST(NameHints, EveryCommandAnswersANearMissWithTheNearestName) {
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
     }
     EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// CLI11's own problems with a value, said in fb89's words: the option, what is wrong and
+// what to give.
+TEST(NameHints, AValueCLI11RefusesIsSaidInTheProjectsWords) {
+    const std::vector<Case> cases = {
+        {"radiosity garish_room --patches 0", "radiosity: --patches: 0 is not in [1, 8192]"},
+        {"view in.fb89 --scale 9", "view: --scale: 9 is not in [0.125, 8]"},
+        {"render A --method zbuffer --method hybrid",
+         "render: --method: given 2 times; give it once"},
+        {"render A --png", "render: --png: needs a value after it"},
+        {"radiosity garish_room --ff", "--ff: needs one of flux, hybrid"},
+        {"model --json --csv out.csv", "exclude each other: give one of them"},
+    };
+    for (const Case& c : cases) {
+        const fb89::testing::CliRun r = fb89::testing::run_fb89(c.args);
+        EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+        for (const char* raw :
+             {"Value ", "not in range", "At Most", " required but ", " not in {", " excludes "})
+            EXPECT_EQ(r.err.find(raw), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << "\n" << r.err;
+    }
 }
 
 }  // namespace

@@ -67,6 +67,36 @@ TEST(Names, AFarNameGetsNoGuessButTheWholeList) {
     EXPECT_EQ(said(fe::check_host_name, "vax-11-780").find("did you mean"), std::string::npos);
 }
 
+TEST(Names, ANameCutShortIsAnsweredWithTheNamesItOpens) {
+    const std::string profile = said(fe::check_profile_name, "tms34020");
+    EXPECT_EQ(profile.rfind("unknown profile 'tms34020'; did you mean 'tms34020-40mhz'? (", 0), 0u)
+        << profile;
+    EXPECT_EQ(fe::nearest_hint("tms34010", fe::profile_names()),
+              "; did you mean 'tms34010-50mhz', 'tms34010-isa' or 'tms34010-mame'?");
+    EXPECT_EQ(fe::nearest_hint("sparc", fe::host_names()),
+              "; did you mean 'sparcstation-1' or 'sparcstation-2'?");
+    // a name two edits away is still the one guess
+    EXPECT_EQ(fe::nearest_hint("tms34020-40", fe::profile_names()),
+              "; did you mean 'tms34020-40mhz'?");
+    // one letter is too little to guess from; more than three names are no guess either
+    EXPECT_EQ(fe::nearest_hint("t", {"tms34010-50mhz"}), "");
+    EXPECT_EQ(fe::nearest_hint("zz", {"zzaaa", "zzbbb", "zzccc", "zzddd"}), "");
+}
+
+TEST(Names, AMessageListingTheNamesItExpectedGetsTheNearest) {
+    EXPECT_EQ(fe::with_nearest_name("--calls: call set '/spna': at character 2: unknown filter "
+                                    "'/spna'; expected a step or one of /fill /span /draw"),
+              "--calls: call set '/spna': at character 2: unknown filter '/spna'; expected a step "
+              "or one of /fill /span /draw; did you mean '/span'?");
+    EXPECT_EQ(fe::with_nearest_name("--isa: expected baseline, v3 or v4, got 'baselin'"),
+              "--isa: expected baseline, v3 or v4, got 'baselin'; did you mean 'baseline'?");
+    EXPECT_EQ(fe::with_nearest_name("--isa: expected baseline, v3 or v4, got 'sse'"),
+              "--isa: expected baseline, v3 or v4, got 'sse'");
+    const std::string guessed = "unknown method 'zbufer'; did you mean 'zbuffer'? (a or b)";
+    EXPECT_EQ(fe::with_nearest_name(guessed), guessed);
+    EXPECT_EQ(fe::with_nearest_name("cannot open x"), "cannot open x");
+}
+
 TEST(Names, PathsPassWhereTheLoadersReadFiles) {
     EXPECT_EQ(said(fe::check_profile_name, "boards/mine.json"), "");
     EXPECT_EQ(said(fe::check_profile_name, "mine.json"), "");

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include <CLI/CLI.hpp>
 
 #include "frontend/common.h"
@@ -73,6 +76,51 @@ TEST(OptionLimits, TheCommandLineCheckSaysTheSameWords) {
     EXPECT_EQ(cli_refusal(limits::kTolerance, "lots"), "--tolerance: lots is not a number");
     EXPECT_EQ(cli_refusal(limits::kRenderRepeat, "10000"), "");
     EXPECT_EQ(cli_refusal(limits::kTolerance, "0.5"), "");
+}
+
+// What CLI11 says of these arguments to a command with options of each kind, in fb89's words.
+std::string said_of(std::vector<std::string> args) {
+    CLI::App app;
+    double scale = 1, start = 0;
+    std::string ff = "flux", method = "zbuffer", csv, png;
+    bool json = false;
+    app.add_option("--scale", scale)->check(CLI::Range(0.125, 8.0));
+    app.add_option("--patches", start)->check(CLI::Range(1, 8192));
+    app.add_option("--start", start)->check(CLI::NonNegativeNumber);
+    app.add_option("--ff", ff)->check(CLI::IsMember({"flux", "hybrid", "hierarchical"}));
+    app.add_option("--method", method);
+    app.add_option("--png", png);
+    CLI::Option* j = app.add_flag("--json", json);
+    app.add_option("--csv", csv)->excludes(j);
+    std::reverse(args.begin(), args.end());  // CLI11 reads the vector back to front
+    try {
+        app.parse(args);
+    } catch (const CLI::ParseError& e) {
+        return fb89::frontend::usage_words(e.what());
+    }
+    return "";
+}
+
+TEST(OptionLimits, CLI11sProblemsAreSaidInTheProjectsWords) {
+    EXPECT_EQ(said_of({"--scale", "9"}), "--scale: 9 is not in [0.125, 8]");
+    EXPECT_EQ(said_of({"--patches", "0"}), "--patches: 0 is not in [1, 8192]");
+    EXPECT_EQ(said_of({"--start=-1"}), "--start: -1 is not 0 or more");
+    EXPECT_EQ(said_of({"--ff", "hirarchical"}),
+              "--ff: unknown choice 'hirarchical'; did you mean 'hierarchical'? (flux, hybrid "
+              "or hierarchical)");
+    EXPECT_EQ(said_of({"--ff", "painter"}),
+              "--ff: unknown choice 'painter' (flux, hybrid or hierarchical)");
+    EXPECT_EQ(said_of({"--method", "zbuffer", "--method", "hybrid"}),
+              "--method: given 2 times; give it once");
+    EXPECT_EQ(said_of({"--csv", "a.csv", "--json"}),
+              "--json and --csv exclude each other: give one of them");
+    EXPECT_EQ(said_of({"--png"}), "--png: needs a value after it");
+    EXPECT_EQ(said_of({"--scale", "2"}), "");
+    // words that are not CLI11's pass as they are
+    EXPECT_EQ(fb89::frontend::usage_words("--repeat: 0 is not in [1, 10000]"),
+              "--repeat: 0 is not in [1, 10000]");
+    EXPECT_EQ(fb89::frontend::usage_words("--method: unknown method 'x' (a or b)"),
+              "--method: unknown method 'x' (a or b)");
 }
 
 TEST(OptionLimits, TheRequestsHoldTheSameLimitsInTheCallersSpelling) {
