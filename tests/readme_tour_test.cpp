@@ -2,8 +2,11 @@
 // `fb89` on the PATH, one after another. Each must succeed; afterwards the copy's tree is
 // unchanged (`git status --porcelain` empty: everything went under out/, which git ignores);
 // and each sample session ("$ fb89 ..." followed by its output) still matches what the
-// command prints, in shape: the same lines with the same words and columns, numbers aside,
-// "..." standing for lines left out.
+// command prints, in shape -- the same lines with the same words and columns, "..." standing
+// for lines left out -- and in every figure a run does not measure: counts, cycles, modelled
+// times, checksums (the times measured on this machine, wall and CPU, send times and what
+// follows from them, are left out: `measured` below lists them). ReadmeTour.TheSamples*
+// runs the sessions alone, in seconds.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -206,11 +209,46 @@ std::string shape(const std::string& line) {
     return a == std::string::npos ? "" : s.substr(a, s.find_last_not_of(' ') - a + 1);
 }
 
+// What a run measures, and so differs from run to run: each pattern's numbers are left out
+// of the comparison of figures ("~" in their place).
+const std::vector<std::regex>& measured() {
+    static const std::vector<std::regex> patterns = {
+        // render's host times: wall and CPU
+        std::regex(R"(^(\s*(?:load|set-up|hidden-surface\*|end to end)\s).*$)"),
+        // the host against the controller, and the pipeline the measured send times make
+        std::regex(R"((host \S+ )[0-9.]+( ms CPU))"),
+        std::regex(R"((\()[0-9.]+(x the host\)))"),
+        std::regex(R"(^(pipeline ).*$)"),
+        // send times: dump's, info's table of them, diff's host ends
+        std::regex(R"((sent )[0-9.]+( us))"),
+        std::regex(R"((host end )[0-9.]+( us))"),
+        std::regex(R"(^(\s*[0-9]+)\s+[0-9]+\.[0-9]{6}\s+[0-9]+\.[0-9]{6}()$)"),
+        std::regex(
+            R"(^(\s*[0-9]+\s+[0-9]+x[0-9]+\s+[0-9]+x[0-9]+\s+[0-9,]+\s+)[0-9.]+\s+[0-9.]+(\s+\())"),
+        // replay --benchmark's speed
+        std::regex(R"(( in )[0-9.]+ s wall: .*()$)"),
+    };
+    return patterns;
+}
+
+// A line's figures: the line with what a run measures as "~", runs of spaces as one.
+std::string figures(const std::string& line) {
+    std::string s = line;
+    for (const std::regex& r : measured())
+        s = std::regex_replace(s, r, "$1~$2");
+    s = std::regex_replace(s, std::regex(" +"), " ");
+    const size_t a = s.find_first_not_of(' ');
+    return a == std::string::npos ? "" : s.substr(a, s.find_last_not_of(' ') - a + 1);
+}
+
 // "" when `actual` has the sample's lines in order, in shape, each "..." standing for any
-// number of lines, or what differs.
-std::string matches(const std::vector<std::string>& sample, const std::string& actual) {
+// number of lines, or what differs; with `same_figures`, each line found must also carry the
+// sample's figures but for what a run measures.
+std::string matches(const std::vector<std::string>& sample, const std::string& actual,
+                    bool same_figures = false) {
+    const std::vector<std::string> printed = lines_of(actual);
     std::vector<std::string> got;
-    for (const std::string& l : lines_of(actual))
+    for (const std::string& l : printed)
         got.push_back(shape(l));
     size_t at = 0;
     bool gap = false;
@@ -227,11 +265,13 @@ std::string matches(const std::vector<std::string>& sample, const std::string& a
         if (k >= got.size() || got[k] != want)
             return "expected, " + std::string(gap ? "somewhere after" : "right after") +
                    " output line " + std::to_string(at) + ": '" + want_line + "'";
+        if (same_figures && figures(want_line) != figures(printed[k]))
+            return "the sample says '" + want_line + "', the command prints '" + printed[k] + "'";
         at = k + 1;
         gap = false;
     }
     if (!gap && at != got.size())
-        return "output goes on after the sample's last line: '" + lines_of(actual)[at] + "'";
+        return "output goes on after the sample's last line: '" + printed[at] + "'";
     return "";
 }
 
@@ -275,7 +315,7 @@ TEST(ReadmeTourLong, TheCommandsRunInACopyLeaveItCleanAndPrintWhatTheSamplesShow
         EXPECT_EQ(r.status, 0) << "README.md:" << step.line << ": " << step.command << "\n"
                                << r.output;
         if (step.session) {
-            const std::string differs = matches(step.expected, r.output);
+            const std::string differs = matches(step.expected, r.output, true);
             EXPECT_EQ(differs, "")
                 << "README.md:" << step.line << ": " << step.command << "\nprinted:\n"
                 << r.output;
@@ -283,6 +323,79 @@ TEST(ReadmeTourLong, TheCommandsRunInACopyLeaveItCleanAndPrintWhatTheSamplesShow
     }
     const Outcome status = run("git status --porcelain", copy, home);
     EXPECT_EQ(status.output, "") << "the tour left the checkout changed";
+}
+
+// The sessions alone ("$ fb89 ..." and what it prints), one after another in a scratch
+// folder as a newcomer runs them: each printed line the sample shows carries the sample's
+// figures -- counts, cycles, modelled times, checksums -- but for the times a run measures.
+TEST(ReadmeTour, TheSamplesFiguresAreWhatTheCommandsPrint) {
+    std::vector<std::string> problems;
+    const std::vector<Step> steps = steps_of(read(kSource / "README.md"), problems);
+    const fs::path home = fb89::testing::scratch_path("readme-samples-home");
+    const fs::path dir = fb89::testing::scratch_path("readme-samples");
+    fs::remove_all(home);
+    fs::remove_all(dir);
+    fs::create_directories(home);
+    fs::create_directories(dir);
+    int sessions = 0;
+    for (const Step& step : steps) {
+        if (!step.session || !skip_reason(step.command).empty()) continue;
+        ++sessions;
+        const Outcome r = run(step.command, dir, home);
+        EXPECT_EQ(r.status, 0) << "README.md:" << step.line << ": " << step.command << "\n"
+                               << r.output;
+        EXPECT_EQ(matches(step.expected, r.output, true), "")
+            << "README.md:" << step.line << ": " << step.command << "\nprinted:\n"
+            << r.output;
+    }
+    EXPECT_GE(sessions, 10);
+}
+
+// The figures' matcher: a changed count, cycle count or modelled time is a difference; a
+// measured time (wall, CPU, send times and what follows from them) is not.
+TEST(ReadmeTour, TheFiguresMatcherSeesAChangedCountAndNotAMeasuredTime) {
+    const std::vector<std::string> sample = {
+        " frame  size  commands  cycles  modelled ms  checksum",
+        "     0  1024x780  7,667  1,034,743  172.357  2a4e14adb9f420df",
+        "...",
+        "  hidden-surface*       0.770 ms      0.769 ms",
+        "      1 @155       MARKER \"zbuffer\"  sent 808.328 us",
+        "benchmark: 7,667 commands, 1,333,043 pixels in 0.0013 s wall: 5.942 M commands/s"};
+    const std::string head = " frame  size  commands  cycles  modelled ms  checksum\n";
+    const std::string row = "     0  1024x780  7,667  1,034,743  172.357  2a4e14adb9f420df\n";
+    const std::string measured =
+        "  hidden-surface*       0.912 ms      0.901 ms\n"
+        "      1 @155       MARKER \"zbuffer\"  sent 1605.058 us\n"
+        "benchmark: 7,667 commands, 1,333,043 pixels in 0.0127 s wall: 0.602 M commands/s\n";
+    EXPECT_EQ(matches(sample, head + row + "x\n" + measured, true), "");
+    // the cycles and the modelled time of another profile
+    EXPECT_NE(
+        matches(sample,
+                head + "     0  1024x780  7,667  1,729,028  180.222  2a4e14adb9f420df\n" + measured,
+                true),
+        "");
+    // a count, a checksum, a byte offset
+    EXPECT_NE(
+        matches(sample,
+                head + "     0  1024x780  7,668  1,034,743  172.357  2a4e14adb9f420df\n" + measured,
+                true),
+        "");
+    EXPECT_NE(
+        matches(sample,
+                head + "     0  1024x780  7,667  1,034,743  172.357  2a4e14adb9f420de\n" + measured,
+                true),
+        "");
+    EXPECT_NE(
+        matches(sample,
+                head + row + "      1 @156       MARKER \"zbuffer\"  sent 1.0 us\n" +
+                    "benchmark: 7,667 commands, 1,333,043 pixels in 1 s wall: 1 M commands/s\n",
+                true),
+        "");
+    // shape alone lets the figures go
+    EXPECT_EQ(
+        matches(sample, head + "     0  1024x780  7,668  1,729,028  180.222  2a4e14adb9f420df\n" +
+                            measured),
+        "");
 }
 
 // The matcher itself: it accepts other numbers, and catches a changed word, a missing
