@@ -1,5 +1,6 @@
 #include "host/scene/scene_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "host/scene/auto_camera.h"
 #include "host/scene/generators.h"
 #include "host/scene/json_fields.h"
 #include "host/scene/obj_loader.h"
@@ -180,29 +182,28 @@ GeneratedPolygons read_geometry(const JsonFields& o, Scene& scene,
     o.fail(nullptr, "an object with \"polygon\", \"polygons\", \"obj\" or \"generator\"");
 }
 
+// What faces take from the object they come from.
+struct FaceSource {
+    Material material;
+    bool has_color = false;  // the material's colour replaces the polygons' own
+    std::vector<size_t> mirror_faces;
+    glm::dmat4 transform{1.0};
+    std::string where;  // names the object in messages: "scene.json: objects[2]"
+    uint32_t object = 0;
+};
+
 // Appends an object's polygons as faces: transform, check, triangulate if needed, number.
 // A face's id is its index in the input (objects in file order, faces in each object's
 // order), whatever is dropped or split: a dropped face leaves its id unused, the pieces of
 // a triangulated one share its id.
-void add_object(Scene& scene, const JsonFields& o, uint32_t object_index,
-                const std::filesystem::path& base_dir) {
-    std::vector<size_t> mirror_faces;
-    Material material = read_material(o, mirror_faces);
-    bool has_color = o.has("material") && o.child("material").has("color");
-    glm::dmat4 transform = read_transform(o);
-    GeneratedPolygons polys = read_geometry(o, scene, base_dir);
-    for (size_t f : mirror_faces)
-        if (f >= polys.size())
-            o.fail("material",
-                   fmt::format("mirror_faces indices below the object's {} faces", polys.size()));
-
+void add_faces(Scene& scene, const GeneratedPolygons& polys, const FaceSource& source) {
     for (size_t i = 0; i < polys.size(); ++i) {
         std::vector<glm::dvec3> v;
         v.reserve(polys[i].vertices.size());
         for (const auto& p : polys[i].vertices)
-            v.push_back(glm::dvec3(transform * glm::dvec4(p, 1.0)));
+            v.push_back(glm::dvec3(source.transform * glm::dvec4(p, 1.0)));
         PolygonResult prepared = prepare_polygon(v);
-        std::string where = fmt::format("{}: face {}", o.where(), i);
+        std::string where = fmt::format("{}: face {}", source.where, i);
         if (prepared.verdict == PolygonVerdict::NotFinite)
             throw SceneError(fmt::format("{}: {}", where, prepared.reason));
         if (prepared.verdict == PolygonVerdict::Degenerate) {
@@ -218,16 +219,48 @@ void add_object(Scene& scene, const JsonFields& o, uint32_t object_index,
             scene.notes.push_back(fmt::format("{}: triangulated into {} triangles ({})", where,
                                               prepared.pieces.size(), prepared.reason));
         }
-        Material m = material;
-        if (polys[i].color && !has_color) m.color = *polys[i].color;
-        if (!mirror_faces.empty())
-            m.mirror = std::find(mirror_faces.begin(), mirror_faces.end(), i) != mirror_faces.end()
-                           ? material.mirror
+        Material m = source.material;
+        if (polys[i].color && !source.has_color) m.color = *polys[i].color;
+        const auto& mirrors = source.mirror_faces;
+        if (!mirrors.empty())
+            m.mirror = std::find(mirrors.begin(), mirrors.end(), i) != mirrors.end()
+                           ? source.material.mirror
                            : 0.0;
         for (auto& piece : prepared.pieces)
-            scene.faces.push_back({std::move(piece), m, scene.face_count, object_index});
+            scene.faces.push_back({std::move(piece), m, scene.face_count, source.object});
         ++scene.face_count;
     }
+}
+
+void add_object(Scene& scene, const JsonFields& o, uint32_t object_index,
+                const std::filesystem::path& base_dir) {
+    FaceSource source;
+    source.material = read_material(o, source.mirror_faces);
+    source.has_color = o.has("material") && o.child("material").has("color");
+    source.transform = read_transform(o);
+    source.where = o.where();
+    source.object = object_index;
+    GeneratedPolygons polys = read_geometry(o, scene, base_dir);
+    for (size_t f : source.mirror_faces)
+        if (f >= polys.size())
+            o.fail("material",
+                   fmt::format("mirror_faces indices below the object's {} faces", polys.size()));
+    add_faces(scene, polys, source);
+}
+
+// A bare OBJ model as a scene: its faces as they are, framed by the automatic camera.
+Scene load_obj_scene(const std::filesystem::path& file) {
+    Scene scene;
+    scene.source = file.string();
+    const GeneratedPolygons polys = load_obj(file, &scene.notes);
+    FaceSource source;
+    source.where = file.string();
+    add_faces(scene, polys, source);
+    if (scene.faces.empty())
+        throw SceneError(fmt::format("{}: nothing to draw: all {} faces have zero area",
+                                     file.string(), polys.size()));
+    scene.notes.push_back(file.string() + ": " + frame_automatically(scene));
+    return scene;
 }
 
 }  // namespace
@@ -262,12 +295,13 @@ Scene parse_scene_json(std::string_view text, const std::string& name,
 }
 
 Scene load_scene(const std::filesystem::path& file) {
+    if (file.extension() == ".obj") return load_obj_scene(file);
     std::string text = read_file(file);
     std::string ext = file.extension().string();
     if (ext == ".tri") return parse_tri(text, file.string());
     if (ext == ".json") return parse_scene_json(text, file.string(), file.parent_path());
-    throw SceneError(
-        fmt::format("{}: unknown scene format '{}' (expected .json or .tri)", file.string(), ext));
+    throw SceneError(fmt::format("{}: unknown scene format '{}' (expected .json, .obj or .tri)",
+                                 file.string(), ext));
 }
 
 }  // namespace fb89::host

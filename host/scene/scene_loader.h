@@ -1,5 +1,6 @@
-// Loading scenes from files: JSON scene files (DESIGN.md "Scene model"; comments allowed)
-// and `.tri` screen-space triangle sets (the conformance fixtures' format).
+// Loading scenes from files: JSON scene files (DESIGN.md "Scene model"; comments allowed),
+// `.tri` screen-space triangle sets (the conformance fixtures' format) and bare `.obj`
+// models, framed by an automatic camera (host/scene/auto_camera.h).
 #pragma once
 
 #include <filesystem>
@@ -9,7 +10,8 @@
 
 namespace fb89::host {
 
-// Chooses the format by extension (.json, .tri). Throws SceneError on any problem.
+// Chooses the format by extension (.json, .obj, .tri). Throws SceneError on any problem.
+// A bare OBJ model's notes say how it was framed, and warn of a missing material library.
 Scene load_scene(const std::filesystem::path& file);
 
 // The same from text already in memory; `name` stands for the file in messages and

@@ -231,7 +231,18 @@ TEST(BadInputScene, BrokenObjFilesNameTheFile) {
         const char* says;
     };
     const Obj objs[] = {
-        {"bad index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n", "refers to vertex 99 of 3"},
+        {"bad index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n",
+         "mesh.obj: line 4: face refers to vertex 99 of 3"},
+        {"zero index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 0 2\n",
+         "mesh.obj: line 4: face vertex 2: index 0"},
+        {"binary",
+         "v 0 0 0\n\x7f"
+         "ELF\x02\x01\n",
+         "mesh.obj: line 2: not text (byte 0x7f"},
+        {"plain text", "Dear reader,\nno model here.\n",
+         "mesh.obj: no faces (an OBJ model needs at least one \"f\" line; read 0 vertices, 0 "
+         "faces from 2 lines; line 1, 'Dear reader,', is not an OBJ statement)"},
+        {"empty", "", "mesh.obj: no faces"},
         {"nan vertex", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
          "mesh.obj: line 1: vertex coordinate 1: expected a finite number, got 'nan'"},
         {"inf vertex", "v 1 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n",
