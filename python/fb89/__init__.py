@@ -570,3 +570,5 @@ def _pybind_keywords(method):
 
 
 Stream.open = staticmethod(_checked_method(Stream.open, "Stream.open"))
+Stream.save = _checked_method(Stream.save, "Stream.save")
+Render.save_timeline = _checked_method(Render.save_timeline, "Render.save_timeline")

@@ -199,6 +199,11 @@ def test_an_unknown_keyword_is_named_with_the_known_ones():
     with pytest.raises(TypeError, match="Stream.open\\(\\) got an unknown keyword 'call'; "
                                         "did you mean 'calls'"):
         fb89.Stream.open("x.fb89", call="/span")
+    stream = fb89.render("A", size="32x24").stream
+    with pytest.raises(TypeError, match="Stream.save\\(\\) got an unknown keyword 'file'; "
+                                        "did you mean 'path'|Stream.save\\(\\) got an unknown "
+                                        "keyword 'file'"):
+        stream.save(file="x.fb89")
     for function in (fb89.experiment, fb89.sweep, fb89.compare, fb89.calibrate, fb89.replay,
                      fb89.trim, fb89.diff, fb89.load_scene, fb89.host_validate,
                      fb89.controller_validate, fb89.info):
