@@ -173,6 +173,7 @@ def experiment(name: str, scenes: SceneLike | Sequence[SceneLike] | None = ..., 
                threshold: Threshold = ..., beam_threshold: Threshold = ...,
                sizes: Sequence[Size] | None = ..., out_dir: str | os.PathLike[str] = ...,
                accel: str = ..., patches: int = ..., reference_rays: int = ...,
+               methods: Sequence[str] | None = ...,
                host: str = ..., jobs: int = ..., results: str | os.PathLike[str] | None = ...,
                progress: Progress = ..., controller: str | None = ...) -> Table: ...
 def sweep(what: str, scenes: SceneLike | Sequence[SceneLike], *, start: float = ...,

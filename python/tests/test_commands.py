@@ -219,3 +219,24 @@ def test_checksums_are_shown_as_the_commands_print_them(tmp_path):
     checksum = fb89.replay(str(path)).checksum
     assert re.fullmatch(r"[0-9a-f]{16}", checksum)
     assert checksum in printed
+
+
+def test_the_stubs_name_every_call_with_its_keywords():
+    import ast
+    import inspect
+    stubs = ast.parse(open(os.path.join(os.path.dirname(fb89.__file__), "__init__.pyi")).read())
+    declared = {node.name: node for node in stubs.body
+                if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
+    for name in fb89.__all__:
+        thing = getattr(fb89, name)
+        if inspect.isclass(thing) or not callable(thing):
+            assert name in declared or name.isupper(), name
+            continue
+        assert name in declared, name
+        stub = declared[name].args
+        keywords = [a.arg for a in stub.args + stub.kwonlyargs]
+        try:
+            real = list(inspect.signature(thing).parameters)
+        except ValueError:  # a compiled function: its own stub is its docstring
+            continue
+        assert sorted(keywords) == sorted(real), name
