@@ -1,7 +1,9 @@
 // fb89 compare SCENE: speed against accuracy for one scene in one command. Every method,
 // with its default options, timed as the experiments time them (here or on a 1989 --host),
 // its commands costed by the controller and its face ids counted against the Z-buffer's;
-// a contact sheet PNG of the frames with their figures, and the table as text, CSV or JSON.
+// a contact sheet PNG of the frames with their figures (--sheet; written only when asked),
+// and the table as text, CSV or JSON. Every frame and every count of differing pixels is
+// the one the --profile's controller draws: for the depth commands, with its depth word.
 #include <unistd.h>
 
 #include <cmath>
@@ -11,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "experiments/compare.h"
 #include "frontend/data_dir.h"
@@ -25,7 +28,7 @@ namespace {
 struct CompareArgs {
     CompareRequest request;  // frontend/runs.h: the scene, its options and the host's
     std::string csv, json;
-    std::string sheet = "out/compare.png";
+    std::string sheet;
     bool quiet = false;
 };
 
@@ -37,7 +40,20 @@ std::string differences_note(const Comparison& c) {
         other += r.ids.other_face;
     }
     if (coverage + other == 0) return "";
-    return "pixels_differing: face ids unlike the Z-buffer's = px_coverage (a face against the "
+    std::string ties;
+    for (const CompareRow& r : c.rows)
+        if (r.depth && r.depth->differ > 0)
+            ties += fmt::format(
+                "{}{}: {} of its {} differing pixels are ties of the {}-bit depth "
+                "word, {} wrong\n",
+                ties.empty() ? "px_ties: the controller's depth word as the "
+                               "profile has it, where two faces lie within its "
+                               "step and either may be kept:\n  "
+                             : "  ",
+                r.method, controller::grouped(r.depth->ties), controller::grouped(r.depth->differ),
+                r.depth->depth_bits, controller::grouped(r.depth->wrong));
+    return ties +
+           "pixels_differing: face ids unlike the Z-buffer's = px_coverage (a face against the "
            "background: silhouettes) + px_other_face (another face: a shared edge or a depth "
            "tie). The ray methods test each pixel centre with the watertight ray test where "
            "the raster methods apply their shared top-left rule, so a centre on an edge, or "
@@ -53,14 +69,23 @@ int run_compare(const CompareArgs& a) {
     const CompareOutcome out = frontend::run_compare(r);
     if (report_emitted(out.settings, r.host)) return kSuccess;
     const Comparison& c = out.comparison;
-    make_parent_dirs(a.sheet);
-    controller::write_png(a.sheet, c.sheet);
+    if (!a.sheet.empty()) {
+        make_parent_dirs(a.sheet);
+        controller::write_png(a.sheet, c.sheet);
+    }
     if (!a.csv.empty()) write_text(a.csv, out.table.csv());
     if (!a.json.empty()) write_json(a.json, out.rows);
     if (!a.quiet && !stdout_taken)
         std::cout << out.thresholds << out.table.text() << differences_note(c);
-    Console{a.quiet}.note(
-        fmt::format("contact sheet: {} ({}x{})", a.sheet, c.sheet.width(), c.sheet.height()));
+    const Console console{a.quiet};
+    for (const CompareRow& row : c.rows)
+        if (row.depth) {
+            const std::string note = z_fighting_note(*row.depth);
+            if (!note.empty()) console.note(fmt::format("{}: {}", row.method, note));
+        }
+    if (!a.sheet.empty())
+        console.note(
+            fmt::format("contact sheet: {} ({}x{})", a.sheet, c.sheet.width(), c.sheet.height()));
     return kSuccess;
 }
 
@@ -73,8 +98,7 @@ void register_compare(CLI::App& app, int& exit_code) {
     sub->add_option("scene", a->request.scenes, scene_argument_help("Scene: a file"))
         ->expected(1)
         ->required();
-    sub->add_option("--sheet", a->sheet, "Write the contact sheet of every method's frame (PNG)")
-        ->capture_default_str();
+    sub->add_option("--sheet", a->sheet, "Write the contact sheet of every method's frame (PNG)");
     sub->add_option("--csv", a->csv, "Write the table as CSV ('-' for stdout)");
     sub->add_option("--json", a->json, "Write the table as JSON ('-' for stdout)");
     sub->add_option("--repeat", a->request.repeat, "Interleaved timing rounds (median)")

@@ -1,7 +1,8 @@
 // fb89 diff A B: compares the frames two streams produce (apitrace's `apitrace diff-images`
 // as a regression test). Both streams are replayed side by side, a frame at a time, into
-// controllers under the `ideal` profile (pixels do not depend on the profile); after each
-// frame's FRAME_END the two framebuffers are compared pixel by pixel. Only one frame of
+// controllers that draw as --profile's does (pixels depend on the profile only through its
+// depth word, which decides the depth commands' ties; default the default profile's); after
+// each frame's FRAME_END the two framebuffers are compared pixel by pixel. Only one frame of
 // each stream is in memory at a time.
 //
 // It prints, per frame, both sizes and the number of differing pixels (a pixel outside one
@@ -29,13 +30,14 @@ namespace {
 
 struct DiffArgs {
     std::string a, b, image;
+    std::string profile = std::string(controller::kDefaultProfile);
     bool quiet = false;
 };
 
 int run_diff(const DiffArgs& args_in) {
     DiffArgs args = args_in;
     if (claims_stdout({{"--image", args.image}})) args.quiet = true;  // stdout carries the PNG
-    const DiffOutcome out = diff_streams(args.a, args.b, args.image);
+    const DiffOutcome out = diff_streams(args.a, args.b, args.image, args.profile);
     if (!args.quiet) {
         fmt::print("A: {}\nB: {}\n", out.header_a, out.header_b);
         // with send times in either stream, when the host's work on each frame ended
@@ -101,6 +103,11 @@ void register_diff(CLI::App& app, int& exit_code) {
     sub->add_option("b", args->b, "Second stream file")->required();
     sub->add_option("--image", args->image,
                     "Write the first differing frame's diff image (differences red over A dimmed)");
+    sub->add_option("--profile", args->profile,
+                    "Draw the frames as this controller profile does (its depth word decides "
+                    "the depth commands' ties)")
+        ->check(profile_validator())
+        ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing; only the exit code tells");
     sub->callback([args, &exit_code] { exit_code = run_diff(*args); });
 }

@@ -101,16 +101,18 @@ host::WindowTest window_test_named(const std::string& name) {
 
 // The face-id pass: the same method through the same sink and controller, every face
 // coloured id + 1 and unshaded, so the controller's framebuffer is the id buffer. Run once
-// for --ids (exact) and --ids-view (false colour) alike.
-// A method that sends depth commands is held to the host Z-buffer's ids there and then: the
-// pixels where they differ are counted as ties (the fixed-point depth's) or as errors.
-std::optional<experiments::DepthAgreement> write_id_buffer(const RenderArgs& args,
-                                                           const host::Scene& scene,
-                                                           host::Renderer& renderer,
-                                                           uint32_t depth_bits) {
+// for --ids (exact) and --ids-view (false colour) alike, written when asked.
+// A method that sends depth commands is held to the host Z-buffer's ids whether or not they
+// are asked for, with the profile's depth word: the pixels where they differ are counted as
+// ties (the fixed-point depth's) or as errors.
+std::optional<experiments::DepthAgreement> id_pass(const RenderArgs& args, const host::Scene& scene,
+                                                   host::Renderer& renderer, uint32_t depth_bits) {
+    const bool asked = !args.ids.empty() || !args.ids_view.empty();
+    const bool depth = host::method_info(host::method_named(args.method)).depth_commands;
+    if (!asked && !depth) return std::nullopt;
     const controller::Framebuffer ids = experiments::id_framebuffer(scene, renderer, depth_bits);
-    experiments::write_id_pngs(ids, args.ids, args.ids_view);
-    if (!host::method_info(host::method_named(args.method)).depth_commands) return std::nullopt;
+    if (asked) experiments::write_id_pngs(ids, args.ids, args.ids_view);
+    if (!depth) return std::nullopt;
     auto zbuffer = host::make_renderer(host::Method::ZBuffer);
     host::Counters counters;
     return experiments::depth_agreement(
@@ -335,9 +337,9 @@ int run_render(const RenderArgs& args) {
         controller::write_png(args.png, ctl.framebuffer());
     }
     if (!args.mask.empty()) write_beam_mask(args.mask, ctl.framebuffer(), *run.renderer);
-    std::optional<experiments::DepthAgreement> agreement;
-    if (!args.ids.empty() || !args.ids_view.empty())
-        agreement = write_id_buffer(args, result.scene, *run.renderer, ctl.profile().depth_bits);
+    const std::optional<experiments::DepthAgreement> agreement =
+        id_pass(args, result.scene, *run.renderer, ctl.profile().depth_bits);
+    const bool ids_asked = !args.ids.empty() || !args.ids_view.empty();
     if (!args.stream.empty()) write_stream(args, result);
     if (!args.stats.empty()) write_json(args.stats, stats_json(args, result, ctl));
     if (!args.timeline.empty())
@@ -369,7 +371,11 @@ int run_render(const RenderArgs& args) {
         if (run.pipeline)
             fmt::print("{}", pipeline_line(*run.pipeline, run.controller.frame_ms,
                                            send_times_source(run.period.has_value())));
-        if (agreement) fmt::print("{}", agreement_line(*agreement));
+        if (agreement && ids_asked) fmt::print("{}", agreement_line(*agreement));
+    }
+    if (agreement) {
+        const std::string note = experiments::z_fighting_note(*agreement);
+        if (!note.empty()) console.note(note);
     }
     if (agreement && !agreement->exact()) {
         fmt::print(stderr, "fb89: error: {}", agreement_line(*agreement));

@@ -10,6 +10,7 @@
 #include "controller_sim/bitmap_font.h"
 #include "controller_sim/controller.h"
 #include "controller_sim/hud_layout.h"
+#include "experiments/depth_agreement.h"
 #include "experiments/id_pass.h"
 #include "experiments/period_runs.h"
 #include "experiments/render_job.h"
@@ -24,16 +25,20 @@ constexpr uint64_t kMaxThumbHeight = 4 * kThumbWidth;  // a frame far taller tha
 constexpr protocol::Rgb kBackground{24, 24, 28}, kBand{44, 44, 52};
 constexpr protocol::Rgb kWhite{255, 255, 255}, kGrey{200, 200, 200};
 
-// The frame the controller holds after `commands` (pixels do not depend on the profile).
-controller::Framebuffer frame_of(const protocol::MemoryBuffer& commands) {
-    controller::Controller ctl(controller::load_profile("ideal"));
+// The frame the controller holds after `commands`: pixels do not depend on the profile but
+// for the depth commands' on its depth word, `depth_bits`.
+controller::Framebuffer frame_of(const protocol::MemoryBuffer& commands, uint32_t depth_bits) {
+    controller::CostProfile ideal = controller::load_profile("ideal");
+    ideal.depth_bits = depth_bits;
+    controller::Controller ctl(std::move(ideal));
     commands.replay_into(ctl);
     return ctl.framebuffer();
 }
 
-controller::Framebuffer ids_of(const host::Scene& scene, const host::MethodOptions& o) {
+controller::Framebuffer ids_of(const host::Scene& scene, const host::MethodOptions& o,
+                               uint32_t depth_bits = 32) {
     auto renderer = host::make_renderer(o);
-    return id_framebuffer(scene, *renderer);
+    return id_framebuffer(scene, *renderer, depth_bits);
 }
 
 }  // namespace
@@ -79,8 +84,12 @@ std::vector<std::string> caption(const CompareRow& row) {
             fmt::format("frame {:.3f} ms, {}-bound", row.frame_ms,
                         row.host_bound ? "host" : "controller"),
             fmt::format("{} commands", row.controller.commands),
-            fmt::format("{} fills, {} spans", row.controller.fills, row.controller.spans),
-            fmt::format("{} px differ from zbuffer", row.ids.total())};
+            row.depth
+                ? fmt::format("{} faces, {} depth spans", row.controller.faces,
+                              row.controller.depth_spans)
+                : fmt::format("{} fills, {} spans", row.controller.fills, row.controller.spans),
+            row.depth ? fmt::format("{} px differ: {} ties", row.ids.total(), row.depth->ties)
+                      : fmt::format("{} px differ from zbuffer", row.ids.total())};
 }
 
 controller::Framebuffer draw_sheet(const Comparison& c) {
@@ -128,7 +137,12 @@ Comparison compare_methods(const std::string& file,
     const RenderResult r = run_render_job(job);
     c.width = static_cast<uint32_t>(r.screen.width);
     c.height = static_cast<uint32_t>(r.screen.height);
+    // the frames as the named profile's controller draws them: its depth word decides the
+    // depth commands' ties
+    const uint32_t depth_bits = controller::load_profile(s.profile).depth_bits;
+    c.depth_bits = depth_bits;
     const controller::Framebuffer truth = ids_of(r.scene, host::Method::ZBuffer);
+    std::optional<host::ScreenScene> id_screen;  // the scene in id mode, for the ties
     for (const MethodRun& run : r.runs) {
         CompareRow row;
         row.method = std::string(host::method_info(run.options.method).name);
@@ -136,20 +150,46 @@ Comparison compare_methods(const std::string& file,
         row.controller = run.controller;
         row.frame_ms = run.split.frame_ms;
         row.host_bound = run.split.host_bounds;
-        row.ids = id_differences(truth, ids_of(r.scene, run.options));
+        const controller::Framebuffer ids = ids_of(r.scene, run.options, depth_bits);
+        row.ids = id_differences(truth, ids);
+        if (host::method_info(run.options.method).depth_commands) {
+            if (!id_screen) {
+                host::Counters counters;
+                id_screen = host::project_scene(r.scene, host::ColorMode::FaceId, counters);
+            }
+            row.depth = depth_agreement(*id_screen, truth, ids, depth_bits);
+        }
         row.pipeline = run.pipeline;
         c.rows.push_back(row);
-        c.frames.push_back(frame_of(run.commands));
+        c.frames.push_back(frame_of(run.commands, depth_bits));
     }
     c.sheet = draw_sheet(c);
     return c;
 }
 
 Table comparison_table(const Comparison& c) {
-    Table table({"scene", "method", "host", "host_ms", "commands", "fills", "spans",
-                 "controller_ms", "frame_ms", "bound_by", "pixels_differing", "px_coverage",
-                 "px_other_face", "pipeline_ms", "overlap", "host_stalled_ms", "host_util",
-                 "controller_util"});
+    Table table({"scene",
+                 "method",
+                 "host",
+                 "host_ms",
+                 "commands",
+                 "fills",
+                 "spans",
+                 "controller_ms",
+                 "frame_ms",
+                 "bound_by",
+                 "pixels_differing",
+                 "px_coverage",
+                 "px_other_face",
+                 "pipeline_ms",
+                 "overlap",
+                 "host_stalled_ms",
+                 "host_util",
+                 "controller_util",
+                 "px_ties",
+                 "depth_bits",
+                 "depth_spans",
+                 "faces"});
     for (const CompareRow& r : c.rows) {
         std::vector<std::string> row = {c.name,
                                         r.method,
@@ -173,6 +213,11 @@ Table comparison_table(const Comparison& c) {
         } else {
             row.resize(row.size() + 5);
         }
+        // the depth commands' ties of the depth word (empty for the other methods)
+        row.insert(row.end(),
+                   {r.depth ? std::to_string(r.depth->ties) : "",
+                    r.depth ? std::to_string(c.depth_bits) : "",
+                    std::to_string(r.controller.depth_spans), std::to_string(r.controller.faces)});
         table.add(std::move(row));
     }
     return table;

@@ -12,6 +12,7 @@
 
 #include "controller_sim/framebuffer.h"
 #include "controller_sim/timed_pipeline.h"
+#include "experiments/depth_agreement.h"
 #include "experiments/measure.h"
 #include "experiments/settings.h"
 #include "experiments/table.h"
@@ -37,15 +38,18 @@ struct CompareRow {
     double frame_ms = 0;
     bool host_bound = false;  // the host's time bounds the frame, not the controller's
     IdDifferences ids;        // face ids that differ from the Z-buffer's
+    // for the methods that send depth commands: of those, the ties of the profile's depth word
+    std::optional<DepthAgreement> depth;
     // the frame through the pipeline in time (render_job.h), when it has send times
     std::optional<FramePipeline> pipeline;
 };
 
 struct Comparison {
-    std::string scene;    // the file as given
-    std::string name;     // how the sheet and the table name the scene (default: the file)
-    std::string host;     // "native" or the 1989 host profile's name
-    std::string profile;  // the controller's cost profile
+    std::string scene;        // the file as given
+    std::string name;         // how the sheet and the table name the scene (default: the file)
+    std::string host;         // "native" or the 1989 host profile's name
+    std::string profile;      // the controller's cost profile
+    uint32_t depth_bits = 0;  // its depth word, which the depth commands' frames are drawn with
     uint32_t width = 0, height = 0;
     std::vector<CompareRow> rows;                 // one per method, in the order given
     std::vector<controller::Framebuffer> frames;  // each method's shaded frame
@@ -63,7 +67,9 @@ Comparison compare_methods(const std::string& file,
 // The rows as a table: scene, method, host, host_ms, commands, fills, spans, controller_ms,
 // frame_ms, bound_by, pixels_differing (px_coverage + px_other_face), then the pipeline in
 // time: pipeline_ms, overlap, host_stalled_ms, host_util, controller_util (empty without
-// send times).
+// send times), then px_ties and depth_bits (of pixels_differing, the ties of the profile's
+// depth word; the depth-command methods only) and the depth commands sent (depth_spans,
+// faces). Every frame is the one the profile's controller draws.
 Table comparison_table(const Comparison& c);
 
 // Where things go on the contact sheet: a title band, then `columns` x `rows` tiles, each

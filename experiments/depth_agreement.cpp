@@ -1,9 +1,13 @@
 #include "experiments/depth_agreement.h"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "controller_sim/controller.h"
 #include "host/raster/depth.h"
 #include "host/scene/projection.h"
 #include "protocol/depth_fixed.h"
@@ -32,6 +36,11 @@ DepthAgreement depth_agreement(const host::ScreenScene& scene,
     a.tolerance = depth_tolerance(depth_bits, scene.width, scene.height);
     const uint32_t w = reference_ids.width(), h = reference_ids.height();
     a.pixels = uint64_t{w} * h;
+    struct Pair {
+        uint64_t pixels = 0;
+        double dz = 0;
+    };
+    std::map<std::pair<uint32_t, uint32_t>, Pair> pairs;  // ids + 1, the nearer first
     for (uint32_t y = 0; y < h; ++y)
         for (uint32_t x = 0; x < w; ++x) {
             const uint32_t want = host::face_id_from_color(reference_ids.pixel(x, y));
@@ -49,11 +58,34 @@ DepthAgreement depth_agreement(const host::ScreenScene& scene,
             if (dz <= a.tolerance) {
                 ++a.ties;
                 a.max_tie_dz = std::max(a.max_tie_dz, dz);
+                const bool want_nearer =
+                    host::depth_at(*plane[want], px, py) <= host::depth_at(*plane[got], px, py);
+                auto& pair = pairs[{want_nearer ? want : got, want_nearer ? got : want}];
+                if (pair.pixels++ == 0) pair.dz = dz;
             } else {
                 ++a.wrong;
             }
         }
+    for (const auto& [ids, pair] : pairs)
+        if (pair.pixels > a.tie_pair_pixels) {
+            a.tie_near = ids.first - 1;
+            a.tie_far = ids.second - 1;
+            a.tie_pair_pixels = pair.pixels;
+            a.tie_pair_dz = pair.dz;
+        }
     return a;
+}
+
+std::string z_fighting_note(const DepthAgreement& a) {
+    if (a.pixels == 0 || static_cast<double>(a.ties) <= kZFightingShare * a.pixels) return "";
+    return fmt::format(
+        "z-fighting: {} pixels ({:.2f}% of the frame) tie in the {}-bit depth word, whose step "
+        "is {:.2g} in window depth: the controller may keep either face there; the pair tying "
+        "most is faces {} and {} ({} pixels, {:.2g} apart in depth where they first tie). A "
+        "32-bit word (\"depth_bits\": 32 in a profile) or a farther near plane tells them apart",
+        controller::grouped(a.ties), 100.0 * static_cast<double>(a.ties) / a.pixels, a.depth_bits,
+        protocol::depth_step(a.depth_bits), a.tie_near, a.tie_far,
+        controller::grouped(a.tie_pair_pixels), a.tie_pair_dz);
 }
 
 }  // namespace fb89::experiments

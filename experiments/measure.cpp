@@ -160,6 +160,8 @@ ControllerFigures controller_figures(const controller::Controller& ctl) {
     f.bus_bytes = frame.total().bytes;
     f.fills = frame.ops[protocol::opcode_index(protocol::Opcode::FillRect)].commands;
     f.spans = frame.ops[protocol::opcode_index(protocol::Opcode::DrawSpan)].commands;
+    f.depth_spans = frame.ops[protocol::opcode_index(protocol::Opcode::DepthSpan)].commands;
+    f.faces = frame.ops[protocol::opcode_index(protocol::Opcode::Face)].commands;
     f.controller_ms = frame.controller_busy_us / 1e3;
     f.bus_ms = frame.bus_busy_us / 1e3;
     f.frame_ms = frame.end_us / 1e3;

@@ -101,7 +101,8 @@ FrameSplit frame_split(double host_ms, double controller_ms);
 // What the controller makes of one frame's commands under a profile.
 struct ControllerFigures {
     uint64_t commands = 0, fills = 0, spans = 0;
-    uint64_t bus_bytes = 0;  // the frame's commands on the host port
+    uint64_t depth_spans = 0, faces = 0;  // the depth commands (zspans, faces)
+    uint64_t bus_bytes = 0;               // the frame's commands on the host port
     double controller_ms = 0, bus_ms = 0, frame_ms = 0;
 };
 ControllerFigures controller_figures(const protocol::MemoryBuffer& commands,

@@ -4,9 +4,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
+#include "experiments/compare.h"
+#include "experiments/depth_agreement.h"
 #include "experiments/experiments.h"
 #include "experiments/id_pass.h"
 #include "experiments/measure.h"
@@ -198,32 +201,30 @@ Table sweep_threshold(const ExperimentSettings& s, const std::vector<double>& th
 
 namespace {
 
-// The face-id buffer a setting produces, through its commands and the controller.
-std::vector<uint8_t> id_pixels(const host::Scene& scene, const host::MethodOptions& o) {
+// The face-id buffer a setting produces, through its commands and the controller (with a
+// depth word of `depth_bits` for the depth commands).
+controller::Framebuffer id_frame(const host::Scene& scene, const host::MethodOptions& o,
+                                 uint32_t depth_bits) {
     auto renderer = host::make_renderer(o);
-    const controller::Framebuffer fb = id_framebuffer(scene, *renderer);
-    const auto px = fb.pixels();
-    return {px.begin(), px.end()};
-}
-
-uint64_t pixels_differing(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-    uint64_t n = 0;
-    for (size_t i = 0; i + 2 < a.size(); i += 3)
-        n += a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
-    return n;
+    return id_framebuffer(scene, *renderer, depth_bits);
 }
 
 }  // namespace
 
 // Speed against accuracy: exact settings beside approximate ones (the thinker may fill a
 // window of side >= k with a face in front that misses up to a fraction eps of its
-// centres); pixels wrong are counted against the Z-buffer's face-id buffer.
+// centres), and the two methods whose controller tests depth itself; pixels wrong are
+// counted against the Z-buffer's face-id buffer, in the frame the profile's controller
+// draws: for the depth commands with its depth word, whose ties (two faces within its step,
+// either kept) are counted apart in pixels_ties.
 Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
     Table table({"scene", "setting", "method", "threshold", "approx_min_side", "approx_epsilon",
                  "hs_cpu_ms", "ratio_to_zbuffer", "commands", "controller_ms", "pixels_wrong",
-                 "fraction_wrong"});
+                 "fraction_wrong", "pixels_ties", "depth_bits"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
     std::vector<Setting> settings{{"zbuffer", host::Method::ZBuffer}};
+    for (host::Method method : {host::Method::DepthSpans, host::Method::Faces})
+        settings.push_back({std::string(host::method_info(method).name), method});
     for (host::Method method : {host::Method::Warnock, host::Method::Hybrid}) {
         for (auto [k, eps] : {std::pair{0, 0.0}, {32, 0.01}, {16, 0.02}, {8, 0.05}, {4, 0.1}}) {
             host::MethodOptions o(method);
@@ -241,12 +242,21 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
         for (const auto& st : settings)
             options.push_back(st.options);
         std::vector<Measured> results = measure_settings(file, screen, options, s);
-        const std::vector<uint8_t> truth = id_pixels(scene, settings[0].options);
+        const controller::Framebuffer truth = id_frame(scene, settings[0].options, 32);
+        host::Counters counters;
+        const host::ScreenScene id_screen =
+            host::project_scene(scene, host::ColorMode::FaceId, counters);
         const double zbuffer_ms = results[0].median.cpu_ms;
         for (size_t i = 0; i < settings.size(); ++i) {
             const auto& o = settings[i].options;
             const ControllerFigures ctl = controller_figures(results[i].commands, profile);
-            const uint64_t wrong = i == 0 ? 0 : pixels_differing(truth, id_pixels(scene, o));
+            const bool depth = host::method_info(o.method).depth_commands;
+            const controller::Framebuffer ids =
+                i == 0 ? truth : id_frame(scene, o, profile.depth_bits);
+            const uint64_t wrong = id_differences(truth, ids).total();
+            const std::optional<DepthAgreement> agreement =
+                depth ? std::optional(depth_agreement(id_screen, truth, ids, profile.depth_bits))
+                      : std::nullopt;
             table.add(
                 {file, settings[i].label, std::string(host::method_info(o.method).name),
                  o.method == host::Method::Hybrid ? fmt::format("{:.6g}", o.hybrid.threshold) : "",
@@ -255,7 +265,9 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
                  fixed(results[i].median.cpu_ms / zbuffer_ms, 3), std::to_string(ctl.commands),
                  fixed(ctl.controller_ms, 3), std::to_string(wrong),
                  fmt::format("{:.6f}", static_cast<double>(wrong) /
-                                           static_cast<double>(screen.width * screen.height))});
+                                           static_cast<double>(screen.width * screen.height)),
+                 agreement ? std::to_string(agreement->ties) : "",
+                 agreement ? std::to_string(profile.depth_bits) : ""});
         }
     }
     return table;

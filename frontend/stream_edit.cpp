@@ -131,11 +131,18 @@ void check_paths(const TrimRequest& args) {
         throw UsageError(fmt::format("trim: -o {} is the input stream itself", args.output));
 }
 
-// One stream, replayed a frame at a time.
+// One stream, replayed a frame at a time, its pixels as the profile's controller draws them
+// (the ideal profile with its depth word: pixels depend on nothing else).
+controller::CostProfile drawing_profile(const std::string& profile) {
+    controller::CostProfile ideal = controller::load_profile("ideal");
+    ideal.depth_bits = controller::load_profile(profile).depth_bits;
+    return ideal;
+}
+
 class FrameSource {
   public:
-    explicit FrameSource(const std::string& path)
-        : m_reader(path), m_ctl(controller::load_profile("ideal")) {}
+    FrameSource(const std::string& path, const std::string& profile)
+        : m_reader(path), m_ctl(drawing_profile(profile)) {}
 
     // Runs to the end of the next frame; false when the stream holds no more frames.
     // Throws StreamError for a truncated or corrupt stream.
@@ -282,8 +289,8 @@ TrimOutcome trim_stream(const TrimRequest& args) {
 }
 
 DiffOutcome diff_streams(const std::string& path_a, const std::string& path_b,
-                         const std::string& image) {
-    FrameSource a(path_a), b(path_b);
+                         const std::string& image, const std::string& profile) {
+    FrameSource a(path_a, profile), b(path_b, profile);
     DiffOutcome out;
     // the first frame both streams have, kept until a differing one replaces it: an image
     // asked for is written whatever the streams hold, the first difference if there is one

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "controller_sim/profile.h"
 #include "protocol/stream_format.h"
 
 namespace fb89::frontend {
@@ -50,6 +51,9 @@ struct DiffOutcome {
 // With `image` non-empty, writes the first differing frame's diff image there (differing
 // pixels red, the rest A's dimmed to a third), or, when no frame both have differs, the
 // first frame both have (all dimmed); throws std::runtime_error when they have none.
-DiffOutcome diff_streams(const std::string& a, const std::string& b, const std::string& image);
+// The frames are drawn as `profile`'s controller draws them: the depth commands with its
+// depth word.
+DiffOutcome diff_streams(const std::string& a, const std::string& b, const std::string& image,
+                         const std::string& profile = std::string(controller::kDefaultProfile));
 
 }  // namespace fb89::frontend

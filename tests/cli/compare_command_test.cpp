@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "controller_sim/png_io.h"
@@ -81,7 +82,8 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
     const std::string text = slurp(csv);
     EXPECT_EQ(text.rfind("scene,method,host,host_ms,commands,fills,spans,controller_ms,frame_ms,"
                          "bound_by,pixels_differing,px_coverage,px_other_face,pipeline_ms,"
-                         "overlap,host_stalled_ms,host_util,controller_util\n",
+                         "overlap,host_stalled_ms,host_util,controller_util,px_ties,depth_bits,"
+                         "depth_spans,faces\n",
                          0),
               0u)
         << text;
@@ -116,7 +118,7 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
     EXPECT_GT(j[0]["commands"].get<uint64_t>(), 0u);
 }
 
-TEST(CompareCommand, SheetDefaultsToOutComparePngUnderTheCurrentFolder) {
+TEST(CompareCommand, NothingIsWrittenUnaskedAndTheSheetWhereAsked) {
     const fs::path dir = test_dir() / "work";  // test_dir() holds the runner's own "out"
     fs::remove_all(dir);
     fs::create_directories(dir);
@@ -124,8 +126,11 @@ TEST(CompareCommand, SheetDefaultsToOutComparePngUnderTheCurrentFolder) {
                                        "cd " + dir.string() + " && ");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
-    EXPECT_TRUE(fs::exists(dir / "out" / "compare.png"));
-    EXPECT_FALSE(fs::exists(dir / "compare.png"));
+    EXPECT_TRUE(fs::is_empty(dir)) << "compare wrote a file it was not asked for";
+    r = fb89::testing::run_fb89("compare A --size 64x49 --repeat 1 -q --sheet out/sheet.png",
+                                "cd " + dir.string() + " && ");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "out" / "sheet.png"));
 }
 
 // The sheet's title band and each tile's caption, read back from the pixels.
@@ -215,6 +220,43 @@ TEST(CompareCommand, AFileIsNamedAsGivenAndALongTitleWrapsInsideTheSheet) {
         png, fb89::testing::PixelArea{0, 0, png.width, layout.title_height}, {255, 255, 255});
     ASSERT_TRUE(extent.has_value());
     EXPECT_LT(extent->x + extent->width, png.width) << "the title reaches the sheet's edge";
+}
+
+// The figure after "<label> " in `text` (digits and the thousands' commas), as a number.
+uint64_t number_after(const std::string& text, const std::string& label) {
+    const size_t at = text.find(label);
+    if (at == std::string::npos) return ~uint64_t{0};
+    std::string digits;
+    for (size_t i = at + label.size(); i < text.size() && (std::isdigit(text[i]) || text[i] == ',');
+         ++i)
+        if (text[i] != ',') digits += text[i];
+    return digits.empty() ? ~uint64_t{0} : std::stoull(digits);
+}
+
+// The depth-command methods' frames as the default profile draws them (a 16-bit depth word):
+// compare counts the ties `render --ids` counts, pixel for pixel, and none wrong.
+TEST(CompareCommand, TheDepthCommandsDifferAsTheProfilesDepthWordDrawsThem) {
+    const CliRun c = fb89("compare demo --repeat 1 -q --csv -");
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    std::map<std::string, std::map<std::string, std::string>> by_method;
+    for (const auto& row : read_csv(c.out))
+        by_method[row.at("method")] = row;
+    for (const char* method : {"zspans", "faces"}) {
+        const auto& row = by_method.at(method);
+        const fs::path ids = test_dir() / fmt::format("{}.ids.png", method);
+        const CliRun r =
+            fb89(fmt::format("render demo --method {} --ids {}", method, ids.string()));
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const uint64_t differ = number_after(r.out, "(16-bit depth word): ");
+        EXPECT_EQ(row.at("depth_bits"), "16") << method;
+        EXPECT_EQ(std::stoull(row.at("pixels_differing")), differ) << method << "\n" << r.out;
+        EXPECT_EQ(std::stoull(row.at("px_ties")), number_after(r.out, "pixels differ: ")) << method;
+        EXPECT_GT(std::stoull(row.at("px_ties")), 1000u) << method;
+        EXPECT_EQ(row.at("px_coverage"), "0") << method;
+        EXPECT_GT(std::stoull(row.at(std::string(method) == "faces" ? "faces" : "depth_spans")),
+                  0u);
+    }
+    EXPECT_EQ(by_method.at("zbuffer").at("px_ties"), "");
 }
 
 TEST(CompareCommand, BadInputExitsTwo) {

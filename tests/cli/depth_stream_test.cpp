@@ -3,8 +3,14 @@
 // depth buffer for refused with exit 2 and nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "controller_sim/controller.h"
 
 #include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
@@ -44,6 +50,37 @@ TEST(DepthStreams, AFaceMethodsIdsAreTheZBuffersButForTheCountedTies) {
     EXPECT_EQ(again.exit_code, 0) << again.err;
     const CliRun diff = run_fb89("diff " + stream.string() + " " + stream.string());
     EXPECT_EQ(diff.exit_code, 0) << diff.err << diff.out;
+}
+
+// The pixels in the frame following the "differing px" heading's row for frame 0.
+uint64_t differing_pixels(const std::string& out) {
+    const size_t row = out.find("\n     0 ");
+    if (row == std::string::npos) return ~uint64_t{0};
+    std::istringstream line(out.substr(row + 1, out.find('\n', row + 1) - row - 1));
+    std::string frame, a, b, count;
+    line >> frame >> a >> b >> count;
+    count.erase(std::remove(count.begin(), count.end(), ','), count.end());
+    return count.empty() ? ~uint64_t{0} : std::stoull(count);
+}
+
+// diff draws both streams as the profile's controller draws them: the default profile's
+// 16-bit word ties the demo's faces where the ideal profile's 32-bit one tells them apart.
+TEST(DepthStreams, DiffCountsThePixelsTheProfilesDepthWordDraws) {
+    const fs::path zb = test_dir() / "demo_zbuffer.fb89", zs = test_dir() / "demo_zspans.fb89";
+    ASSERT_EQ(run_fb89("render demo -q --stream " + zb.string()).exit_code, 0);
+    ASSERT_EQ(run_fb89("render demo -q --method zspans --stream " + zs.string()).exit_code, 0);
+    const CliRun board = run_fb89("diff " + zb.string() + " " + zs.string());
+    const CliRun ideal = run_fb89("diff --profile ideal " + zb.string() + " " + zs.string());
+    EXPECT_EQ(board.exit_code, 1) << board.err;
+    EXPECT_GT(differing_pixels(board.out), 1000u) << board.out;
+    EXPECT_LT(differing_pixels(ideal.out), 100u) << ideal.out;
+    const CliRun ids = run_fb89("render demo --method zspans --ids " +
+                                (test_dir() / "demo_zspans.ids.png").string());
+    EXPECT_NE(ids.out.find(fmt::format("depth word): {} of",
+                                       fb89::controller::grouped(differing_pixels(board.out)))),
+              std::string::npos)
+        << "diff's count is the face ids' count on the demo (no two tying faces share a colour)\n"
+        << ids.out << board.out;
 }
 
 TEST(DepthStreams, ADepthCommandWithoutADepthBufferIsExit2AndWritesNothing) {
