@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -83,13 +84,15 @@ std::string csv_number(double v) {
 
 }  // namespace
 
-ValidationReport host_validation(const HostValidationRequest& a) {
-    const auto note = [&](const std::string& text) {
-        if (a.note) a.note(text);
-    };
-    const period::ValidationData data = period::builtin_validation();
+namespace {
 
-    // The profiles: those asked for, else every one a figure names, in order.
+using Profiles = std::vector<std::pair<std::string, period::HostProfile>>;
+using Figures = std::vector<const period::PublishedFigure*>;
+using Runs = std::map<std::pair<std::string, std::string>, period::KernelRun>;  // (isa, kernel)
+using Note = std::function<void(const std::string&)>;
+
+// The profiles: those asked for, else every one a figure names, in order.
+Profiles host_profiles(const HostValidationRequest& a, const period::ValidationData& data) {
     std::vector<std::string> wanted = a.profiles;
     if (wanted.empty()) {
         std::set<std::string> seen;
@@ -97,7 +100,7 @@ ValidationReport host_validation(const HostValidationRequest& a) {
             for (const auto& p : f.profiles)
                 if (seen.insert(p).second) wanted.push_back(p);
     }
-    std::vector<std::pair<std::string, period::HostProfile>> profiles;
+    Profiles profiles;
     for (const std::string& name : wanted) {
         try {
             profiles.emplace_back(name, period::load_host_profile(name));
@@ -107,13 +110,17 @@ ValidationReport host_validation(const HostValidationRequest& a) {
                 e.what());
         }
     }
+    return profiles;
+}
 
-    // The figures each profile is set beside: those naming it, by the name asked for or its
-    // own; a profile that no figure names (a candidate table in a file) is set beside every
-    // compared figure.
-    std::vector<std::vector<const period::PublishedFigure*>> figures_of;
+// The figures each profile is set beside: those naming it, by the name asked for or its
+// own; a profile that no figure names (a candidate table in a file) is set beside every
+// compared figure.
+std::vector<Figures> figures_of(const Profiles& profiles, const period::ValidationData& data,
+                                const Note& note) {
+    std::vector<Figures> out;
     for (const auto& [asked, profile] : profiles) {
-        std::vector<const period::PublishedFigure*> figures;
+        Figures figures;
         for (const auto& f : data.figures)
             for (const auto& p : f.profiles)
                 if (p == asked || p == profile.name) {
@@ -125,14 +132,18 @@ ValidationReport host_validation(const HostValidationRequest& a) {
             for (const auto& f : data.figures)
                 if (!f.profiles.empty()) figures.push_back(&f);
         }
-        figures_of.push_back(std::move(figures));
+        out.push_back(std::move(figures));
     }
+    return out;
+}
 
-    // Each kernel a compared figure needs, run once on each instruction set that needs it.
-    std::map<std::pair<std::string, std::string>, period::KernelRun> runs;  // (isa, kernel)
+// Each kernel a compared figure needs, run once on each instruction set that needs it.
+Runs run_kernels(const Profiles& profiles, const std::vector<Figures>& figures,
+                 const period::ValidationData& data, const Note& note) {
+    Runs runs;
     for (size_t i = 0; i < profiles.size(); ++i) {
         const period::InstructionSet& isa = period::instruction_set(profiles[i].second.isa);
-        for (const period::PublishedFigure* f : figures_of[i]) {
+        for (const period::PublishedFigure* f : figures[i]) {
             const std::pair key{std::string(isa.name), f->kernel};
             if (runs.contains(key)) continue;
             const period::ValidationKernel& k = data.kernel(f->kernel);
@@ -144,11 +155,15 @@ ValidationReport host_validation(const HostValidationRequest& a) {
                              run.output.substr(0, run.output.find('\n'))));
         }
     }
+    return runs;
+}
 
+std::vector<Row> priced_rows(const Profiles& profiles, const std::vector<Figures>& figures,
+                             const Runs& runs, const period::ValidationData& data) {
     std::vector<Row> rows;
     for (size_t i = 0; i < profiles.size(); ++i) {
         const auto& [asked, profile] = profiles[i];
-        for (const period::PublishedFigure* f : figures_of[i]) {
+        for (const period::PublishedFigure* f : figures[i]) {
             const period::ValidationKernel& k = data.kernel(f->kernel);
             const period::KernelRun& run = runs.at({profile.isa, f->kernel});
             Row r;
@@ -164,14 +179,15 @@ ValidationReport host_validation(const HostValidationRequest& a) {
             rows.push_back(r);
         }
     }
+    return rows;
+}
 
-    bool all_pass = true;
+std::string figure_lines(const std::vector<Row>& rows) {
     std::string table = fmt::format("{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>8}  {:<13} {}\n",
                                     "kernel", "profile", "clock", "modelled", "published", "unit",
                                     "error", "check", "source");
     for (const Row& r : rows) {
         const auto& f = *r.figure;
-        all_pass = all_pass && r.pass;
         table += fmt::format(
             "{:<8} {:<14} {:>6} {:>10} {:>10} {:<8} {:>+7.1f}%  {:<13} {} [{}]{}\n", f.kernel,
             r.profile, f.clock_mhz > 0 ? fmt::format("{:g}MHz", f.clock_mhz) : "own",
@@ -183,15 +199,19 @@ ValidationReport host_validation(const HostValidationRequest& a) {
                 (r.pass ? "" : "!"),
             f.cite, f.id, r.unpriced ? fmt::format(" ({} executions unpriced)", r.unpriced) : "");
     }
-    // The same benchmark on two machines, each compared with its own figure at its own
-    // clocks: the ratio of the machines' speeds, modelled against published. The ratios
-    // validation.json names are checks; the other pairs are shown for what they say.
+    return table;
+}
+
+// The same benchmark on two machines, each compared with its own figure at its own clocks:
+// the ratio of the machines' speeds, modelled against published. The ratios validation.json
+// names are checks (their lines, their CSV rows, and whether each passed).
+void checked_ratios(const std::vector<Row>& rows, const period::ValidationData& data,
+                    std::string& ratios, std::string& csv, bool& all_pass) {
     const auto row_of = [&](const std::string& figure_id) -> const Row* {
         for (const Row& r : rows)
             if (r.figure->id == figure_id) return &r;
         return nullptr;
     };
-    std::string ratios, ratio_csv;
     for (const period::RatioCheck& c : data.ratios) {
         const Row *one = row_of(c.numerator), *other = row_of(c.denominator);
         if (!one || !other) continue;  // a profile of it was not asked for
@@ -204,14 +224,17 @@ ValidationReport host_validation(const HostValidationRequest& a) {
             "  {} {} / {}: modelled {:.3g}, published {:.3g} ({:+.1f}%, within {:.0f}%{}) [{}]\n",
             one->figure->kernel, one->profile, other->profile, modelled, published, 100 * error,
             100 * c.tolerance, pass ? "" : " !", c.id);
-        ratio_csv +=
-            fmt::format("{},{}/{},{},ratio,{},ratio,,{:.6g},{:.6g},{:.6f},within,{},{} / {}\n",
-                        one->figure->kernel, one->profile, other->profile, c.id,
-                        csv_field(one->figure->benchmark), modelled, published, error,
-                        pass ? "yes" : "no", one->figure->id, other->figure->id);
+        csv += fmt::format("{},{}/{},{},ratio,{},ratio,,{:.6g},{:.6g},{:.6f},within,{},{} / {}\n",
+                           one->figure->kernel, one->profile, other->profile, c.id,
+                           csv_field(one->figure->benchmark), modelled, published, error,
+                           pass ? "yes" : "no", one->figure->id, other->figure->id);
     }
-    // the other pairs of machines, shown for what they say, and where one machine has several
-    // figures of a program, how far apart those lie
+}
+
+// The other pairs of machines, shown for what they say, and where one machine has several
+// figures of a program, how far apart those lie.
+void unchecked_lines(const std::vector<Row>& rows, const period::ValidationData& data,
+                     std::string& ratios, std::string& spreads) {
     std::vector<period::ModelledFigure> modelled;
     for (const Row& r : rows)
         modelled.push_back({r.figure, r.profile, r.modelled});
@@ -228,18 +251,16 @@ ValidationReport host_validation(const HostValidationRequest& a) {
                             u.kernel, u.numerator, u.denominator, u.modelled, u.published_low,
                             u.published_high, u.pairs, 100 * low, 100 * high);
     }
-    std::string spreads;
     for (const period::FigureSpread& f : period::figure_spreads(modelled))
         spreads += fmt::format("  {} {}: {} figures, {} to {} {} ({:.1f}% apart); modelled {}\n",
                                f.kernel, f.profile, f.figures, number4(f.low), number4(f.high),
                                f.unit, 100 * (f.high / f.low - 1), number4(f.modelled));
-    if (!ratios.empty())
-        table += "the same program on two machines, the ratio of their figures:\n" + ratios;
-    if (!spreads.empty())
-        table += "one machine's several published figures of one program (compilers, systems):\n" +
-                 spreads;
-    // What each profile makes of each kernel at its own clocks, in the kernel's usual unit.
-    table += "modelled at the profiles' own clocks:\n";
+}
+
+// What each profile makes of each kernel at its own clocks, in the kernel's usual unit.
+std::string own_clocks(const Profiles& profiles, const Runs& runs,
+                       const period::ValidationData& data) {
+    std::string table = "modelled at the profiles' own clocks:\n";
     for (const auto& [asked, profile] : profiles) {
         std::string line;
         for (const auto& [isa_kernel, run] : runs) {
@@ -253,6 +274,27 @@ ValidationReport host_validation(const HostValidationRequest& a) {
         }
         table += fmt::format("  {}: {}\n", asked, line);
     }
+    return table;
+}
+
+std::string figures_csv(const std::vector<Row>& rows) {
+    std::string csv =
+        "kernel,profile,figure,machine,benchmark,unit,clock_mhz,modelled,published,error,"
+        "check,pass,source\n";
+    for (const Row& r : rows) {
+        const auto& f = *r.figure;
+        csv +=
+            fmt::format("{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6f},{},{},{}\n", f.kernel, r.profile,
+                        f.id, csv_field(f.machine), csv_field(f.benchmark), f.unit,
+                        f.clock_mhz > 0 ? number4(f.clock_mhz) : "", r.modelled, f.value, r.error,
+                        period::check_name(f.check), r.pass ? "yes" : "no", csv_field(f.source));
+    }
+    return csv;
+}
+
+// What closes the table: the figures given for context, and the key.
+std::string key_lines(const period::ValidationData& data) {
+    std::string table;
     std::string context;
     for (const auto& f : data.figures)
         if (f.profiles.empty())
@@ -266,36 +308,53 @@ ValidationReport host_validation(const HostValidationRequest& a) {
         "check names its own); '!' marks a failed check. clock: the profile's cycles timed at "
         "the figure's machine's clock.\n",
         100 * period::kValidationTolerance);
+    return table;
+}
+
+// Each compared figure's source, once.
+std::string source_lines(const std::vector<Row>& rows) {
     std::string sources = "sources:\n";
     std::set<std::string> listed;
     for (const Row& r : rows)
         if (listed.insert(r.figure->id).second)
             sources +=
                 fmt::format("  [{}] {}: {}\n", r.figure->id, r.figure->machine, r.figure->source);
+    return sources;
+}
+
+}  // namespace
+
+ValidationReport host_validation(const HostValidationRequest& a) {
+    const Note note = [&](const std::string& text) {
+        if (a.note) a.note(text);
+    };
+    const period::ValidationData data = period::builtin_validation();
+    const Profiles profiles = host_profiles(a, data);
+    const std::vector<Figures> figures = figures_of(profiles, data, note);
+    const Runs runs = run_kernels(profiles, figures, data, note);
+    const std::vector<Row> rows = priced_rows(profiles, figures, runs, data);
 
     ValidationReport report;
-    {
-        std::string csv =
-            "kernel,profile,figure,machine,benchmark,unit,clock_mhz,modelled,published,error,"
-            "check,pass,source\n";
-        for (const Row& r : rows) {
-            const auto& f = *r.figure;
-            csv += fmt::format("{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6f},{},{},{}\n", f.kernel,
-                               r.profile, f.id, csv_field(f.machine), csv_field(f.benchmark),
-                               f.unit, f.clock_mhz > 0 ? number4(f.clock_mhz) : "", r.modelled,
-                               f.value, r.error, period::check_name(f.check), r.pass ? "yes" : "no",
-                               csv_field(f.source));
-        }
-        report.csv = csv + ratio_csv;
-    }
+    for (const Row& r : rows)
+        report.all_pass = report.all_pass && r.pass;
+    std::string table = figure_lines(rows);
+    std::string ratios, ratio_csv, spreads;
+    checked_ratios(rows, data, ratios, ratio_csv, report.all_pass);
+    unchecked_lines(rows, data, ratios, spreads);
+    if (!ratios.empty())
+        table += "the same program on two machines, the ratio of their figures:\n" + ratios;
+    if (!spreads.empty())
+        table += "one machine's several published figures of one program (compilers, systems):\n" +
+                 spreads;
+    table += own_clocks(profiles, runs, data) + key_lines(data);
     if (a.classes > 0)
         for (const auto& [asked, profile] : profiles)
             for (const auto& [isa_kernel, run] : runs)
                 if (isa_kernel.first == profile.isa)
                     table +=
                         class_breakdown(isa_kernel.second, asked, run.counts, profile, a.classes);
-    report.text = table + sources;
-    report.all_pass = all_pass;
+    report.text = table + source_lines(rows);
+    report.csv = figures_csv(rows) + ratio_csv;
     return report;
 }
 
