@@ -214,7 +214,13 @@ nlohmann::json compare_rows_json(const Comparison& c) {
                         {"bound_by", r.host_bound ? "host" : "controller"},
                         {"pixels_differing", r.ids.total()},
                         {"px_coverage", r.ids.coverage},
-                        {"px_other_face", r.ids.other_face}});
+                        {"px_other_face", r.ids.other_face},
+                        {"depth_spans", r.controller.depth_spans},
+                        {"faces", r.controller.faces}});
+        if (r.depth) {  // the depth commands: the ties of the profile's depth word
+            rows.back()["px_ties"] = r.depth->ties;
+            rows.back()["depth_bits"] = r.depth->depth_bits;
+        }
         if (r.pipeline)
             rows.back()["pipeline"] =
                 pipeline_json(*r.pipeline, send_times_source(c.host != "native"));
