@@ -12,8 +12,12 @@
 // host stalls and controller idle time so far. Time between frames is not modelled, so
 // frames follow each other at once.
 // The stream is read incrementally (StreamReader); going back re-reads it, through the
-// frame index when the stream has one.
+// frame index when the stream has one. A window that would not fit the screen at --scale is
+// shown at the largest scale that does (Display, fit_scale), and stderr says so. --inspect
+// prints the inspector's line for given pixels at the end of the stream (for scripts).
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <iostream>
 #include <thread>
 #include <tuple>
@@ -50,7 +54,21 @@ struct ViewArgs {
     std::string screenshot, window_screenshot, buffer;
     bool exit_at_end = false;
     bool show_keys = false;
+    std::vector<std::string> inspect;  // "X,Y": print the inspector's line at the end
 };
+
+// "X,Y" of --inspect: two whole numbers from 0; a UsageError naming the option otherwise.
+std::pair<uint32_t, uint32_t> parse_pixel(const std::string& text) {
+    unsigned long x = 0, y = 0;
+    char comma = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%lu%c%lu%c", &x, &comma, &y, &extra) != 3 || comma != ',' ||
+        text.find_first_not_of("0123456789,") != std::string::npos || x > UINT32_MAX ||
+        y > UINT32_MAX)
+        throw UsageError(fmt::format(
+            "--inspect: '{}' is not a pixel: give X,Y, two whole numbers from 0, e.g. 10,20",
+            text));
+    return {static_cast<uint32_t>(x), static_cast<uint32_t>(y)};
+}
 
 const std::vector<std::string> kHelp = {
     "fb89 view - keys",
@@ -62,6 +80,7 @@ const std::vector<std::string> kHelp = {
     "+ -      speed x2 / x1/2   0: 1x = 1989 time",
     "o        overlay: tint pixels by opcode",
     "         green FILL_RECT  red DRAW_SPAN",
+    "         amber DEPTH_SPAN  magenta FACE",
     "         blue FRAME_BEGIN (background)",
     "mouse    inspect the pixel under it",
     "h        hide / show these keys",
@@ -80,7 +99,18 @@ struct Ui {
     bool paced = true;
     bool mouse_in = false;  // the mouse is over the image, at pixel (mouse_x, mouse_y)
     uint32_t mouse_x = 0, mouse_y = 0;
+    bool pinned = false;  // --inspect: the inspector stays on its pixel, whatever the mouse does
 };
+
+// The inspector's line for pixel (x, y): its colour and the command that last wrote it.
+std::string inspector_text(const ViewPlayer& p, uint32_t x, uint32_t y) {
+    const auto& fb = p.controller().framebuffer();
+    if (x >= fb.width() || y >= fb.height())
+        return fmt::format("({},{}) outside the {}x{} frame", x, y, fb.width(), fb.height());
+    std::string text = fmt::format("({},{}) {}", x, y, protocol::to_string(fb.pixel(x, y)));
+    if (const auto w = p.recorder().writer(x, y)) text += " by " + controller::describe(*w);
+    return text;
+}
 
 // The status lines, their fields apart by two spaces (where a line wraps when the window is
 // too narrow for it).
@@ -105,15 +135,10 @@ controller::Hud make_hud(const ViewPlayer& p, const Ui& ui) {
             controller::host_stall_text(p.buffer_bytes(), f.host_stalled_us / 1e3),
             std::max(0.0, p.frame_us() - f.controller_busy_us) / 1e3, f.high_water_bytes));
     }
-    std::string inspect = "inspector: move the mouse over the image";
     const auto& fb = p.controller().framebuffer();
-    if (ui.mouse_in && ui.mouse_x < fb.width() && ui.mouse_y < fb.height()) {
-        const uint32_t x = ui.mouse_x, y = ui.mouse_y;
-        inspect = fmt::format("({},{}) {}", x, y, protocol::to_string(fb.pixel(x, y)));
-        if (const auto w = p.recorder().writer(x, y))
-            inspect += fmt::format(" by #{} {}", w->number, protocol::to_string(*w->command));
-    }
-    hud.status.push_back(inspect);
+    hud.status.push_back(ui.mouse_in && ui.mouse_x < fb.width() && ui.mouse_y < fb.height()
+                             ? inspector_text(p, ui.mouse_x, ui.mouse_y)
+                             : "inspector: move the mouse over the image");
     std::string last = !p.error().empty() ? "stream error: " + p.error()
                        : p.last_command() ? fmt::format("last #{} {}", p.last_number(),
                                                         protocol::to_string(*p.last_command()))
@@ -220,7 +245,17 @@ void check_start_call(const ViewArgs& args) {
                         args.start_call, commands, damaged ? "readable " : ""));
 }
 
+// "--scale 2 makes a 2048x1648 window; the screen has 1280x1024: scale 1 used"
+void tell_scale_fitted(const controller::ScaleFitted& f) {
+    std::cerr << fmt::format(
+        "fb89 view: --scale {:g} makes a {}x{} window; the screen has {}x{}: scale {:g} used\n",
+        f.asked, f.window_width, f.window_height, f.screen_width, f.screen_height, f.used);
+}
+
 int run_view(const ViewArgs& args) {
+    std::vector<std::pair<uint32_t, uint32_t>> inspect;
+    for (const std::string& text : args.inspect)
+        inspect.push_back(parse_pixel(text));
     check_start_call(args);
     ViewPlayer player(args.stream, controller::load_profile(args.profile),
                       parse_buffer_option(args.buffer, args.profile));
@@ -229,7 +264,7 @@ int run_view(const ViewArgs& args) {
 
     std::optional<controller::Display> display;
     try {
-        display.emplace("fb89 view " + args.stream, args.scale);
+        display.emplace("fb89 view " + args.stream, args.scale, tell_scale_fitted);
     } catch (const controller::DisplayUnavailable& e) {
         std::cerr << "fb89: error: " << e.what()
                   << "; use --screenshot with xvfb-run, or fb89 replay --png\n";
@@ -241,6 +276,10 @@ int run_view(const ViewArgs& args) {
     ui.speed = args.speed;
     ui.paced = !(args.exit_at_end && !args.speed_given);  // a screenshot run: as fast as we can
     ui.help = args.show_keys;
+    if (!inspect.empty()) {  // the HUD inspects the first pixel asked for
+        ui.mouse_in = ui.pinned = true;
+        std::tie(ui.mouse_x, ui.mouse_y) = inspect.front();
+    }
     bool shot_taken = false;
     double budget_us = 0;
     auto last = Clock::now();
@@ -248,12 +287,12 @@ int run_view(const ViewArgs& args) {
         const bool busy = player.goal() != ViewGoal::Pause && !player.at_end();
         for (const InputEvent& e : display->poll(busy ? 0 : 30)) {
             if (e.kind == InputEvent::Kind::Quit) return kSuccess;
-            if (e.kind == InputEvent::Kind::MouseMove) {
+            if (e.kind == InputEvent::Kind::MouseMove && !ui.pinned) {
                 const auto px = display->pixel_at(e.x, e.y);
                 ui.mouse_in = px.has_value();
                 if (px) std::tie(ui.mouse_x, ui.mouse_y) = *px;
             }
-            if (e.kind == InputEvent::Kind::MouseLeave) ui.mouse_in = false;
+            if (e.kind == InputEvent::Kind::MouseLeave && !ui.pinned) ui.mouse_in = false;
             if (e.kind == InputEvent::Kind::Key && !on_key(e.key, player, ui)) return kSuccess;
         }
 
@@ -271,6 +310,9 @@ int run_view(const ViewArgs& args) {
         }
 
         if (player.at_end() && !shot_taken) {
+            for (const auto& [x, y] : inspect)
+                std::cout << inspector_text(player, x, y) << "\n";
+            std::cout.flush();
             if (!args.screenshot.empty()) save_screenshot(*display, player, ui, args.screenshot);
             if (!args.window_screenshot.empty())
                 save_window_screenshot(*display, player, ui, args.window_screenshot);
@@ -340,6 +382,12 @@ void register_view(CLI::App& app, int& exit_code) {
                     "status lines and the key panel when it is open");
     sub->add_flag("--show-keys", args->show_keys,
                   "Start with the key panel open over the image (h shows and hides it)");
+    sub->add_option("--inspect", args->inspect,
+                    "At the end of the stream, print the inspector's line for pixel X,Y (its "
+                    "colour and the command that last wrote it); may be repeated. The window's "
+                    "inspector shows the first one, in place of the pixel under the mouse")
+        ->type_name("X,Y")
+        ->allow_extra_args(false);  // one pixel each time it is given
     sub->add_flag("--exit-at-end", args->exit_at_end,
                   "Exit at the end of the stream (as fast as possible unless --speed)");
     sub->callback([args, speed, &exit_code] {

@@ -138,7 +138,7 @@ void Controller::execute(std::span<const Command> commands, std::span<CommandCos
     CommandCost* const out = costs.empty() ? nullptr : costs.data();
     std::size_t i = 0;
     while (i < commands.size()) {
-        if (m_in_frame && !m_observer) i = execute_drawing(commands, i, out);
+        if (m_in_frame && !m_observer && !m_keep_drawn) i = execute_drawing(commands, i, out);
         if (i < commands.size()) {
             execute(commands[i]);
             if (out) out[i] = m_last_cost;
@@ -334,9 +334,32 @@ void Controller::depth_run(uint32_t y, uint32_t x, uint32_t n, int64_t z, int64_
         m_fb.draw_span(y, x, n, color);
     else if (nearer)
         m_fb.draw_flagged(y, x, n, flags, color);
+    // the viewer's hook (keep_depth_drawn): what this run drew; off, an untaken branch
+    if (m_keep_drawn && nearer) [[unlikely]]
+        keep_drawn(y, x, n, nearer == n ? nullptr : flags);
     counts.tests += n;
     counts.nearer += nearer;
     counts.equal += equal;
+}
+
+// keep_depth_drawn's record of one run: the flagged pixels as runs, for the command being
+// executed (the recording path only; depth_run calls it when asked to keep them).
+void Controller::keep_drawn(uint32_t y, uint32_t x, uint32_t n, const uint8_t* flags) {
+    if (m_drawn_after != m_next_command + 1) {  // the first run of this command
+        m_drawn.clear();
+        m_drawn_after = m_next_command + 1;
+    }
+    for (uint32_t i = 0; i < n;) {
+        if (flags && !flags[i]) {
+            ++i;
+            continue;
+        }
+        uint32_t end = i + 1;
+        while (end < n && (!flags || flags[end]))
+            ++end;
+        m_drawn.push_back(PixelRect{x + i, y, end - i, 1});
+        i = end;
+    }
 }
 
 // DEPTH_CLEAR: the frame's depth buffer, every word far; charged as the FILL that clears it.

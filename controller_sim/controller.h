@@ -154,6 +154,21 @@ class Controller final : public protocol::CommandSink {
     using Observer = std::function<void(uint64_t number, const protocol::Command&)>;
     void set_observer(Observer observer) { m_observer = std::move(observer); }
 
+    // The pixels the last command drew by a depth test (a DEPTH_SPAN's or FACE's nearer
+    // pixels), as runs of one row (h = 1), left to right and row by row: a viewer's Recorder
+    // attributes them to the command. Kept only after keep_depth_drawn(true), and only for
+    // commands executed one at a time (execute(c), the sink calls; execute(span) then takes
+    // no fast path); empty after any other command. Off (the default), depth_run pays one
+    // untaken branch per run.
+    void keep_depth_drawn(bool keep) {
+        m_keep_drawn = keep;
+        m_drawn.clear();
+    }
+    std::span<const PixelRect> depth_drawn() const {
+        return m_drawn_after == m_next_command ? std::span<const PixelRect>(m_drawn)
+                                               : std::span<const PixelRect>();
+    }
+
   private:
     // What an exec_* function did; account() turns it into counters and time.
     struct Executed {
@@ -186,6 +201,8 @@ class Controller final : public protocol::CommandSink {
     // tested against the depth buffer, drawn where nearer; adds to the counters.
     void depth_run(uint32_t y, uint32_t x, uint32_t n, int64_t z, int64_t dz, protocol::Rgb color,
                    DepthCounters& counts);
+    // keep_depth_drawn's record: the run's drawn pixels (all n when flags is null)
+    void keep_drawn(uint32_t y, uint32_t x, uint32_t n, const uint8_t* flags);
 
     // One command: its exec_*, its accounting, and for FRAME_END the frame's close.
     void step(const protocol::FrameBegin& c);
@@ -222,6 +239,11 @@ class Controller final : public protocol::CommandSink {
     Pipeline m_unframed_pipe;
     uint64_t m_next_command = 0;
     Observer m_observer;
+    // keep_depth_drawn: the runs drawn, kept for the command after which m_next_command is
+    // m_drawn_after
+    bool m_keep_drawn = false;
+    std::vector<PixelRect> m_drawn;
+    uint64_t m_drawn_after = 0;
 };
 
 }  // namespace fb89::controller

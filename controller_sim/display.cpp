@@ -15,7 +15,8 @@
 //    a real screen could show a fill half done. We never show a command half executed.
 //  - VRAM shift-register transfers and the time they steal: not in the cost model either.
 //  - The host's screen: the window is sized to the framebuffer (never less than 640 pixels
-//    wide) and its text; there is no zoom or pan beyond --scale (1/8 to 8).
+//    wide) and its text, at --scale (1/8 to 8) or, where that window would not fit the
+//    screen's usable bounds, the largest scale that fits (fit_scale); no zoom or pan.
 #include "controller_sim/display.h"
 
 #include <SDL.h>
@@ -86,7 +87,9 @@ struct Display::Impl {
     SDL_Renderer* renderer = nullptr;
     SDL_Texture* image = nullptr;
     SDL_Texture* font = nullptr;
-    double scale = 1;                      // window pixels per framebuffer pixel: 1/8 to 8
+    double asked = 1;  // the scale asked for
+    double scale = 1;  // window pixels per framebuffer pixel: 1/8 to 8
+    ScaleNotice notice;
     uint32_t fb_width = 0, fb_height = 0;  // of the texture
     int status_rows = 0;                   // the most the bar has held at this size
     int win_width = 0, win_height = 0;
@@ -94,10 +97,9 @@ struct Display::Impl {
     std::vector<uint8_t> rgb;
 
     // n framebuffer pixels in window pixels (at least 1 for n > 0)
-    int scaled(uint32_t n) const {
-        return n == 0 ? 0 : std::max(1, static_cast<int>(std::lround(n * scale)));
-    }
+    int scaled(uint32_t n) const { return scaled_size(n, scale); }
     void make_font();
+    void choose_scale(uint32_t width, uint32_t height, const Hud& hud);
     void fit(uint32_t width, uint32_t height, const Hud& hud);
     void resize_window(int w, int h);
     void draw_image(const Framebuffer& fb, const Recorder* overlay);
@@ -121,6 +123,24 @@ void Display::Impl::make_font() {
     SDL_SetTextureBlendMode(font, SDL_BLENDMODE_BLEND);
 }
 
+// the scale for a width x height framebuffer: the one asked, unless its window would not
+// fit the screen (kept 2 status rows more than `hud` has, for the lines to grow)
+void Display::Impl::choose_scale(uint32_t width, uint32_t height, const Hud& hud) {
+    scale = asked;
+    SDL_Rect screen{0, 0, 0, 0};
+    const int index = SDL_GetWindowDisplayIndex(window);
+    if (SDL_GetDisplayUsableBounds(std::max(index, 0), &screen) != 0) return;  // unknown
+    int top = 0, left = 0, bottom = 0, right = 0;
+    if (SDL_GetWindowBordersSize(window, &top, &left, &bottom, &right) != 0)
+        top = left = bottom = right = 0;  // not known before the window is mapped
+    const int rows = static_cast<int>(hud.status.size()) + 2;
+    const int screen_w = screen.w - left - right, screen_h = screen.h - top - bottom;
+    scale = fit_scale(width, height, hud, rows, asked, screen_w, screen_h);
+    if (scale == asked || !notice) return;
+    const HudLayout l = layout_hud(scaled_size(width, asked), scaled_size(height, asked), hud);
+    notice(ScaleFitted{asked, scale, l.window_width, l.window_height, screen_w, screen_h});
+}
+
 // texture sized for a width x height framebuffer, the layout made for `hud`, and the
 // window sized to the layout
 void Display::Impl::fit(uint32_t width, uint32_t height, const Hud& hud) {
@@ -133,6 +153,7 @@ void Display::Impl::fit(uint32_t width, uint32_t height, const Hud& hud) {
         fb_width = width;
         fb_height = height;
         status_rows = 0;
+        choose_scale(width, height, hud);
     }
     layout = layout_hud(scaled(width), scaled(height), hud, status_rows);
     status_rows = std::max(status_rows, static_cast<int>(layout.status.size()));
@@ -206,8 +227,10 @@ std::vector<uint8_t> Display::Impl::read_pixels(int w, int h) {
     return out;
 }
 
-Display::Display(const std::string& title, double scale) : m(std::make_unique<Impl>()) {
-    m->scale = std::clamp(scale, 0.125, 8.0);
+Display::Display(const std::string& title, double scale, ScaleNotice notice)
+    : m(std::make_unique<Impl>()) {
+    m->asked = m->scale = std::clamp(scale, 0.125, 8.0);
+    m->notice = std::move(notice);
     const bool driver_asked = set_in_environment("SDL_VIDEODRIVER");
 #if defined(__unix__) && !defined(__APPLE__)
     // X11 or Wayland: without either there is no screen. Say so before SDL probes its
@@ -295,6 +318,10 @@ std::vector<uint8_t> Display::capture_window(const Framebuffer& fb, const Record
     std::vector<uint8_t> rgb = m->read_pixels(m->layout.window_width, m->layout.window_height);
     SDL_RenderPresent(m->renderer);
     return rgb;
+}
+
+double Display::scale() const {
+    return m->scale;
 }
 
 std::optional<std::pair<uint32_t, uint32_t>> Display::pixel_at(int x, int y) const {

@@ -7,14 +7,14 @@
 //
 //     Display display("fb89 controller", 1);
 //     Recorder writers;
-//     controller.set_observer([&](uint64_t n, const protocol::Command& c) { writers.record(n, c);
-//     });
+//     writers.attach(controller);  // its observer: every command, depth-tested pixels too
 //     ... every 1/60 s: display.poll(0); display.show(controller.framebuffer(), &writers, hud);
 //
 // SDL stays inside display.cpp; this header names none of its types.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -54,15 +54,26 @@ struct InputEvent {
     int x = 0, y = 0;  // MouseMove: window coordinates
 };
 
+// The window would not fit the screen at the scale asked: the scale used instead
+// (fit_scale, hud_layout.h), told once for each framebuffer size that needs it.
+struct ScaleFitted {
+    double asked = 1, used = 1;
+    int window_width = 0, window_height = 0;  // the window at the scale asked
+    int screen_width = 0, screen_height = 0;  // the usable screen, less the window's borders
+};
+using ScaleNotice = std::function<void(const ScaleFitted&)>;
+
 class Display {
   public:
     // Opens a window; the framebuffer is drawn `scale` window pixels per pixel, from 1/8 (a
-    // large frame on a small screen, every eighth pixel) to 8.
+    // large frame on a small screen, every eighth pixel) to 8. The window never grows larger
+    // than the screen's usable bounds (SDL_GetDisplayUsableBounds): for a framebuffer whose
+    // window would, a smaller scale is used (fit_scale) and `notice` told.
     // Throws DisplayUnavailable when SDL cannot open one: on X11/Wayland systems, when
     // neither DISPLAY nor WAYLAND_DISPLAY is set (before SDL probes anything, so SDL prints
     // nothing of its own), and when SDL would fall back to its offscreen or dummy driver
     // without SDL_VIDEODRIVER asking for it. An SDL_VIDEODRIVER that is set is obeyed.
-    Display(const std::string& title, double scale);
+    Display(const std::string& title, double scale, ScaleNotice notice = {});
     ~Display();
     Display(const Display&) = delete;
     Display& operator=(const Display&) = delete;
@@ -87,6 +98,9 @@ class Display {
     // scale.
     std::vector<uint8_t> capture(const Framebuffer& fb, const Recorder* overlay, uint32_t& width,
                                  uint32_t& height);
+
+    // Window pixels per framebuffer pixel now: the scale asked, or the one that fits.
+    double scale() const;
 
     // The framebuffer pixel under window point (x, y) of the last frame shown, if any.
     std::optional<std::pair<uint32_t, uint32_t>> pixel_at(int x, int y) const;

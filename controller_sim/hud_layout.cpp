@@ -3,6 +3,7 @@
 #include "controller_sim/hud_layout.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "controller_sim/bitmap_font.h"
@@ -153,6 +154,26 @@ HudLayout layout_hud(int image_width, int image_height, const Hud& hud, int min_
     l.bar = {0, body_h, l.window_width, rows * line_h + 2 * kTextPad};
     l.window_height = body_h + l.bar.height;
     return l;
+}
+
+int scaled_size(unsigned n, double scale) {
+    return n == 0 ? 0 : std::max(1, static_cast<int>(std::lround(n * scale)));
+}
+
+double fit_scale(unsigned width, unsigned height, const Hud& hud, int min_status_rows, double asked,
+                 int screen_width, int screen_height) {
+    const auto fits = [&](double scale) {
+        const HudLayout l =
+            layout_hud(scaled_size(width, scale), scaled_size(height, scale), hud, min_status_rows);
+        return l.window_width <= screen_width && l.window_height <= screen_height;
+    };
+    if (fits(asked)) return asked;
+    // the whole scales below `asked`, then the halvings below both it and 1
+    for (double s = std::min(std::ceil(asked) - 1, std::floor(asked)); s >= 1; --s)
+        if (fits(s)) return s;
+    for (double s = 0.5; s >= 0.125; s /= 2)
+        if (s < asked && fits(s)) return s;
+    return 0.125;
 }
 
 }  // namespace fb89::controller

@@ -63,4 +63,15 @@ std::vector<std::string> wrap_line(const std::string& line, int columns);
 // has at least `min_status_rows` rows (a caller keeps it from shrinking as lines vary).
 HudLayout layout_hud(int image_width, int image_height, const Hud& hud, int min_status_rows = 0);
 
+// n framebuffer pixels in window pixels at `scale` (at least 1 for n > 0).
+int scaled_size(unsigned n, double scale);
+
+// The scale at which a width x height framebuffer's window (the image under `hud`, with at
+// least `min_status_rows` rows, as layout_hud lays it out) fits a screen_width x
+// screen_height screen: `asked` when it fits, else the largest that fits of the whole scales
+// below it down to 1, then 1/2, 1/4 and 1/8 (whole blocks of pixels, or every 2nd, 4th or
+// 8th pixel); 1/8 when none fits (a screen narrower than kMinWindowWidth).
+double fit_scale(unsigned width, unsigned height, const Hud& hud, int min_status_rows, double asked,
+                 int screen_width, int screen_height);
+
 }  // namespace fb89::controller

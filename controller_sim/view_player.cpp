@@ -33,6 +33,7 @@ void ViewPlayer::reopen() {
 
 void ViewPlayer::reset_state(int64_t ordinal) {
     m_controller = std::make_unique<Controller>(m_profile);
+    m_controller->keep_depth_drawn(true);  // the recorder attributes depth-tested pixels
     m_recorder.reset();
     m_at_end = false;
     m_error.clear();
@@ -86,7 +87,7 @@ bool ViewPlayer::step() {
         return false;
     }
     m_last_number = m_reader->command_number();
-    m_recorder.record(m_last_number, c);
+    m_recorder.record(m_last_number, c, m_controller->depth_drawn());
     m_frame_ended = std::holds_alternative<protocol::FrameEnd>(c);
     m_last = std::move(c);
     return true;

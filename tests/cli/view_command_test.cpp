@@ -56,7 +56,7 @@ controller::PngImage overlaid_frame(const fs::path& stream) {
     protocol::StreamReader reader(stream.string());
     controller::Controller ctl;
     controller::Recorder writers;
-    ctl.set_observer([&](uint64_t n, const protocol::Command& c) { writers.record(n, c); });
+    writers.attach(ctl);
     reader.replay_into(ctl);
     const controller::Framebuffer& fb = ctl.framebuffer();
     std::vector<uint8_t> rgb;
@@ -171,6 +171,49 @@ TEST(ViewCommand, AScaleBelowOneShrinksTheFrame) {
     };
     EXPECT_EQ(at(half, 160, 120), at(full, 320, 240));
     EXPECT_EQ(run_fb89("view " + stream.string() + " --scale 0.1").exit_code, 2) << "below 1/8";
+}
+
+// A window larger than the screen (xvfb-run's is 1280x1024) is shown at the largest scale
+// that fits, and stderr says which: a whole scale below the one asked, else a half or less.
+TEST(ViewCommand, AWindowLargerThanTheScreenIsShownAtTheLargestScaleThatFits) {
+    if (!have_xvfb_run())
+        GTEST_SKIP() << "xvfb-run is not installed (scripts/bootstrap installs xvfb)";
+    struct Case {
+        std::string size, scale, used;
+        uint32_t image_w, image_h;
+    };
+    const Case cases[] = {
+        {"1024x780", "2", "1", 1024, 780},  // 2048x1648 asked for
+        {"1024x780", "3", "1", 1024, 780},  // neither 3 nor 2 fits
+        {"2048x1560", "1", "0.5", 1024, 780},
+    };
+    for (const Case& c : cases) {
+        const fs::path stream = record_stream(c.size);
+        const fs::path shot = test_dir() / "shot.png", window = test_dir() / "window.png";
+        fs::remove(shot);
+        fs::remove(window);
+        const CliRun r = run_fb89("view " + stream.string() + " --scale " + c.scale +
+                                      " --exit-at-end --screenshot " + shot.string() +
+                                      " --window-screenshot " + window.string(),
+                                  under_xvfb());
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const controller::PngImage image = controller::read_png(shot);
+        const controller::PngImage whole = controller::read_png(window);
+        const std::string what = c.size + " at scale " + c.scale;
+        EXPECT_EQ(image.width, c.image_w) << what;
+        EXPECT_EQ(image.height, c.image_h) << what;
+        EXPECT_LE(whole.width, 1280u) << what;
+        EXPECT_LE(whole.height, 1024u) << what;
+        EXPECT_EQ(r.err.rfind("fb89 view: --scale " + c.scale + " makes a ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(" window; the screen has 1280x1024: scale " + c.used + " used\n"),
+                  std::string::npos)
+            << r.err;
+    }
+    // a window that fits is left at the scale asked, without a word
+    const fs::path stream = record_stream("480x360");
+    const CliRun r = run_fb89("view " + stream.string() + " --scale 2 --exit-at-end", under_xvfb());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
 }
 
 TEST(ViewCommand, WithNoDisplayAtAllExitsTwoInOneLine) {

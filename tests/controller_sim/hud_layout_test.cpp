@@ -1,12 +1,13 @@
 // The viewer's text layout without a window: status lines wrapped so that no row is longer
 // than the window has room for and no character is lost, every row inside the window and
 // off the image, the key panel inside the window and absent until asked for, at the
-// viewer's scales 0.5, 1 and 2.
+// viewer's scales 0.5, 1 and 2; and the scale at which a window fits the screen.
 #include "controller_sim/hud_layout.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "controller_sim/bitmap_font.h"
@@ -142,6 +143,58 @@ TEST(Layout, TheBarKeepsTheRowsItIsAskedToKeep) {
     const HudLayout kept = layout_hud(640, 480, hud, 3);
     EXPECT_EQ(kept.bar.height - one.bar.height, 2 * kCellHeight);
     EXPECT_EQ(kept.window_height - one.window_height, 2 * kCellHeight);
+}
+
+// --- fitting the screen ----------------------------------------------------------------
+
+// The window's size at `scale` for a width x height frame under `hud`.
+std::pair<int, int> window_at(unsigned width, unsigned height, const Hud& hud, double scale) {
+    const HudLayout l = layout_hud(scaled_size(width, scale), scaled_size(height, scale), hud, 0);
+    return {l.window_width, l.window_height};
+}
+
+TEST(FitScale, AWindowThatFitsKeepsTheScaleAsked) {
+    const Hud hud = viewer_hud();
+    EXPECT_EQ(fit_scale(480, 360, hud, 0, 2, 1280, 1024), 2);
+    EXPECT_EQ(fit_scale(1024, 780, hud, 0, 1, 1280, 1024), 1);
+    EXPECT_EQ(fit_scale(1024, 780, hud, 0, 0.75, 1280, 1024), 0.75);
+}
+
+TEST(FitScale, ATooLargeWindowTakesTheLargestWholeScaleBelowThatFits) {
+    const Hud hud = viewer_hud();
+    ASSERT_GT(window_at(1024, 780, hud, 2).first, 1280);
+    EXPECT_EQ(fit_scale(1024, 780, hud, 0, 2, 1280, 1024), 1);
+    EXPECT_EQ(fit_scale(1024, 780, hud, 0, 8, 1280, 1024), 1);
+    EXPECT_EQ(fit_scale(400, 300, hud, 0, 8, 1280, 1024), 2);    // 1600 wide at 4, 1200 at 3
+    EXPECT_EQ(fit_scale(400, 300, hud, 0, 3.5, 1300, 2000), 3);  // 1400 wide at 3.5
+}
+
+TEST(FitScale, BelowScaleOneItHalvesUntilTheWindowFits) {
+    const Hud hud = viewer_hud();
+    EXPECT_EQ(fit_scale(2048, 1560, hud, 0, 1, 1280, 1024), 0.5);
+    EXPECT_EQ(fit_scale(2048, 1560, hud, 0, 2, 1280, 1024), 0.5);
+    EXPECT_EQ(fit_scale(2048, 1560, hud, 0, 0.75, 1280, 1024), 0.5);
+    EXPECT_EQ(fit_scale(4096, 3120, hud, 0, 1, 1280, 1024), 0.25);
+    EXPECT_EQ(fit_scale(4096, 4096, hud, 0, 1, 1280, 1024), 0.125);  // 1024x1024 and a bar at 1/4
+    EXPECT_EQ(fit_scale(8192, 8192, hud, 0, 1, 800, 600), 0.125);    // none fits: the least
+}
+
+// Whatever the frame and the screen, the window at the scale chosen fits the screen, the
+// status rows kept included, unless no scale can make it fit.
+TEST(FitScale, TheWindowAtTheScaleChosenFitsTheScreen) {
+    const Hud hud = viewer_hud();
+    for (unsigned w : {64u, 320u, 1024u, 2048u, 4096u})
+        for (unsigned h : {48u, 240u, 780u, 1560u, 4096u})
+            for (double asked : {0.125, 0.5, 1.0, 2.0, 8.0})
+                for (auto [sw, sh] : {std::pair{1280, 1024}, std::pair{1920, 1080}}) {
+                    const double s = fit_scale(w, h, hud, 6, asked, sw, sh);
+                    EXPECT_LE(s, asked);
+                    const HudLayout l = layout_hud(scaled_size(w, s), scaled_size(h, s), hud, 6);
+                    if (s > 0.125 || (l.window_width <= sw && l.window_height <= sh)) {
+                        EXPECT_LE(l.window_width, sw) << w << "x" << h << " at " << asked;
+                        EXPECT_LE(l.window_height, sh) << w << "x" << h << " at " << asked;
+                    }
+                }
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "protocol/coverage.h"
+#include "protocol/depth_fixed.h"
 #include "protocol/stream_writer.h"
 #include "tests/scratch.h"
 
@@ -207,6 +209,72 @@ TEST(ViewPlayer, ABufferTooSmallStallsTheHostAndThePlayerSaysHowLong) {
     EXPECT_EQ(p.pipeline_so_far().host_stalled_us, want.host_stalled_us);
     EXPECT_EQ(p.pipeline_so_far().controller_busy_us, want.controller_busy_us);
     EXPECT_EQ(p.pipeline_so_far().high_water_bytes, buffer);
+}
+
+// Two zspans-like 8x4 frames numbered 0 and 1 (commands 0-6 and 7-13): a near DEPTH_SPAN, a
+// farther one over it and past it, and a FACE nearer than both on part of them.
+std::string write_depth_stream(const std::string& name) {
+    const auto path = fb89::testing::scratch_path("view_player_" + name);
+    constexpr uint32_t kNear = protocol::kDepthOne / 4, kFar = protocol::kDepthOne / 2;
+    constexpr int64_t kPx = protocol::kSubpixel;
+    protocol::StreamWriter w(path.string(), {{"scene", "test"}}, protocol::Timing::Untimed,
+                             protocol::Commands::Depth);
+    for (uint32_t k = 0; k < 2; ++k) {
+        w.frame_begin(protocol::FrameBegin{k, 8, 4, Rgb{}});
+        w.marker(protocol::Marker{"zspans"});
+        w.depth_clear(protocol::DepthClear{});
+        w.depth_span(protocol::DepthSpan{1, 0, 3, kNear, 0, Rgb{1, 0, 0}});
+        w.depth_span(protocol::DepthSpan{1, 0, 7, kFar, 0, Rgb{2, 0, 0}});
+        // pixels [5, 7) x [0, 3): nearest
+        w.face(
+            protocol::Face{Rgb{3, 0, 0},
+                           0,
+                           0,
+                           kNear / 2,
+                           0,
+                           0,
+                           {{5 * kPx, 0}, {7 * kPx, 0}, {7 * kPx, 3 * kPx}, {5 * kPx, 3 * kPx}}});
+        w.frame_end(protocol::FrameEnd{});
+    }
+    w.close();
+    return path.string();
+}
+
+// The writers of row 1 of the frame starting at command `first`.
+void expect_depth_writers(const ViewPlayer& p, uint64_t first) {
+    const Recorder& r = p.recorder();
+    for (uint32_t x = 0; x < 4; ++x)  // the near span: the farther one after it drew none
+        EXPECT_EQ(r.writer(x, 1)->number, first + 3) << x;
+    EXPECT_EQ(r.writer(4, 1)->number, first + 4);  // the farther span, where it was nearest
+    EXPECT_EQ(r.writer(7, 1)->number, first + 4);
+    EXPECT_EQ(r.writer(5, 1)->number, first + 5);  // the face, over the farther span
+    EXPECT_EQ(r.writer(5, 1)->opcode(), protocol::Opcode::Face);
+    EXPECT_EQ(r.writer(6, 0)->number, first + 5);
+    EXPECT_EQ(r.writer(0, 0)->number, first);  // background: nothing drew there
+    EXPECT_EQ(r.writer(4, 1)->pixels, 4u);
+    EXPECT_EQ(r.writer(5, 1)->pixels, 6u);
+}
+
+TEST(ViewPlayer, DepthSpanAndFacePixelsAreTheirsByStreamNumberAlsoAfterASeek) {
+    ViewPlayer p(write_depth_stream("depth"), load_profile("ideal"));
+    p.next_frame();
+    p.run(far());
+    ASSERT_TRUE(p.error().empty()) << p.error();
+    EXPECT_EQ(p.next_command(), 7u);
+    expect_depth_writers(p, 0);
+
+    p.set_goal(ViewGoal::End);
+    p.run(far());
+    ASSERT_TRUE(p.at_end());
+    expect_depth_writers(p, 7);
+
+    p.seek_frame_number(1);  // through the index: a fresh controller from command 7
+    EXPECT_EQ(p.next_command(), 7u);
+    p.set_goal(ViewGoal::End);
+    p.run(far());
+    ASSERT_TRUE(p.at_end());
+    ASSERT_TRUE(p.error().empty()) << p.error();
+    expect_depth_writers(p, 7);
 }
 
 }  // namespace
