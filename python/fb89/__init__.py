@@ -471,12 +471,6 @@ def radiosity(scene, *, ff="hybrid", patches=None, epsilon=None, link_rays=None,
         ids_view=ids_view, stream=stream, stats=stats, progress=progress)
 
 
-def _csv_table(text, csv_text):
-    import csv as _csv
-    lines = list(_csv.reader(csv_text.splitlines()))
-    return Table(columns=lines[0], rows=lines[1:], text=text, csv=csv_text)
-
-
 @_keywords
 def model(*, es=None, fv=None, d=1, fw=None, ew=None, faces=None):
     """Tabulates the paper's analytic model, as `fb89 model` does: with es and fv, the window
@@ -491,24 +485,28 @@ def model(*, es=None, fv=None, d=1, fw=None, ew=None, faces=None):
     return tables[0] if len(tables) == 1 else tuple(tables)
 
 
-class Validation:
-    """What host_validate() and controller_validate() found: table (an fb89.Table, the CSV the
-    command's --csv writes: one row a check), text (what the command prints), all_pass
-    (whether every check passed: the command's --check exits 1 when not), listing
-    (controller_validate(listing=True): the command loop with each instruction's cycles)."""
+class Validation(Table):
+    """What host_validate() and controller_validate() found: an fb89.Table of the checks, the
+    CSV the command's --csv writes (one row a check; str() is the text the command prints),
+    with all_pass (whether every check passed: the command's --check exits 1 when not),
+    listing (controller_validate(listing=True): the command loop with each instruction's
+    cycles, else None), text (what the command prints) and table (itself)."""
 
     def __init__(self, parts):
-        self.table = _csv_table(parts["text"], parts["csv"])
+        import csv as _csv
+        lines = list(_csv.reader(parts["csv"].splitlines()))
+        super().__init__(columns=lines[0], rows=lines[1:], text=parts["text"], csv=parts["csv"])
         self.text = parts["text"]
         self.all_pass = parts["all_pass"]
         self.listing = parts["listing"] or None
 
-    def __str__(self):
-        return self.text
+    @property
+    def table(self):
+        return self
 
     def __repr__(self):
-        return (f"<fb89.Validation {len(self.table)} checks, "
-                f"{'all pass' if self.all_pass else 'some missed'}>")
+        return (f"<fb89.Validation {len(self.rows)} checks, "
+                f"{'all pass' if self.all_pass else 'some missed'}: {', '.join(self.columns)}>")
 
 
 @_keywords

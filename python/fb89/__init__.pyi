@@ -146,11 +146,12 @@ class Radiosity:
     @property
     def controller_figures(self) -> dict[str, Any]: ...
 
-class Validation:
-    table: Table
+class Validation(Table):
     text: str
     all_pass: bool
     listing: str | None
+    @property
+    def table(self) -> Table: ...
 
 class Diff:
     frames: list[dict[str, Any]]

@@ -130,6 +130,7 @@ def test_controller_validate_is_the_commands_table(tmp_path):
     csv = tmp_path / "c.csv"
     run = cli("controller-validate", "--csv", str(csv))
     v = fb89.controller_validate()
+    assert isinstance(v, fb89.Table) and v.table is v
     assert v.table.csv() == csv.read_text()
     assert v.table.columns[:3] == ["figure", "unit", "source"] and len(v.table) > 5
     assert v.text == cli("controller-validate").stdout
