@@ -104,8 +104,9 @@ void register_diff(CLI::App& app, int& exit_code) {
     sub->add_option("--image", args->image,
                     "Write the first differing frame's diff image (differences red over A dimmed)");
     sub->add_option("--profile", args->profile,
-                    "Draw the frames as this controller profile does (its depth word decides "
-                    "the depth commands' ties)")
+                    profile_option_help() +
+                        "; the frames are drawn as its controller draws them (its depth word "
+                        "decides the depth commands' ties)")
         ->check(profile_validator())
         ->capture_default_str();
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing; only the exit code tells");

@@ -391,7 +391,8 @@ void register_render(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand("render", "Render a scene with one hidden-surface method");
     sub->add_option(
            "scene", args->scene,
-           scene_argument_help("Scene: a .json file or a .tri file of screen-space triangles"))
+           scene_argument_help("Scene: a .json file, a bare .obj model (framed by an automatic "
+                               "camera) or a .tri file of screen-space triangles"))
         ->required();
     sub->add_option("--method,-m", args->method, method_option_help("Hidden-surface method"))
         ->check(method_validator())

@@ -62,8 +62,9 @@ TEST(ObjScene, ABareObjModelRendersFramedAutomaticallyWithEveryFrontFaceVisible)
         if (id_plus_1) ++pixels[id_plus_1 - 1];
         // the model stays clear of the borders: the framing holds all of it
         const size_t x = p % image.width, y = p / image.width;
-        if (x == 0 || y == 0 || x + 1 == image.width || y + 1 == image.height)
+        if (x == 0 || y == 0 || x + 1 == image.width || y + 1 == image.height) {
             EXPECT_EQ(id_plus_1, 0u) << "a face reaches the border at " << x << ", " << y;
+        }
     }
     // every face that turns towards the camera shows (the grazing ones as slivers of some
     // 4,000 pixels); a face turned away may win a pixel or so of a silhouette edge it shares
