@@ -235,7 +235,9 @@ TEST(RecorderDepth, TheOverlayTintsDepthSpanAndFaceEachInItsOwnColour) {
                               Opcode::DepthSpan, Opcode::Face};
     for (Opcode a : drawing)
         for (Opcode b : drawing)
-            if (a != b) EXPECT_NE(opcode_tint(a), opcode_tint(b)) << to_string(a) << to_string(b);
+            if (a != b) {
+                EXPECT_NE(opcode_tint(a), opcode_tint(b)) << to_string(a) << to_string(b);
+            }
 }
 
 TEST(RecorderDepth, TheInspectorNamesAFaceByItsColourPointsBoundsAndPixelsDrawn) {
