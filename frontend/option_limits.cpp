@@ -93,14 +93,11 @@ std::string usage_words(const std::string& text) {
     }
     if (const std::string words = value_words(text); !words.empty()) return words;
     static const std::regex excludes(R"((\S+) excludes (\S+))");
-    static const std::regex requires_(R"((\S+) requires (\S+))");
     static const std::regex at_most_of(R"(Requires at most 1 options be given from \[(.*)\])");
     static const std::regex extras(R"(The following arguments? (?:was|were) not expected: (.*))");
     if (std::regex_match(text, m, excludes))
         return fmt::format("{} and {} exclude each other: give one of them", m[1].str(),
                            m[2].str());
-    if (std::regex_match(text, m, requires_))
-        return fmt::format("{} needs {} too", m[1].str(), m[2].str());
     if (std::regex_match(text, m, at_most_of)) return "give at most one of " + m[1].str();
     if (std::regex_match(text, m, extras))
         return "arguments the command does not take: " + m[1].str();
