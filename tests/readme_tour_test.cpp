@@ -5,7 +5,7 @@
 // command prints, in shape -- the same lines with the same words and columns, "..." standing
 // for lines left out -- and in every figure a run does not measure: counts, cycles, modelled
 // times, checksums (the times measured on this machine, wall and CPU, send times and what
-// follows from them, are left out: `measured` below lists them). ReadmeTour.TheSamples*
+// follows from them, are left out: tests/readme_samples.h lists them). ReadmeTour.TheSamples*
 // runs the sessions alone, in seconds.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -21,11 +21,14 @@
 
 #include "period/host_profile.h"
 #include "period/isa.h"
+#include "tests/readme_samples.h"
 #include "tests/scratch.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using fb89::testing::lines_of;
+using fb89::testing::matches;
 
 const fs::path kSource = fs::path(FB89_SCENES_DIR).parent_path();
 
@@ -35,14 +38,6 @@ struct Step {
     std::vector<std::string> expected;  // the sample output, "..." for lines left out
     int line = 0;                       // in README.md
 };
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string l; std::getline(in, l);)
-        out.push_back(l);
-    return out;
-}
 
 std::string read(const fs::path& p) {
     std::ifstream in(p);
@@ -200,81 +195,6 @@ Outcome run(const std::string& command, const fs::path& dir, const fs::path& hom
     return r;
 }
 
-// A line's shape: numbers and checksums as '#', runs of spaces as one.
-std::string shape(const std::string& line) {
-    static const std::regex number(R"([0-9a-f]{16}|[-+]?[0-9][0-9,]*(\.[0-9]+)?(e[-+]?[0-9]+)?)");
-    std::string s = std::regex_replace(line, number, "#");
-    s = std::regex_replace(s, std::regex(" +"), " ");
-    const size_t a = s.find_first_not_of(' ');
-    return a == std::string::npos ? "" : s.substr(a, s.find_last_not_of(' ') - a + 1);
-}
-
-// What a run measures, and so differs from run to run: each pattern's numbers are left out
-// of the comparison of figures ("~" in their place).
-const std::vector<std::regex>& measured() {
-    static const std::vector<std::regex> patterns = {
-        // render's host times: wall and CPU
-        std::regex(R"(^(\s*(?:load|set-up|hidden-surface\*|end to end)\s).*$)"),
-        // the host against the controller, and the pipeline the measured send times make
-        std::regex(R"((host \S+ )[0-9.]+( ms CPU))"),
-        std::regex(R"((\()[0-9.]+(x the host\)))"),
-        std::regex(R"(^(pipeline ).*$)"),
-        // send times: dump's, info's table of them, diff's host ends
-        std::regex(R"((sent )[0-9.]+( us))"),
-        std::regex(R"((host end )[0-9.]+( us))"),
-        std::regex(R"(^(\s*[0-9]+)\s+[0-9]+\.[0-9]{6}\s+[0-9]+\.[0-9]{6}()$)"),
-        std::regex(
-            R"(^(\s*[0-9]+\s+[0-9]+x[0-9]+\s+[0-9]+x[0-9]+\s+[0-9,]+\s+)[0-9.]+\s+[0-9.]+(\s+\())"),
-        // replay --benchmark's speed
-        std::regex(R"(( in )[0-9.]+ s wall: .*()$)"),
-    };
-    return patterns;
-}
-
-// A line's figures: the line with what a run measures as "~", runs of spaces as one.
-std::string figures(const std::string& line) {
-    std::string s = line;
-    for (const std::regex& r : measured())
-        s = std::regex_replace(s, r, "$1~$2");
-    s = std::regex_replace(s, std::regex(" +"), " ");
-    const size_t a = s.find_first_not_of(' ');
-    return a == std::string::npos ? "" : s.substr(a, s.find_last_not_of(' ') - a + 1);
-}
-
-// "" when `actual` has the sample's lines in order, in shape, each "..." standing for any
-// number of lines, or what differs; with `same_figures`, each line found must also carry the
-// sample's figures but for what a run measures.
-std::string matches(const std::vector<std::string>& sample, const std::string& actual,
-                    bool same_figures = false) {
-    const std::vector<std::string> printed = lines_of(actual);
-    std::vector<std::string> got;
-    for (const std::string& l : printed)
-        got.push_back(shape(l));
-    size_t at = 0;
-    bool gap = false;
-    for (const std::string& want_line : sample) {
-        if (shape(want_line) == "...") {
-            gap = true;
-            continue;
-        }
-        const std::string want = shape(want_line);
-        size_t k = at;
-        if (gap)
-            while (k < got.size() && got[k] != want)
-                ++k;
-        if (k >= got.size() || got[k] != want)
-            return "expected, " + std::string(gap ? "somewhere after" : "right after") +
-                   " output line " + std::to_string(at) + ": '" + want_line + "'";
-        if (same_figures && figures(want_line) != figures(printed[k]))
-            return "the sample says '" + want_line + "', the command prints '" + printed[k] + "'";
-        at = k + 1;
-        gap = false;
-    }
-    if (!gap && at != got.size())
-        return "output goes on after the sample's last line: '" + printed[at] + "'";
-    return "";
-}
-
 TEST(ReadmeTourLong, TheCommandsRunInACopyLeaveItCleanAndPrintWhatTheSamplesShow) {
     std::vector<std::string> problems;
     const std::vector<Step> steps = steps_of(read(kSource / "README.md"), problems);
@@ -349,66 +269,6 @@ TEST(ReadmeTour, TheSamplesFiguresAreWhatTheCommandsPrint) {
             << r.output;
     }
     EXPECT_GE(sessions, 10);
-}
-
-// The figures' matcher: a changed count, cycle count or modelled time is a difference; a
-// measured time (wall, CPU, send times and what follows from them) is not.
-TEST(ReadmeTour, TheFiguresMatcherSeesAChangedCountAndNotAMeasuredTime) {
-    const std::vector<std::string> sample = {
-        " frame  size  commands  cycles  modelled ms  checksum",
-        "     0  1024x780  7,667  1,034,743  172.357  2a4e14adb9f420df",
-        "...",
-        "  hidden-surface*       0.770 ms      0.769 ms",
-        "      1 @155       MARKER \"zbuffer\"  sent 808.328 us",
-        "benchmark: 7,667 commands, 1,333,043 pixels in 0.0013 s wall: 5.942 M commands/s"};
-    const std::string head = " frame  size  commands  cycles  modelled ms  checksum\n";
-    const std::string row = "     0  1024x780  7,667  1,034,743  172.357  2a4e14adb9f420df\n";
-    const std::string measured =
-        "  hidden-surface*       0.912 ms      0.901 ms\n"
-        "      1 @155       MARKER \"zbuffer\"  sent 1605.058 us\n"
-        "benchmark: 7,667 commands, 1,333,043 pixels in 0.0127 s wall: 0.602 M commands/s\n";
-    EXPECT_EQ(matches(sample, head + row + "x\n" + measured, true), "");
-    // the cycles and the modelled time of another profile
-    EXPECT_NE(
-        matches(sample,
-                head + "     0  1024x780  7,667  1,729,028  180.222  2a4e14adb9f420df\n" + measured,
-                true),
-        "");
-    // a count, a checksum, a byte offset
-    EXPECT_NE(
-        matches(sample,
-                head + "     0  1024x780  7,668  1,034,743  172.357  2a4e14adb9f420df\n" + measured,
-                true),
-        "");
-    EXPECT_NE(
-        matches(sample,
-                head + "     0  1024x780  7,667  1,034,743  172.357  2a4e14adb9f420de\n" + measured,
-                true),
-        "");
-    EXPECT_NE(
-        matches(sample,
-                head + row + "      1 @156       MARKER \"zbuffer\"  sent 1.0 us\n" +
-                    "benchmark: 7,667 commands, 1,333,043 pixels in 1 s wall: 1 M commands/s\n",
-                true),
-        "");
-    // shape alone lets the figures go
-    EXPECT_EQ(
-        matches(sample, head + "     0  1024x780  7,668  1,729,028  180.222  2a4e14adb9f420df\n" +
-                            measured),
-        "");
-}
-
-// The matcher itself: it accepts other numbers, and catches a changed word, a missing
-// column, a missing line and an extra one.
-TEST(ReadmeTour, TheShapeMatcherSeesWhatChanged) {
-    const std::vector<std::string> sample = {"frame  size  commands", "    0  1024x780  7,667",
-                                             "...", "total 12.5 ms"};
-    EXPECT_EQ(matches(sample, "frame  size  commands\n 0   640x480  99\nx\ny\ntotal 3.25 ms\n"),
-              "");
-    EXPECT_NE(matches(sample, "frame  size  cmds\n 0   640x480  99\ntotal 3.25 ms\n"), "");
-    EXPECT_NE(matches(sample, "frame  size  commands\n 0   640x480\ntotal 3.25 ms\n"), "");
-    EXPECT_NE(matches(sample, "frame  size  commands\n 0   640x480  99\n"), "");
-    EXPECT_NE(matches(sample, "frame  size  commands\n 0  1x1  9\ntotal 1 ms\nmore\n"), "");
 }
 
 }  // namespace
