@@ -11,11 +11,8 @@
 
 #include <fmt/format.h>
 
-#include "experiments/depth_agreement.h"
-#include "experiments/id_pass.h"
-#include "host/methods.h"
-#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
+#include "tests/depth_commands_check.h"
 
 namespace fb89 {
 namespace {
@@ -37,23 +34,13 @@ class GoldenDepthCommands : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GoldenDepthCommands, ControllerDepthGivesTheZBuffersIdsButForCountedTies) {
     const host::Scene scene = host::load_scene(GetParam());
-    host::Counters counters;
-    const host::ScreenScene screen = host::project_scene(scene, host::ColorMode::FaceId, counters);
-    auto zbuffer = host::make_renderer(host::Method::ZBuffer);
-    const controller::Framebuffer want = experiments::id_framebuffer(scene, *zbuffer);
-    for (host::Method m : {host::Method::DepthSpans, host::Method::Faces})
-        for (uint32_t bits : {16u, 32u}) {
-            auto renderer = host::make_renderer(m);
-            const controller::Framebuffer got = experiments::id_framebuffer(scene, *renderer, bits);
-            const experiments::DepthAgreement a =
-                experiments::depth_agreement(screen, want, got, bits);
-            const std::string label = fmt::format("{} {}-bit", host::method_info(m).name, bits);
-            EXPECT_EQ(a.coverage, 0u) << label;
-            EXPECT_EQ(a.wrong, 0u) << label;
-            EXPECT_EQ(a.differ, a.ties + a.coverage + a.wrong) << label;
-            RecordProperty(fmt::format("{}_{}_ties", host::method_info(m).name, bits),
-                           std::to_string(a.ties));
-        }
+    for (const testing::DepthCheck& c : testing::depth_commands_against_zbuffer(scene)) {
+        const experiments::DepthAgreement& a = c.agreement;
+        EXPECT_EQ(a.coverage, 0u) << c.label();
+        EXPECT_EQ(a.wrong, 0u) << c.label();
+        EXPECT_EQ(a.differ, a.ties + a.coverage + a.wrong) << c.label();
+        RecordProperty(fmt::format("{}_{}_ties", c.method, c.bits), std::to_string(a.ties));
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GoldenDepthCommands, ::testing::ValuesIn(inputs()),

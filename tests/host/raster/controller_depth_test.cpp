@@ -11,33 +11,20 @@
 #include <fmt/format.h>
 
 #include "experiments/depth_agreement.h"
-#include "experiments/id_pass.h"
-#include "host/methods.h"
-#include "host/raster/screen_setup.h"
 #include "host/scene/scene_loader.h"
+#include "tests/depth_commands_check.h"
 
 namespace fb89 {
 namespace {
 
 // Every depth-command method with both words against the Z-buffer; returns the ties.
 uint64_t expect_no_wrong_pixel(const host::Scene& scene, const std::string& what) {
-    host::Counters counters;
-    const host::ScreenScene screen = host::project_scene(scene, host::ColorMode::FaceId, counters);
-    auto zbuffer = host::make_renderer(host::Method::ZBuffer);
-    const controller::Framebuffer want = experiments::id_framebuffer(scene, *zbuffer);
     uint64_t ties = 0;
-    for (host::Method m : {host::Method::DepthSpans, host::Method::Faces})
-        for (uint32_t bits : {16u, 32u}) {
-            auto renderer = host::make_renderer(m);
-            const controller::Framebuffer got = experiments::id_framebuffer(scene, *renderer, bits);
-            const experiments::DepthAgreement a =
-                experiments::depth_agreement(screen, want, got, bits);
-            const std::string label =
-                fmt::format("{}: {} {}-bit", what, host::method_info(m).name, bits);
-            EXPECT_EQ(a.coverage, 0u) << label;
-            EXPECT_EQ(a.wrong, 0u) << label;
-            ties += a.ties;
-        }
+    for (const testing::DepthCheck& c : testing::depth_commands_against_zbuffer(scene)) {
+        EXPECT_EQ(c.agreement.coverage, 0u) << what << ": " << c.label();
+        EXPECT_EQ(c.agreement.wrong, 0u) << what << ": " << c.label();
+        ties += c.agreement.ties;
+    }
     return ties;
 }
 
