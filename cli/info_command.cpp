@@ -2,7 +2,8 @@
 // (format version, properties), whether it ends in a frame index, and per frame the
 // commands by opcode, the pixels written (the FRAME_BEGIN clear included), the modelled
 // bus bytes, the bytes the frame takes in the file, and the frame's checksum; in a stream with
-// send times (version 2), each frame's last send time and the host's end.
+// send times (version 2), each frame's last send time and the host's end; and, in a stream with
+// checksums (version 4), their state: the batches checked, all good, or the first damaged one.
 //
 // Pixels, bus bytes and checksums come from replaying the stream through the controller
 // (the default profile, tms34010-50mhz, unless --profile says otherwise: modelled bus bytes
@@ -30,6 +31,25 @@ struct InfoArgs {
     bool json = false;
 };
 
+// The checksums line: "37 batches, all good"; the first damaged batch; or none before version 4.
+std::string checksums_text(const json& j) {
+    const json& c = j["checksums"];
+    if (c.is_null())
+        return fmt::format("none (format version {}; version 4 has them)", j["version"].get<int>());
+    const uint64_t good = c["batches_checked"].get<uint64_t>();
+    if (c["all_good"].get<bool>()) return fmt::format("{} batches, all good", grouped(good));
+    if (c["first_bad"].is_null())
+        return fmt::format("{} batches good; the stream ends in an error before the rest (below)",
+                           grouped(good));
+    const json& bad = c["first_bad"];
+    return fmt::format("{} at byte {} is damaged, after {} good ones (commands from {} not read)",
+                       bad["batch"].is_null()
+                           ? std::string("a batch")
+                           : fmt::format("batch {}", bad["batch"].get<uint32_t>()),
+                       grouped(bad["offset"].get<uint64_t>()), grouped(good),
+                       grouped(bad["after_commands"].get<uint64_t>()));
+}
+
 void print_text(const json& j) {
     fmt::print("stream         {}\n", j["stream"].get<std::string>());
     if (j.contains("file_bytes"))
@@ -40,6 +60,7 @@ void print_text(const json& j) {
     fmt::print("frame index    {}\n", j["frame_index"].get<bool>()
                                           ? "present"
                                           : "none (a cut stream, or it ends in an error)");
+    fmt::print("checksums      {}\n", checksums_text(j));
     fmt::print("commands       {} in {} frame(s), {} outside frames\n",
                grouped(j["commands"].get<uint64_t>()), j["frames"].size(),
                grouped(j["unframed_commands"].get<uint64_t>()));

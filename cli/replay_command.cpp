@@ -18,9 +18,13 @@
 // A truncated or corrupt stream: every complete frame is reported, then the StreamError on
 // stderr, and exit 2 with no output file written or changed (the snapshots already taken
 // wait beside their targets and are removed: protocol::OutputBatch). With --salvage
-// the damage is a warning: the last complete frame is written with --png, the snapshots
-// taken before the damage are kept, --stats carries an "error" entry, and the exit is 0.
+// what came before the error is kept: the last complete frame is written with --png, the
+// snapshots taken before it are kept, --stats carries an "error" entry. A stream cut short or
+// refused is then a warning, exit 0; a damaged one (version 4: a batch failing its checksum,
+// none of whose commands is replayed) is still an error, exit 2, with the outputs written and
+// what was dropped said.
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -32,6 +36,7 @@
 #include "controller_sim/timed_pipeline.h"
 #include "frontend/pipelines.h"
 #include "frontend/stream_tools.h"
+#include "protocol/output_file.h"
 
 namespace fb89::cli {
 
@@ -106,6 +111,29 @@ void replay(const ReplayArgs& args, const protocol::CallSet& snapshots,
     run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// --salvage on a damaged stream: what was not replayed -- the damaged batch and everything after
+// it, the frames the trailing index lists beyond those kept, a frame left open.
+std::string dropped_text(const ReplayArgs& args, protocol::StreamReader& reader,
+                         const controller::Controller& ctl, const protocol::StreamError& e) {
+    std::string out = fmt::format("dropped {} and everything after it: the commands from {} on",
+                                  e.batch() ? fmt::format("batch {}", *e.batch()) : "the batch",
+                                  grouped(e.command()));
+    std::error_code ec;
+    const auto size = args.stream == "-" ? 0 : std::filesystem::file_size(args.stream, ec);
+    if (args.stream != "-" && !ec && size > e.offset())
+        out += fmt::format(", bytes {} to {} ({} bytes)", grouped(e.offset()), grouped(size - 1),
+                           grouped(size - e.offset()));
+    try {  // the index, when it is whole, says how many frames the stream had
+        if (const auto index = reader.read_trailing_index())
+            out += fmt::format("; the stream's frame index lists {} frame(s)", index->size());
+    } catch (const protocol::StreamError&) {
+    }
+    if (ctl.in_frame())
+        out += fmt::format("; frame {}, begun before the damage, is left open and not counted",
+                           ctl.open_frame().frame);
+    return out;
+}
+
 nlohmann::json benchmark_json(const ReplayRun& run, const controller::OpcodeCounters& all) {
     const double s = run.wall_s > 0 ? run.wall_s : 1e-9;
     return {{"wall_s", run.wall_s},
@@ -160,9 +188,9 @@ int run_replay(const ReplayArgs& args) {
     if (write && !args.png.empty() && snapshots.empty()) {
         if (!run.last_frame) {
             if (run.error)
-                std::cerr << fmt::format(
-                    "fb89: warning: {}; --salvage: no complete frame before it\n",
-                    run.error->what());
+                std::cerr << fmt::format("fb89: {}: {}; --salvage: no complete frame before it\n",
+                                         run.error->damaged() ? "error" : "warning",
+                                         run.error->what());
             throw std::runtime_error(args.stream + ": no complete frame; " + args.png +
                                      " not written");
         }
@@ -208,6 +236,20 @@ int run_replay(const ReplayArgs& args) {
                 grouped(all.commands), grouped(all.pixels), run.wall_s,
                 b["commands_per_s"].get<double>() / 1e6, b["mpixels_per_s"].get<double>());
         }
+    }
+    if (run.error && args.salvage && run.error->damaged()) {
+        // the outputs stand (the frames before the damage are good), the exit says the input
+        // was damaged
+        if (protocol::OutputBatch* outputs = protocol::OutputBatch::current()) outputs->publish();
+        report_stream_error(*run.error);
+        std::cerr << fmt::format(
+            "fb89: {}: --salvage: kept the {} complete frame(s) before the damage{}; {}\n",
+            args.stream, ctl.frames().size(),
+            args.png.empty() && args.stats.empty() && args.timeline.empty()
+                ? ""
+                : " and wrote the outputs from them",
+            dropped_text(args, reader, ctl, *run.error));
+        return kBadInput;
     }
     if (run.error && args.salvage) {
         std::cerr << fmt::format(
@@ -255,9 +297,10 @@ void register_replay(CLI::App& app, int& exit_code) {
     sub->add_flag("--benchmark", args->benchmark,
                   "Time the replay (wall) and report commands/s and Mpixels/s");
     sub->add_flag("--salvage", args->salvage,
-                  "A truncated or corrupt stream is a warning, not an error: write what was "
-                  "read before the damage (the last complete frame, earlier snapshots, stats "
-                  "with an \"error\" entry) and exit 0");
+                  "On a truncated or corrupt stream, write what was read before the error (the "
+                  "last complete frame, earlier snapshots, stats with an \"error\" entry): a "
+                  "stream cut short or refused is then a warning, exit 0; a damaged one (a "
+                  "batch failing its checksum) still exits 2, saying what was dropped");
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_replay(*args); });
 }

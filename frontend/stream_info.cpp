@@ -119,6 +119,18 @@ json info_json(const protocol::StreamReader& reader, const controller::Controlle
            {"frames", std::move(frames)}};
     if (reader.timed()) j["send_times"] = send_times_of(reader);
     if (file_size) j["file_bytes"] = *file_size;
+    // version 4: the batches found whole, and the first damaged one (none of it was read)
+    j["checksums"] = nullptr;
+    if (reader.checksummed()) {
+        j["checksums"] = {{"batches_checked", reader.batches_checked()},
+                          {"all_good", !info.error},
+                          {"first_bad", nullptr}};
+        if (info.error && info.error->damaged())
+            j["checksums"]["first_bad"] = {
+                {"batch", info.error->batch() ? json(*info.error->batch()) : json(nullptr)},
+                {"offset", info.error->offset()},
+                {"after_commands", info.error->command()}};
+    }
     if (info.error) {
         j["error"] = {{"message", info.error->what()},
                       {"offset", info.error->offset()},

@@ -3,8 +3,10 @@
 // index, and per frame the commands by opcode, the pixels written (the FRAME_BEGIN clear
 // included), the modelled bus bytes, the bytes the frame takes in the file, and the frame's
 // checksum (16 hex digits, as every command prints one); in a stream with send times
-// (version 2), each frame's last send time and the host's end. Pixels, bus bytes and
-// checksums come from replaying the stream through a controller with the given profile.
+// (version 2), each frame's last send time and the host's end; in a stream with checksums
+// (version 4), their state: "checksums" {batches_checked, all_good, first_bad}, null before
+// version 4. Pixels, bus bytes and frame checksums come from replaying the stream through a
+// controller with the given profile.
 #pragma once
 
 #include <optional>

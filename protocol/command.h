@@ -18,12 +18,14 @@ namespace fb89::protocol {
 
 // The newest stream format this fb89 reads (docs/PROTOCOL.md): version 1, the commands;
 // version 2, the commands with the host's send times; version 3, the depth commands too
-// (with or without times, as its header's flags say). A stream is written in the oldest
-// version that carries it, so that every fb89 that can read it does.
-inline constexpr uint16_t kFormatVersion = 3;
+// (with or without times, as its header's flags say); version 4, version 3 with checksums,
+// so that a damaged stream is refused rather than replayed. fb89 writes version 4; asked for
+// a stream without checksums, the oldest of versions 1 to 3 that carries it.
+inline constexpr uint16_t kFormatVersion = 4;
 inline constexpr uint16_t kUntimedVersion = 1;
 inline constexpr uint16_t kTimedVersion = 2;
 inline constexpr uint16_t kDepthVersion = 3;
+inline constexpr uint16_t kChecksumVersion = 4;
 
 enum class Opcode : uint8_t {
     FrameBegin = 0x01,

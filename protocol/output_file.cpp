@@ -237,7 +237,9 @@ LiveFile::LiveFile(fs::path target, Publish publish) : m_final(final_path(target
     if (::stat(m_final.c_str(), &st) == 0 && S_ISREG(st.st_mode)) {
         // the old file aside, under a hidden name of its own beside it (same file system)
         const fs::path dir = m_final.parent_path().empty() ? fs::path(".") : m_final.parent_path();
-        std::string name = (dir / ("." + m_final.filename().string() + ".old-XXXXXX")).string();
+        // (formatted, not "." + name: GCC 12's -Wrestrict misreads that insert at -O2 and up)
+        std::string name =
+            (dir / fmt::format(".{}.old-XXXXXX", m_final.filename().string())).string();
         const int placeholder = ::mkstemp(name.data());
         if (placeholder < 0) fail_at("cannot open for writing", errno);
         ::close(placeholder);

@@ -1,4 +1,4 @@
-// Wire encoding of the fb89 command stream, versions 1 to 3: byte-exact little-endian helpers,
+// Wire encoding of the fb89 command stream, versions 1 to 4: byte-exact little-endian helpers,
 // record encoders and decoders, and the field checks shared by the writer and the reader.
 // The layout implemented here is the one docs/PROTOCOL.md specifies, field for field.
 #include "protocol/stream_format.h"
@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+
+#include "protocol/xxhash64.h"
 
 namespace fb89::protocol {
 
@@ -142,14 +144,15 @@ struct EncodePayload {
 void encode_header(std::vector<uint8_t>& out, const Properties& properties, uint16_t version,
                    uint16_t flags) {
     if (auto problem = check_properties(properties)) throw std::invalid_argument(*problem);
-    if (version < kUntimedVersion || version > kDepthVersion)
+    if (version < kUntimedVersion || version > kChecksumVersion)
         throw std::invalid_argument(fmt::format("no stream format version {}", version));
-    if (flags != 0 && (version != kDepthVersion || flags != kFlagTimed))
+    if (flags != 0 && (version < kDepthVersion || flags != kFlagTimed))
         throw std::invalid_argument(
             fmt::format("format version {} has no header flags {:#06x}", version, flags));
+    const std::size_t start = out.size();
     out.insert(out.end(), kMagic.begin(), kMagic.end());
     put_u16(out, version);
-    put_u16(out, flags);  // zero in versions 1 and 2; version 3's kFlagTimed
+    put_u16(out, flags);  // zero in versions 1 and 2; kFlagTimed or not in versions 3 and 4
     put_u32(out, static_cast<uint32_t>(properties.size()));
     for (const auto& [key, value] : properties) {  // std::map: ascending key order
         put_u16(out, static_cast<uint16_t>(key.size()));
@@ -157,6 +160,7 @@ void encode_header(std::vector<uint8_t>& out, const Properties& properties, uint
         put_u32(out, static_cast<uint32_t>(value.size()));
         out.insert(out.end(), value.begin(), value.end());
     }
+    if (version >= kChecksumVersion) put_u64(out, xxh64(out.data() + start, out.size() - start));
 }
 
 void encode_command(std::vector<uint8_t>& out, const Command& c) {
@@ -184,6 +188,27 @@ void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Foot
 void encode_time(std::vector<uint8_t>& out, uint8_t opcode, int64_t ns) {
     put_u8(out, opcode);
     put_i64(out, ns);
+}
+
+namespace {
+
+// Stores v little-endian at p (the BATCH record is filled in place, after its batch).
+void store_le(uint8_t* p, uint64_t v, int bytes) {
+    for (int i = 0; i < bytes; ++i)
+        p[i] = static_cast<uint8_t>(v >> (8 * i));
+}
+
+}  // namespace
+
+uint64_t seal_batch(uint8_t* record, const BatchRecord& b) {
+    record[0] = kBatchOpcode;
+    store_le(record + 9, b.batch, 4);
+    store_le(record + 13, b.first_command, 8);
+    store_le(record + 21, b.commands, 2);
+    store_le(record + 23, b.length, 4);
+    const uint64_t checksum = batch_checksum(record, b.length);
+    store_le(record + 1, checksum, 8);
+    return checksum;
 }
 
 // --- decoders ------------------------------------------------------------------------
@@ -228,6 +253,15 @@ FrameIndexEntry decode_index_entry(const uint8_t* p) {
 std::optional<Footer> decode_footer(const uint8_t* p) {
     if (!std::equal(kFooterMagic.begin(), kFooterMagic.end(), p + 16)) return std::nullopt;
     return Footer{get_u64(p), get_u64(p + 8)};
+}
+
+BatchRecord decode_batch(const uint8_t* p) {
+    return BatchRecord{get_u64(p + 1), get_u32(p + 9), get_u64(p + 13), get_u16(p + 21),
+                       get_u32(p + 23)};
+}
+
+uint64_t batch_checksum(const uint8_t* record, std::size_t length) {
+    return xxh64(record + kBatchHashedFrom, kBatchRecordSize - kBatchHashedFrom + length);
 }
 
 // --- validation ----------------------------------------------------------------------

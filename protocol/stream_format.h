@@ -1,12 +1,14 @@
-// Wire encoding of the fb89 command stream, versions 1 to 3 (normative spec:
-// docs/PROTOCOL.md; version 2 adds the send-time records, version 3 the depth commands).
+// Wire encoding of the fb89 command stream, versions 1 to 4 (normative spec:
+// docs/PROTOCOL.md; version 2 adds the send-time records, version 3 the depth commands,
+// version 4 the checksums).
 //
 // Little-endian throughout. A stream is a header (magic "FB89", u16 version, u16 flags,
-// u32 property count, properties), then one record per command (u8 opcode + a fixed
-// payload; MARKER carries a u16 length and its text, FACE a point count and its points), then
-// optionally a trailing frame index record (opcode 0xFE) ending in a fixed-size footer. This file
-// holds the constants, the byte-exact helpers and the per-record encoders/decoders that
-// StreamWriter and StreamReader share; it does no I/O.
+// u32 property count, properties; in version 4 its checksum), then one record per command (u8
+// opcode + a fixed payload; MARKER carries a u16 length and its text, FACE a point count and
+// its points), then optionally a trailing frame index record (opcode 0xFE) ending in a
+// fixed-size footer. Version 4 groups the records in batches, each opened by a BATCH record
+// that carries the batch's checksum. This file holds the constants, the byte-exact helpers and
+// the per-record encoders/decoders that StreamWriter and StreamReader share; it does no I/O.
 #pragma once
 
 #include <array>
@@ -118,20 +120,55 @@ struct Footer {
     uint64_t command_count = 0;  // commands in the stream
 };
 
+// --- version 4: checksums (docs/PROTOCOL.md, "Version 4: checksums") -------------------
+// The header ends in the XXH64 (seed 0) of every header byte before it. Then every record --
+// command, time record, frame index -- belongs to a batch: a BATCH record, then `length` bytes
+// of records, at most kMaxBatchRecords of them. The BATCH record's checksum is the XXH64 of
+// the bytes from its batch field to the batch's end, so a reader checks a batch whole before
+// it decodes any of it. A batch starts at every FRAME_BEGIN and ends after every FRAME_END;
+// the frame index is a batch of its own.
+inline constexpr std::size_t kHeaderChecksumSize = 8;  // u64 after the properties
+inline constexpr uint8_t kBatchOpcode = 0x0B;          // not a command
+// opcode, u64 checksum, u32 batch, u64 first command, u16 commands, u32 length
+inline constexpr std::size_t kBatchRecordSize = 27;
+inline constexpr std::size_t kBatchHashedFrom = 9;  // the checksum covers the record from here
+inline constexpr std::size_t kMaxBatchRecords = 256;
+inline constexpr std::size_t kMaxBatchBytes = kMaxBatchRecords * kMaxRecordSize;  // 262,912
+
+struct BatchRecord {
+    uint64_t checksum = 0;       // XXH64 of the record from byte 9 to the batch's end
+    uint32_t batch = 0;          // batches are numbered from 0 in stream order
+    uint64_t first_command = 0;  // command number of its first command (or of the next one)
+    uint16_t commands = 0;       // commands in the batch (its time records are not commands)
+    uint32_t length = 0;         // bytes of records after the BATCH record
+    friend bool operator==(const BatchRecord&, const BatchRecord&) = default;
+};
+
 // --- errors --------------------------------------------------------------------------
 // A truncated or corrupt stream. The message names the stream, the byte offset and the
 // command number; offset() and command() give them to programs. command() is the number
-// of commands delivered before the error.
+// of commands delivered before the error. damaged(): the bytes are not what the writer wrote
+// (version 4: a header or batch failing its checksum, or a batch record that is not one),
+// beyond a stream merely cut short or refused; batch() names the batch, when one is at fault.
 class StreamError : public std::runtime_error {
   public:
-    StreamError(const std::string& message, uint64_t offset, uint64_t command)
-        : std::runtime_error(message), m_offset(offset), m_command(command) {}
+    StreamError(const std::string& message, uint64_t offset, uint64_t command, bool damaged = false,
+                std::optional<uint32_t> batch = std::nullopt)
+        : std::runtime_error(message),
+          m_offset(offset),
+          m_command(command),
+          m_damaged(damaged),
+          m_batch(batch) {}
     uint64_t offset() const { return m_offset; }
     uint64_t command() const { return m_command; }
+    bool damaged() const { return m_damaged; }
+    std::optional<uint32_t> batch() const { return m_batch; }
 
   private:
     uint64_t m_offset;
     uint64_t m_command;
+    bool m_damaged;
+    std::optional<uint32_t> m_batch;
 };
 
 // --- little-endian helpers -----------------------------------------------------------
@@ -162,14 +199,20 @@ inline int64_t get_i64(const uint8_t* p) {
 
 // --- encoders (append to out) --------------------------------------------------------
 // Throw std::invalid_argument for what the format cannot carry (see check_*).
-// The header of a stream of `version` (kUntimedVersion, kTimedVersion or kDepthVersion; the
-// flags 0 but for version 3's kFlagTimed).
+// The header of a stream of `version` (kUntimedVersion, kTimedVersion, kDepthVersion or
+// kChecksumVersion; the flags 0 but for kFlagTimed in versions 3 and 4), in version 4 with
+// its checksum.
 void encode_header(std::vector<uint8_t>& out, const Properties& properties,
                    uint16_t version = kUntimedVersion, uint16_t flags = 0);
 void encode_command(std::vector<uint8_t>& out, const Command& c);
 void encode_index(std::vector<uint8_t>& out, const FrameIndex& index, const Footer& footer);
 // A SEND_TIME or HOST_END record (version 2).
 void encode_time(std::vector<uint8_t>& out, uint8_t opcode, int64_t ns);
+// Version 4: fills in the BATCH record at `record` (kBatchRecordSize bytes, followed by the
+// batch's b.length bytes of records) from b's batch, first_command, commands and length, and
+// its checksum over them; returns the checksum. A writer appends kBatchRecordSize bytes of
+// any value where a batch starts, and seals them when the batch ends.
+uint64_t seal_batch(uint8_t* record, const BatchRecord& b);
 
 // --- decoders ------------------------------------------------------------------------
 // Decodes a fixed-size command record's payload (not MARKER or FACE); p points after the
@@ -259,6 +302,10 @@ inline std::size_t decode_common_record(const uint8_t* p, Command& out, bool dep
 FrameIndexEntry decode_index_entry(const uint8_t* p);
 // nullopt when the footer magic is absent.
 std::optional<Footer> decode_footer(const uint8_t* p);
+// The fields of the BATCH record at p (its opcode byte, which is not checked).
+BatchRecord decode_batch(const uint8_t* p);
+// What the checksum of the BATCH record at `record`, followed by `length` bytes, must be.
+uint64_t batch_checksum(const uint8_t* record, std::size_t length);
 
 // --- validation ----------------------------------------------------------------------
 // What is wrong with a command ("x1 -3 < x0 0"), or nullopt if it is valid.

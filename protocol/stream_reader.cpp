@@ -1,9 +1,11 @@
 // StreamReader: incremental decoder of fb89 streams (docs/PROTOCOL.md). Files and stdin
 // are read with POSIX read() into a bounded buffer that grows only to the largest record
-// or header property version 1 allows, so a corrupt length field can never make it
-// allocate more; a pipe delivers commands as soon as they arrive. FILL_RECT, DRAW_SPAN and
-// FRAME_END records already in the buffer are decoded by a fast path (decode_buffered); the
-// general path reads every other record and reports every error.
+// or header property the format allows, or in version 4 to the largest batch, so a corrupt
+// length field can never make it allocate more; a pipe delivers commands as soon as they
+// arrive (in version 4, batch by batch: a batch is checked whole before it is decoded).
+// FILL_RECT, DRAW_SPAN and FRAME_END records already in the buffer are decoded by a fast
+// path (decode_buffered); the general path reads every other record, opens each batch and
+// reports every error.
 #include "protocol/stream_reader.h"
 
 #include <fcntl.h>
@@ -132,11 +134,11 @@ void StreamReader::reposition(uint64_t at) {
 // --- errors --------------------------------------------------------------------------
 
 void StreamReader::fail(const std::string& what, uint64_t at, const std::string& where,
-                        const std::string& detail) {
+                        const std::string& detail, bool damaged, std::optional<uint32_t> batch) {
     std::string message = fmt::format("{}: {} at byte {}", m_name, what, at);
     if (!where.empty()) message += fmt::format(" ({})", where);
     if (!detail.empty()) message += ": " + detail;
-    m_error.emplace(message, at, m_next_command);
+    m_error.emplace(message, at, m_next_command, damaged, batch);
     m_done = true;
     throw *m_error;
 }
@@ -178,7 +180,7 @@ void StreamReader::read_header() {
     if (m_version == 0) fail_header("format version 0", 4, "no fb89 writes version 0");
     if (!fill(kFixedHeaderSize)) fail_header("truncated header", 0, ends());
     const uint16_t flags = get_u16(&m_buf[m_pos + 6]);
-    if (m_version == kDepthVersion) {
+    if (m_version >= kDepthVersion) {
         if ((flags & ~kFlagTimed) != 0)
             fail_header(
                 "header flags", 6,
@@ -193,13 +195,29 @@ void StreamReader::read_header() {
         fail_header("property count", 8,
                     fmt::format("{} is more than {}", count, kMaxPropertyCount));
     }
+    // version 4: the header's checksum follows it; the bytes are hashed as they are read
+    Xxh64 hash;
+    hash.update(&m_buf[m_pos], kFixedHeaderSize);
     m_pos += kFixedHeaderSize;
     for (uint32_t i = 0; i < count; ++i)
-        read_property(i);
+        read_property(i, hash);
+    m_checked = m_version >= kChecksumVersion;
+    if (m_checked) {
+        const uint64_t at = offset();
+        if (!fill(kHeaderChecksumSize)) fail_header("truncated header checksum", at, ends());
+        const uint64_t stored = get_u64(&m_buf[m_pos]), computed = hash.digest();
+        if (stored != computed)
+            fail("header fails its checksum", at, "header, before command 0",
+                 fmt::format("stored {:#018x}, computed {:#018x}: the stream is damaged", stored,
+                             computed),
+                 true);
+        m_pos += kHeaderChecksumSize;
+    }
     m_header_size = offset();
+    m_batch_end = m_header_size;  // version 4: the first batch starts here
 }
 
-void StreamReader::read_property(uint32_t i) {
+void StreamReader::read_property(uint32_t i, Xxh64& hash) {
     const uint64_t at = offset();
     const std::string what = fmt::format("property {}", i);
     const auto need = [&](std::size_t n) {
@@ -229,6 +247,7 @@ void StreamReader::read_property(uint32_t i) {
     if (!m_properties.emplace(key_text, std::string(value, value_length)).second) {
         fail_header(what, at, fmt::format("key \"{}\" appears twice", key_text));
     }
+    hash.update(&m_buf[m_pos], 2 + key_length + 4 + value_length);
     m_pos += 2 + key_length + 4 + value_length;
 }
 
@@ -241,6 +260,11 @@ bool StreamReader::next(Command& out) {
         if (m_error) throw *m_error;
         if (m_done) return false;
         const uint64_t at = offset();
+        if (m_checked && at == m_batch_end) {  // version 4: between batches
+            if (open_batch()) continue;
+            m_done = true;  // a clean cut after a whole batch: no index
+            return false;
+        }
         if (!fill(1)) {  // a clean cut after a complete record: no index
             m_done = true;
             return false;
@@ -257,6 +281,11 @@ bool StreamReader::next(Command& out) {
         }
         Command c = read_record(opcode, at);
         if (auto problem = check_command(c)) fail_command(to_string(opcode_of(c)), at, *problem);
+        if (m_checked && std::holds_alternative<FrameBegin>(c) &&
+            at != m_batch_at + kBatchRecordSize)  // (seek() needs a frame to start a batch)
+            fail_command("FRAME_BEGIN", at,
+                         fmt::format("not the first record of its batch (batch {} at byte {})",
+                                     m_batch.batch, m_batch_at));
         if (const auto* begin = std::get_if<FrameBegin>(&c)) {
             if (m_seen_all) m_seen.push_back(FrameIndexEntry{begin->frame, m_next_command, at});
             m_times.begin_frame();
@@ -285,6 +314,7 @@ std::optional<std::string> take_time(FrameTimes& times, const uint8_t* record) {
 // far and kept for the commands after it.
 void StreamReader::read_time(uint8_t opcode, uint64_t at) {
     const char* name = time_record_name(opcode);
+    check_within_batch(name, at, kTimeRecordSize);
     if (!fill(kTimeRecordSize)) {
         fail_command(fmt::format("truncated {}", name), at,
                      fmt::format("the stream ends at byte {}", stream_end()));
@@ -307,7 +337,10 @@ std::size_t StreamReader::decode_buffered(std::span<Command> out, int64_t* send_
     const uint8_t* const buf = m_buf.data();
     std::size_t pos = m_pos, last = m_pos, n = 0;
     const bool depth = m_version >= kDepthVersion;
-    while (n < out.size() && m_end - pos >= kDepthSpanRecordSize) {
+    // version 4: only the checked batch, wholly buffered (a BATCH record is the general path's)
+    const std::size_t end =
+        m_checked ? static_cast<std::size_t>(m_batch_end - m_buf_offset) : m_end;
+    while (n < out.size() && end - pos >= kDepthSpanRecordSize) {
         const std::size_t size = decode_common_record(buf + pos, out[n], depth);
         if (size == 0) {
             // a version-2 time record the frame allows is taken here too (one every packet
@@ -367,6 +400,7 @@ Command StreamReader::read_record(uint8_t opcode, uint64_t at) {
                                  "version {}",
                                  kDepthVersion, m_version));
     const auto need = [&](std::size_t n) {
+        check_within_batch(to_string(op), at, n);
         if (!fill(n)) {
             fail_command("truncated " + std::string(to_string(op)), at,
                          fmt::format("the stream ends at byte {}", stream_end()));
@@ -402,6 +436,94 @@ Command StreamReader::read_record(uint8_t opcode, uint64_t at) {
     return m;
 }
 
+// --- version 4: batches ---------------------------------------------------------------
+
+// Where a batch is, for messages: "commands 1792-2047", "the frame index, after 2048
+// commands", "no commands, after 12 commands"; with its number when the record is not known.
+std::string StreamReader::batch_where(const std::optional<BatchRecord>& b, bool index) const {
+    if (index) return fmt::format("the frame index, after {} commands", m_next_command);
+    if (!b) return fmt::format("after {} commands", m_next_command);
+    if (b->commands == 0 || b->commands > kMaxBatchRecords)
+        return fmt::format("{} commands, after {} commands", b->commands, m_next_command);
+    return fmt::format("commands {}-{}", m_next_command, m_next_command + b->commands - 1);
+}
+
+// At a batch boundary: checks that the batch read held the commands its record says, then
+// reads the next BATCH record and its whole batch into the buffer and checks its checksum,
+// so that no record of a damaged batch is decoded. False at the end of the stream.
+bool StreamReader::open_batch() {
+    if (m_in_batch && m_next_command != m_batch.first_command + m_batch.commands)
+        fail(fmt::format("batch {}", m_batch.batch), m_batch_at,
+             fmt::format("from command {}", m_batch.first_command),
+             fmt::format("holds {} commands; its BATCH record says {}",
+                         m_next_command - m_batch.first_command, m_batch.commands),
+             false, m_batch.batch);
+    const uint64_t at = offset();
+    if (!fill(1)) return false;
+    const std::string number = m_next_batch ? fmt::format("batch {}", *m_next_batch) : "batch";
+    if (m_buf[m_pos] != kBatchOpcode)
+        fail(fmt::format("no BATCH record for {}", number), at, batch_where(std::nullopt, false),
+             fmt::format("found {:#04x} where a batch must start: the stream is damaged",
+                         m_buf[m_pos]),
+             true, m_next_batch);
+    const auto ends = [&] { return fmt::format("the stream ends at byte {}", stream_end()); };
+    if (!fill(kBatchRecordSize))
+        fail("truncated BATCH record of " + number, at, batch_where(std::nullopt, false), ends(),
+             false, m_next_batch);
+    const BatchRecord b = decode_batch(&m_buf[m_pos]);
+    // (after a seek(), the batch's number is the one its record gives)
+    const uint32_t batch = m_next_batch.value_or(b.batch);
+    const std::string named = fmt::format("batch {}", batch);
+    // a batch holds at most kMaxBatchBytes; the frame index's, as many as its entries take
+    // (as many as the frames read, or after a seek() as the stream has left)
+    const bool index = b.length > 0 && fill(kBatchRecordSize + 1) &&
+                       m_buf[m_pos + kBatchRecordSize] == kIndexOpcode;
+    uint64_t most = kMaxBatchBytes;
+    if (index && m_seen_all)
+        most = std::max<uint64_t>(
+            most, kIndexPrefixSize + kFooterSize + uint64_t{m_seen.size()} * kIndexEntrySize);
+    else if (index && m_size && *m_size >= at + kBatchRecordSize)
+        most = std::max<uint64_t>(most, *m_size - at - kBatchRecordSize);
+    if (b.length > most)
+        fail(named, at, batch_where(b, index),
+             fmt::format("its length {} is more than the {} bytes a batch may take: the stream is "
+                         "damaged",
+                         b.length, most),
+             true, batch);
+    if (!fill(kBatchRecordSize + b.length))
+        fail("truncated " + named, at, batch_where(b, index), ends(), false, batch);
+    const uint64_t computed = batch_checksum(&m_buf[m_pos], b.length);
+    if (computed != b.checksum)
+        fail(named + " fails its checksum", at, batch_where(b, index),
+             fmt::format("stored {:#018x}, computed {:#018x}: the stream is damaged", b.checksum,
+                         computed),
+             true, batch);
+    // whole as written: what it says of itself must be so
+    if ((m_next_batch && b.batch != *m_next_batch) || b.first_command != m_next_command ||
+        b.commands > kMaxBatchRecords)
+        fail("BATCH record", at, batch_where(b, index),
+             fmt::format("says batch {}, {} commands from command {}; expected {} from command "
+                         "{}, at most {} commands",
+                         b.batch, b.commands, b.first_command, number, m_next_command,
+                         kMaxBatchRecords),
+             false, b.batch);
+    m_batch = b;
+    m_in_batch = true;
+    m_batch_at = at;
+    m_batch_end = at + kBatchRecordSize + b.length;
+    m_next_batch = b.batch + 1;
+    ++m_batches_checked;
+    m_pos += kBatchRecordSize;
+    return true;
+}
+
+// Version 4: a record of n bytes at `at` must end within its batch.
+void StreamReader::check_within_batch(const char* what, uint64_t at, std::size_t n) {
+    if (m_checked && at + n > m_batch_end)
+        fail_command(fmt::format("{} runs past its batch", what), at,
+                     fmt::format("batch {} ends at byte {}", m_batch.batch, m_batch_end));
+}
+
 uint64_t StreamReader::replay_into(CommandSink& sink) {
     uint64_t delivered = 0;
     Command c;
@@ -423,9 +545,18 @@ void StreamReader::read_index(uint64_t at) {
                        fmt::format("the stream ends at byte {}", stream_end()));
         }
     };
+    check_within_batch("frame index", at, kIndexPrefixSize);
     need(kIndexPrefixSize);
     const uint32_t count = get_u32(&m_buf[m_pos + 1]);
     const uint64_t index_end = at + kIndexPrefixSize + uint64_t{count} * kIndexEntrySize;
+    // version 4: the index is a batch of its own, whole
+    if (m_checked && (at != m_batch_at + kBatchRecordSize || m_batch.commands != 0 ||
+                      index_end + kFooterSize != m_batch_end)) {
+        fail_index("frame index", at,
+                   fmt::format("{} entries are not the whole of batch {} (bytes {}-{}, {} "
+                               "commands)",
+                               count, m_batch.batch, m_batch_at, m_batch_end, m_batch.commands));
+    }
     if (m_seen_all && count != m_seen.size()) {
         fail_index("frame index", at,
                    fmt::format("lists {} frames; the stream has {}", count, m_seen.size()));
@@ -489,6 +620,7 @@ std::optional<FrameIndex> StreamReader::read_trailing_index() {
         get_u32(prefix + 1) != count) {
         return std::nullopt;
     }
+    if (m_checked && !trailing_index_checked(*footer)) return std::nullopt;
     FrameIndex index(static_cast<std::size_t>(count));
     uint8_t entry[kIndexEntrySize];
     for (uint64_t i = 0; i < count; ++i) {
@@ -502,24 +634,71 @@ std::optional<FrameIndex> StreamReader::read_trailing_index() {
     return index;
 }
 
+// Version 4: whether the frame index that ends the stream (its footer read) is in a batch of its
+// own, the last, as a writer puts it (false: not an index, as for any other misfit); throws
+// StreamError if that batch fails its checksum.
+bool StreamReader::trailing_index_checked(const Footer& footer) {
+    if (footer.index_offset < m_header_size + kBatchRecordSize) return false;
+    const uint64_t at = footer.index_offset - kBatchRecordSize;
+    uint8_t record[kBatchRecordSize];
+    if (!read_at(at, record, kBatchRecordSize) || record[0] != kBatchOpcode) return false;
+    const BatchRecord b = decode_batch(record);
+    if (b.length != *m_size - footer.index_offset || b.commands != 0 ||
+        b.first_command != footer.command_count)
+        return false;
+    Xxh64 hash;
+    hash.update(record + kBatchHashedFrom, kBatchRecordSize - kBatchHashedFrom);
+    std::vector<uint8_t> chunk(std::min<uint64_t>(b.length, kReadChunk));
+    for (uint64_t done = 0; done < b.length;) {
+        const std::size_t n =
+            static_cast<std::size_t>(std::min<uint64_t>(chunk.size(), b.length - done));
+        if (!read_at(footer.index_offset + done, chunk.data(), n)) return false;
+        hash.update(chunk.data(), n);
+        done += n;
+    }
+    if (hash.digest() != b.checksum) {
+        m_error.emplace(
+            fmt::format("{}: batch {} fails its checksum at byte {} (the frame index, after {} "
+                        "commands): stored {:#018x}, computed {:#018x}: the stream is damaged",
+                        m_name, b.batch, at, footer.command_count, b.checksum, hash.digest()),
+            at, m_next_command, true, b.batch);
+        m_done = true;
+        throw *m_error;
+    }
+    return true;
+}
+
 void StreamReader::seek(const FrameIndexEntry& entry) {
     if (!m_size) throw std::logic_error(fmt::format("stream {} cannot seek", m_name));
     m_error.reset();
     m_next_command = entry.command;
-    if (entry.offset < m_header_size || entry.offset >= *m_size) {
-        fail_command("frame index entry", entry.offset,
-                     fmt::format("byte {} is outside the commands {}..{}", entry.offset,
-                                 m_header_size, *m_size));
+    // version 4: a frame starts a batch, read and checked from its BATCH record before it
+    const uint64_t first = m_header_size + (m_checked ? kBatchRecordSize : 0);
+    if (entry.offset < first || entry.offset >= *m_size) {
+        fail_command(
+            "frame index entry", entry.offset,
+            fmt::format("byte {} is outside the commands {}..{}", entry.offset, first, *m_size));
     }
-    reposition(entry.offset);
+    m_seen.clear();
+    m_seen_all = false;
+    m_done = false;
+    if (m_checked) {
+        reposition(entry.offset - kBatchRecordSize);
+        m_batch_end = entry.offset - kBatchRecordSize;
+        m_in_batch = false;
+        m_next_batch.reset();
+        if (!open_batch() || m_batch_end - entry.offset < kFrameBeginRecordSize)
+            fail_command(
+                "frame index entry", entry.offset,
+                fmt::format("no batch starting with a FRAME_BEGIN of frame {} there", entry.frame));
+    } else {
+        reposition(entry.offset);
+    }
     if (!fill(kFrameBeginRecordSize) || m_buf[m_pos] != static_cast<uint8_t>(Opcode::FrameBegin) ||
         get_u32(&m_buf[m_pos + 1]) != entry.frame) {
         fail_command("frame index entry", entry.offset,
                      fmt::format("no FRAME_BEGIN of frame {} there", entry.frame));
     }
-    m_seen.clear();
-    m_seen_all = false;
-    m_done = false;
     m_times.end_frame();
 }
 

@@ -1,6 +1,6 @@
 // StreamReader: reads an fb89 stream (any version up to kFormatVersion, docs/PROTOCOL.md)
 // from a file, stdin ("-") or a byte buffer, one command at a time, with its send time in a
-// version-2 stream.
+// timed stream.
 //
 // The header is read on construction. next() then returns the commands in order with
 // their command numbers and byte offsets, without loading the stream into memory. A
@@ -10,6 +10,11 @@
 // else -- bad magic, a newer version, an unknown opcode, a field out of range, a record
 // cut short, an inconsistent index -- throws StreamError naming the stream, the byte
 // offset and the command number, after every complete command before it was delivered.
+//
+// A version-4 stream carries checksums: the header's is checked on construction, and each
+// batch of records is read whole and checked before any command of it is delivered, so a
+// damaged batch delivers nothing; its StreamError names the batch, its byte offset and its
+// commands, and says damaged().
 #pragma once
 
 #include <chrono>
@@ -21,6 +26,7 @@
 
 #include "protocol/command_sink.h"
 #include "protocol/stream_format.h"
+#include "protocol/xxhash64.h"
 
 namespace fb89::protocol {
 
@@ -43,6 +49,11 @@ class StreamReader {
 
     const std::string& name() const { return m_name; }  // path, "<stdin>" or the buffer's
     uint16_t version() const { return m_version; }
+    // Version 4: the header and every batch carry checksums (docs/PROTOCOL.md, "Version 4:
+    // checksums"); batches_checked() counts the batches read and found whole so far, the
+    // frame index's included.
+    bool checksummed() const { return m_checked; }
+    uint64_t batches_checked() const { return m_batches_checked; }
     const Properties& properties() const { return m_properties; }
     uint64_t header_size() const { return m_header_size; }  // byte offset of the first record
 
@@ -57,9 +68,9 @@ class StreamReader {
     // send_ns (at least as long as out), each command's send time goes beside it.
     std::size_t read_batch(std::span<Command> out, std::span<int64_t> send_ns = {});
 
-    // The send times of a version-2 stream (docs/PROTOCOL.md, "Version 2"), read with the
+    // The send times of a timed stream (docs/PROTOCOL.md, "Version 2"), read with the
     // commands: the last command's send time in nanoseconds from the start of its frame's
-    // set-up (0 before a frame's first SEND_TIME, and always in a version-1 stream), and the
+    // set-up (0 before a frame's first SEND_TIME, and always in an untimed stream), and the
     // HOST_END of the last command's frame once read (nullopt before it, or without one).
     bool timed() const { return m_timed; }
     int64_t send_time_ns() const { return m_times.send_ns; }
@@ -83,6 +94,7 @@ class StreamReader {
     // For files and buffers (not stdin): reads the frame index through the footer without
     // reading the commands. nullopt if the source cannot seek or the stream ends in no
     // well-formed index (cut streams have none). The position of next() does not change.
+    // Version 4: an index in its batch that fails its checksum throws StreamError (damaged).
     std::optional<FrameIndex> read_trailing_index();
     // For files and buffers: continues reading at an index entry, so that next() returns
     // its FRAME_BEGIN numbered entry.command. Throws StreamError if the entry does not point
@@ -97,13 +109,19 @@ class StreamReader {
     bool read_at(uint64_t at, uint8_t* dst, std::size_t n);
     void reposition(uint64_t at);
     void read_header();
-    void read_property(uint32_t i);
+    void read_property(uint32_t i, Xxh64& hash);
     std::size_t decode_buffered(std::span<Command> out, int64_t* send_ns = nullptr);
     Command read_record(uint8_t opcode, uint64_t at);
     void read_time(uint8_t opcode, uint64_t at);
     void read_index(uint64_t at);
+    // version 4: the batch at a batch boundary, read whole and checked (false at the end)
+    bool open_batch();
+    void check_within_batch(const char* what, uint64_t at, std::size_t n);
+    std::string batch_where(const std::optional<BatchRecord>& b, bool index) const;
+    bool trailing_index_checked(const Footer& footer);
     [[noreturn]] void fail(const std::string& what, uint64_t at, const std::string& where,
-                           const std::string& detail);
+                           const std::string& detail, bool damaged = false,
+                           std::optional<uint32_t> batch = std::nullopt);
     [[noreturn]] void fail_header(const std::string& what, uint64_t at, const std::string& detail);
     [[noreturn]] void fail_command(const std::string& what, uint64_t at, const std::string& detail);
     [[noreturn]] void fail_index(const std::string& what, uint64_t at, const std::string& detail);
@@ -133,6 +151,15 @@ class StreamReader {
     std::optional<StreamError> m_error;
     std::optional<FrameIndex> m_index;
     FrameTimes m_times;  // the time records of the frame being read (version 2)
+
+    // version 4: the batch being read, whole in m_buf and checked, from its BATCH record at
+    // m_batch_at to m_batch_end (at a batch boundary, m_batch_end is where the next starts)
+    bool m_checked = false;
+    bool m_in_batch = false;  // m_batch is the batch being read
+    BatchRecord m_batch;
+    uint64_t m_batch_at = 0, m_batch_end = 0;
+    std::optional<uint32_t> m_next_batch = 0;  // unknown after seek()
+    uint64_t m_batches_checked = 0;
 };
 
 }  // namespace fb89::protocol

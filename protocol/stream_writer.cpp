@@ -1,8 +1,8 @@
-// StreamWriter: encodes commands as an fb89 stream, version 1 or (with send times) 2, into
-// a file, stdout or memory, and closes it with the trailing frame index and footer
-// (docs/PROTOCOL.md). Files are written with POSIX write() from our own buffer, so every
-// error (bad path, disk full, closed pipe) surfaces here with the path and the system's
-// reason.
+// StreamWriter: encodes commands as an fb89 stream -- version 4, in checksummed batches, or
+// without checksums version 1, 2 or 3 -- into a file, stdout or memory, and closes it with the
+// trailing frame index and footer (docs/PROTOCOL.md). Files are written with POSIX write() from
+// our own buffer, so every error (bad path, disk full, closed pipe) surfaces here with the
+// path and the system's reason.
 #include "protocol/stream_writer.h"
 
 #include <algorithm>
@@ -27,8 +27,11 @@ constexpr const char* kMemoryName = "<memory>";
 }  // namespace
 
 StreamWriter::StreamWriter(const std::string& path, const Properties& properties, Timing timing,
-                           Commands commands)
-    : m_path(path), m_timed(timing == Timing::Timed), m_depth(commands == Commands::Depth) {
+                           Commands commands, Checksums checksums)
+    : m_path(path),
+      m_timed(timing == Timing::Timed),
+      m_depth(commands == Commands::Depth),
+      m_checksums(checksums == Checksums::On) {
     // encode the header first: bad properties must not leave an empty file behind
     encode_header(m_buffer, properties, version(), header_flags());
     m_byte_count = m_buffer.size();
@@ -62,28 +65,35 @@ StreamWriter::StreamWriter(const std::string& path, const Properties& properties
 }
 
 StreamWriter::StreamWriter(int fd, std::string name, const Properties& properties, Timing timing,
-                           Commands commands)
+                           Commands commands, Checksums checksums)
     : m_path(std::move(name)),
       m_fd(fd),
       m_timed(timing == Timing::Timed),
-      m_depth(commands == Commands::Depth) {
+      m_depth(commands == Commands::Depth),
+      m_checksums(checksums == Checksums::On) {
     encode_header(m_buffer, properties, version(), header_flags());
     m_byte_count = m_buffer.size();
     struct stat st {};
     m_is_socket = ::fstat(fd, &st) == 0 && S_ISSOCK(st.st_mode);
 }
 
-StreamWriter::StreamWriter(const Properties& properties, Timing timing, Commands commands)
-    : m_path(kMemoryName), m_timed(timing == Timing::Timed), m_depth(commands == Commands::Depth) {
+StreamWriter::StreamWriter(const Properties& properties, Timing timing, Commands commands,
+                           Checksums checksums)
+    : m_path(kMemoryName),
+      m_timed(timing == Timing::Timed),
+      m_depth(commands == Commands::Depth),
+      m_checksums(checksums == Checksums::On) {
     encode_header(m_buffer, properties, version(), header_flags());
     m_byte_count = m_buffer.size();
 }
 
 StreamWriter::~StreamWriter() {
     if (m_closed || m_fd < 0) return;
-    // abandoned without close(): keep what was written, as a stream cut after it
+    // abandoned without close(): keep what was written, as a stream cut after it (in version
+    // 4 after its last batch, sealed here)
     if (m_error.empty()) {
         try {
+            end_batch();
             flush_buffer();
         } catch (const std::exception&) {  // nothing to report to from a destructor
         }
@@ -135,22 +145,53 @@ void StreamWriter::write_command(const Command& c) {
         throw std::invalid_argument(fmt::format("stream {}: refusing to write command {}: {}",
                                                 m_path, m_command_count, *problem));
     }
-    if (!m_depth && is_depth_opcode(opcode_of(c)))
+    if (!depth() && is_depth_opcode(opcode_of(c)))
         throw std::invalid_argument(fmt::format(
             "stream {}: refusing to write command {}: {} needs format version {} "
-            "(a writer with Commands::Depth); this stream is version {}",
+            "(a writer with Commands::Depth, or checksums); this stream is version {}",
             m_path, m_command_count, to_string(opcode_of(c)), kDepthVersion, version()));
-    if (const auto* begin = std::get_if<FrameBegin>(&c)) {
+    const auto* begin = std::get_if<FrameBegin>(&c);
+    const bool end = std::holds_alternative<FrameEnd>(c);
+    before_record(begin != nullptr);
+    if (begin) {
         m_index.push_back(FrameIndexEntry{begin->frame, m_command_count, m_byte_count});
         m_times.begin_frame();
-    } else if (std::holds_alternative<FrameEnd>(c)) {
+    } else if (end) {
         m_times.end_frame();
     }
     const std::size_t before = m_buffer.size();
     encode_command(m_buffer, c);
     m_byte_count += m_buffer.size() - before;
     ++m_command_count;
-    if (m_fd >= 0 && m_buffer.size() >= kFlushThreshold) flush_buffer();
+    after_record(true, end);
+    if (m_fd >= 0 && !m_batch_open && m_buffer.size() >= kFlushThreshold) flush_buffer();
+}
+
+void StreamWriter::before_record(bool frame_begin) {
+    if (!m_checksums) return;
+    if (m_batch_open && frame_begin) end_batch();  // a frame starts a batch: seek() finds it
+    if (m_batch_open) return;
+    m_batch_at = m_buffer.size();
+    m_buffer.resize(m_buffer.size() + kBatchRecordSize);  // filled in by end_batch()
+    m_byte_count += kBatchRecordSize;
+    m_batch = BatchRecord{0, m_batches, m_command_count, 0, 0};
+    m_batch_records = 0;
+    m_batch_open = true;
+}
+
+void StreamWriter::after_record(bool command, bool frame_end) {
+    if (!m_batch_open) return;
+    ++m_batch_records;
+    if (command) ++m_batch.commands;
+    if (frame_end || m_batch_records == kMaxBatchRecords) end_batch();
+}
+
+void StreamWriter::end_batch() {
+    if (!m_batch_open) return;
+    m_batch.length = static_cast<uint32_t>(m_buffer.size() - m_batch_at - kBatchRecordSize);
+    seal_batch(m_buffer.data() + m_batch_at, m_batch);
+    ++m_batches;
+    m_batch_open = false;
 }
 
 void StreamWriter::send_time(int64_t ns) {
@@ -167,8 +208,8 @@ void StreamWriter::write_time(uint8_t opcode, int64_t ns) {
     if (m_closed) throw std::logic_error(fmt::format("stream {}: {} after close()", m_path, name));
     if (!m_timed)
         throw std::logic_error(
-            fmt::format("stream {}: {} in a stream without send times "
-                        "(format version 1)",
+            fmt::format("stream {}: {} in a stream without send times (a writer without "
+                        "Timing::Timed)",
                         m_path, name));
     if (auto problem = m_times.check(ns))
         throw std::invalid_argument(
@@ -176,17 +217,23 @@ void StreamWriter::write_time(uint8_t opcode, int64_t ns) {
                         m_command_count, *problem));
     if (opcode == kSendTimeOpcode && ns == m_times.send_ns) return;  // no change
     m_times.take(opcode, ns);
+    before_record(false);
     const std::size_t before = m_buffer.size();
     encode_time(m_buffer, opcode, ns);
     m_byte_count += m_buffer.size() - before;
+    after_record(false, false);
 }
 
 void StreamWriter::close() {
     if (!m_error.empty()) throw std::runtime_error(m_error);
     if (m_closed) return;
+    // version 4: the open batch sealed, and the frame index in a batch of its own
+    end_batch();
+    before_record(false);
     const std::size_t before = m_buffer.size();
     encode_index(m_buffer, m_index, Footer{m_byte_count, m_command_count});
     m_byte_count += m_buffer.size() - before;
+    end_batch();
     if (m_fd < 0) {
         m_closed = true;
         return;
@@ -229,10 +276,12 @@ void StreamWriter::fail(const std::string& what) {
 }
 
 std::vector<uint8_t> encode_stream(const std::vector<Command>& commands,
-                                   const Properties& properties, bool with_index) {
+                                   const Properties& properties, bool with_index,
+                                   Checksums checksums) {
     const bool depth = std::any_of(commands.begin(), commands.end(),
                                    [](const Command& c) { return is_depth_opcode(opcode_of(c)); });
-    StreamWriter writer(properties, Timing::Untimed, depth ? Commands::Depth : Commands::Tiling);
+    StreamWriter writer(properties, Timing::Untimed, depth ? Commands::Depth : Commands::Tiling,
+                        checksums);
     for (const Command& c : commands)
         writer.submit(c);
     if (with_index) writer.close();

@@ -1,7 +1,9 @@
 // StreamWriter: a CommandSink that encodes the commands it receives as an fb89 stream
-// (docs/PROTOCOL.md) into a file, stdout ("-") or memory: version 1, or with
-// Timing::Timed version 2, whose send_time() and host_end() say when the host sent them, or
-// with Commands::Depth version 3, which carries the depth commands too (timed or not).
+// (docs/PROTOCOL.md) into a file, stdout ("-") or memory: version 4, which carries every
+// command, with Timing::Timed the host's send times (send_time(), host_end()), and checksums
+// over batches of records, so that readers refuse a damaged stream. With Checksums::Off, the
+// oldest version without checksums that carries the stream, for readers older than version 4:
+// version 1, or with Timing::Timed version 2, or with Commands::Depth version 3.
 //
 // The header (with its properties) is written on construction, each command as it
 // arrives. close() appends the trailing frame index and footer and flushes. Bytes reach
@@ -35,8 +37,13 @@ namespace fb89::protocol {
 enum class Timing : bool { Untimed, Timed };
 // Whether a stream may carry the depth commands (format version 3) or only the tiling ones.
 enum class Commands : bool { Tiling, Depth };
-// The version a stream of these contents is written in: the oldest that carries them.
-inline uint16_t format_version(Timing timing, Commands commands) {
+// Whether a stream carries checksums (format version 4, what fb89 writes) or not.
+enum class Checksums : bool { Off, On };
+// The version a stream of these contents is written in: 4 with checksums; without, the oldest
+// that carries them.
+inline uint16_t format_version(Timing timing, Commands commands,
+                               Checksums checksums = Checksums::On) {
+    if (checksums == Checksums::On) return kChecksumVersion;
     if (commands == Commands::Depth) return kDepthVersion;
     return timing == Timing::Timed ? kTimedVersion : kUntimedVersion;
 }
@@ -47,21 +54,25 @@ class StreamWriter final : public CommandSink {
     // written in place). Throws std::runtime_error naming the path if it cannot be opened
     // or written, std::invalid_argument for properties the format cannot carry.
     StreamWriter(const std::string& path, const Properties& properties,
-                 Timing timing = Timing::Untimed, Commands commands = Commands::Tiling);
+                 Timing timing = Timing::Untimed, Commands commands = Commands::Tiling,
+                 Checksums checksums = Checksums::On);
     // Encodes into memory; read the bytes with bytes() or take_bytes().
     explicit StreamWriter(const Properties& properties, Timing timing = Timing::Untimed,
-                          Commands commands = Commands::Tiling);
+                          Commands commands = Commands::Tiling,
+                          Checksums checksums = Checksums::On);
     // Writes to an open descriptor it does not own (e.g. a connected socket; close() then
     // leaves it open); name stands for it in messages. On a socket, writes never raise
     // SIGPIPE: a vanished reader is a std::runtime_error ("Broken pipe").
     StreamWriter(int fd, std::string name, const Properties& properties,
-                 Timing timing = Timing::Untimed, Commands commands = Commands::Tiling);
+                 Timing timing = Timing::Untimed, Commands commands = Commands::Tiling,
+                 Checksums checksums = Checksums::On);
     ~StreamWriter() override;
     StreamWriter(const StreamWriter&) = delete;
     StreamWriter& operator=(const StreamWriter&) = delete;
 
     // Each throws std::invalid_argument for a command the format cannot carry (e.g. a span
-    // with x1 < x0, or a depth command in a writer without Commands::Depth),
+    // with x1 < x0, or a depth command in a version-1 or -2 writer: Checksums::Off without
+    // Commands::Depth),
     // std::runtime_error naming the path on a write error (disk full...), std::logic_error
     // after close().
     void frame_begin(const FrameBegin& c) override;
@@ -82,10 +93,12 @@ class StreamWriter final : public CommandSink {
     void send_time(int64_t ns);
     void host_end(int64_t ns);
     bool timed() const { return m_timed; }
-    bool depth() const { return m_depth; }
+    bool depth() const { return version() >= kDepthVersion; }  // takes the depth commands
+    bool checksums() const { return m_checksums; }
     uint16_t version() const {
         return format_version(m_timed ? Timing::Timed : Timing::Untimed,
-                              m_depth ? Commands::Depth : Commands::Tiling);
+                              m_depth ? Commands::Depth : Commands::Tiling,
+                              m_checksums ? Checksums::On : Checksums::Off);
     }
 
     // Writes the frame index and footer, flushes and closes the file. Does nothing if
@@ -105,15 +118,27 @@ class StreamWriter final : public CommandSink {
     // Commands whose bytes were all handed to the file or socket (at the last flush).
     uint64_t commands_flushed() const { return m_commands_flushed; }
     const FrameIndex& frame_index() const { return m_index; }
+    // Version 4: the batches sealed so far (each with its checksum).
+    uint32_t batch_count() const { return m_batches; }
 
-    // The encoded stream, in-memory writers only (empty for a file).
+    // The encoded stream, in-memory writers only (empty for a file). In version 4, a batch is
+    // sealed at a FRAME_END, after 256 records and by close(): bytes() before that ends in a
+    // batch whose BATCH record is not yet filled in; take_bytes() seals it first.
     const std::vector<uint8_t>& bytes() const { return m_buffer; }
-    std::vector<uint8_t> take_bytes() { return std::move(m_buffer); }
+    std::vector<uint8_t> take_bytes() {
+        end_batch();
+        return std::move(m_buffer);
+    }
 
   private:
-    uint16_t header_flags() const { return m_depth && m_timed ? kFlagTimed : 0; }
+    uint16_t header_flags() const { return version() >= kDepthVersion && m_timed ? kFlagTimed : 0; }
     void write_command(const Command& c);
     void write_time(uint8_t opcode, int64_t ns);
+    // Version 4: a batch opened before a record (a FRAME_BEGIN ends the open one), counted after
+    // it, and sealed after a FRAME_END or its 256th record.
+    void before_record(bool frame_begin);
+    void after_record(bool command, bool frame_end);
+    void end_batch();
     void flush_buffer();
     void close_file() noexcept;
     [[noreturn]] void fail(const std::string& what);
@@ -132,12 +157,22 @@ class StreamWriter final : public CommandSink {
     FrameIndex m_index;
     bool m_timed = false;
     bool m_depth = false;
+    bool m_checksums = true;
     FrameTimes m_times;  // the time records of the frame being written
+    // version 4: the open batch (its BATCH record at m_buffer[m_batch_at], filled in when it
+    // ends: the buffer is written out only between batches), and the batches sealed
+    bool m_batch_open = false;
+    std::size_t m_batch_at = 0;
+    BatchRecord m_batch;
+    std::size_t m_batch_records = 0;
+    uint32_t m_batches = 0;
 };
 
-// Encodes a whole untimed stream in memory (version 1, or 3 when a command needs it): header,
-// commands, and (if with_index) the trailing frame index and footer.
+// Encodes a whole untimed stream in memory (version 4; with Checksums::Off version 1, or 3
+// when a command needs it): header, commands, and (if with_index) the trailing frame index
+// and footer.
 std::vector<uint8_t> encode_stream(const std::vector<Command>& commands,
-                                   const Properties& properties = {}, bool with_index = true);
+                                   const Properties& properties = {}, bool with_index = true,
+                                   Checksums checksums = Checksums::On);
 
 }  // namespace fb89::protocol

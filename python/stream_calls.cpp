@@ -133,7 +133,8 @@ py::dict trim(const py::object& input_arg, const py::object& output_arg, const p
                 throw protocol::StreamError(std::string(out.error->what()) + "; " + out.output +
                                                 " not written (salvage=True keeps what was read "
                                                 "before the error)",
-                                            out.error->offset(), out.error->command());
+                                            out.error->offset(), out.error->command(),
+                                            out.error->damaged(), out.error->batch());
         });
     }
     py::dict d;
@@ -156,7 +157,8 @@ py::dict diff(const py::object& a_arg, const py::object& b_arg, const py::object
                 throw protocol::StreamError(std::string(out.error->what()) + "; compared " +
                                                 std::to_string(out.frames.size()) +
                                                 " frame(s) before the error",
-                                            out.error->offset(), out.error->command());
+                                            out.error->offset(), out.error->command(),
+                                            out.error->damaged(), out.error->batch());
         });
     }
     py::list frames;

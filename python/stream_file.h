@@ -13,7 +13,8 @@ namespace fb89::python {
 
 struct StreamFile {
     std::string path;  // "" when it was not read from a file
-    uint16_t version = protocol::kUntimedVersion;
+    // read from a file: its format version; else the version save() writes
+    uint16_t version = protocol::kFormatVersion;
     protocol::Properties header;
     CommandRows commands;
     // With a call set: each row's command number in the file; else none (row i is command i).
@@ -25,9 +26,9 @@ struct StreamFile {
     std::vector<std::pair<std::size_t, int64_t>> host_ends;
 };
 
-// Writes the stream as a file: version 2 with its send times when it has them, else version 1.
-// Throws FileProblem when it cannot be written, std::invalid_argument for times the format
-// refuses (docs/PROTOCOL.md, "Version 2: send times").
+// Writes the stream as a file: format version 4 (with checksums), with its send times when it
+// has them. Throws FileProblem when it cannot be written, std::invalid_argument for times the
+// format refuses (docs/PROTOCOL.md, "Version 2: send times").
 void save_rows(const StreamFile& stream, const std::string& path);
 
 }  // namespace fb89::python

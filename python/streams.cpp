@@ -344,7 +344,9 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
             "fb89.FileError naming the byte offset and command number of anything corrupt, "
             "fb89.OptionError for a bad call set.")
         .def_readonly("path", &StreamFile::path, "The file read ('' when not read from one).")
-        .def_readonly("version", &StreamFile::version, "The stream's format version.")
+        .def_readonly("version", &StreamFile::version,
+                      "The stream's format version (of a stream not read from a file, the "
+                      "version save() writes: 4).")
         .def_readonly("header", &StreamFile::header,
                       "The header's properties (scene, method, resolution, tool ...).")
         .def_property_readonly(
@@ -424,8 +426,8 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
                 save_rows(s, file);
             },
             py::arg("path"),
-            "Writes the stream, header and all: format version 2 with its send times when it "
-            "has them, else version 1. The rows are checked first (fb89.OptionError naming the "
+            "Writes the stream, header and all: format version 4 (checksummed), with its send "
+            "times when it has them. The rows are checked first (fb89.OptionError naming the "
             "row); the file is written whole or not at all (an old one is left as it was on "
             "any failure) and its folder made, as the command line writes its outputs.")
         .def("__repr__", [](const StreamFile& s) {

@@ -33,15 +33,22 @@ CliRun fb89(const std::string& args) {
     return fb89::testing::bad_input::run_with_timeout(args);
 }
 
-// Two 8x6 frames, no properties: FRAME_BEGIN @12, FILL_RECT @28, FRAME_END @48,
+// Two 8x6 frames, no properties, in format version 1 (version 4's damage, which its checksums
+// catch: stream_checksum_test.cpp): FRAME_BEGIN @12, FILL_RECT @28, FRAME_END @48,
 // FRAME_BEGIN @49, FILL_RECT @65, FRAME_END @85, frame index @86 .. 150.
 constexpr size_t kFirstRecord = 12, kFrame0End = 49, kIndexAt = 86, kStreamSize = 151;
 
+std::vector<pr::Command> two_frame_commands() {
+    return {pr::FrameBegin{0, 8, 6, pr::Rgb{0, 0, 0}},
+            pr::FillRect{0, 0, 4, 4, pr::Rgb{255, 0, 0}},
+            pr::FrameEnd{},
+            pr::FrameBegin{1, 8, 6, pr::Rgb{0, 0, 64}},
+            pr::FillRect{2, 2, 3, 3, pr::Rgb{9, 9, 9}},
+            pr::FrameEnd{}};
+}
+
 std::vector<uint8_t> two_frames() {
-    return pr::encode_stream({pr::FrameBegin{0, 8, 6, pr::Rgb{0, 0, 0}},
-                              pr::FillRect{0, 0, 4, 4, pr::Rgb{255, 0, 0}}, pr::FrameEnd{},
-                              pr::FrameBegin{1, 8, 6, pr::Rgb{0, 0, 64}},
-                              pr::FillRect{2, 2, 3, 3, pr::Rgb{9, 9, 9}}, pr::FrameEnd{}});
+    return pr::encode_stream(two_frame_commands(), {}, true, pr::Checksums::Off);
 }
 
 // Header of version 1 with no properties.
@@ -53,7 +60,7 @@ std::vector<uint8_t> bare_header() {
 
 TEST(BadInputStream, NewerVersionsAreRefusedNamingBothVersions) {
     ASSERT_EQ(two_frames().size(), kStreamSize);
-    for (const uint16_t version : {uint16_t{4}, uint16_t{7}, uint16_t{65535}}) {
+    for (const uint16_t version : {uint16_t{5}, uint16_t{7}, uint16_t{65535}}) {
         std::vector<uint8_t> b = two_frames();
         put_u16(b, 4, version);
         const std::string path = write_bytes("v.fb89", b);
@@ -62,7 +69,7 @@ TEST(BadInputStream, NewerVersionsAreRefusedNamingBothVersions) {
             const std::string extra =
                 std::string(tool) == "trim" ? " --calls 0- -o " + scratch("t.fb89") : "";
             expect_refused(fb89(std::string(tool) + " " + path + extra), "v.fb89",
-                           {"version " + std::to_string(version), "up to 3"});
+                           {"version " + std::to_string(version), "up to 4"});
         }
     }
 }
@@ -201,6 +208,11 @@ TEST(BadInputStream, SizesClaimingGigabytesAreRefusedBeforeAllocating) {
         std::vector<uint8_t> b = two_frames();
         put_u32(b, kIndexAt + 1, 0xFFFFFFFF);
         cases.push_back({"index entries", b, "index"});
+    }
+    {  // version 4: a batch of 4 GiB (its BATCH record right after the 20-byte header)
+        std::vector<uint8_t> b = pr::encode_stream(two_frame_commands());
+        put_u32(b, 20 + 23, 0xFFFFFFFF);
+        cases.push_back({"batch length", b, "batch 0"});
     }
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);

@@ -34,7 +34,7 @@ TEST(DepthStreams, AFaceMethodsIdsAreTheZBuffersButForTheCountedTies) {
     EXPECT_NE(r.out.find("0 covered differently, 0 wrong"), std::string::npos) << r.out;
     EXPECT_TRUE(fs::exists(ids));
     pr::StreamReader reader(stream.string());
-    EXPECT_EQ(reader.version(), pr::kDepthVersion);
+    EXPECT_EQ(reader.version(), pr::kChecksumVersion);  // version 3's commands, checksummed
     // every replay tool reads it
     for (const std::string tool : {"replay", "info", "dump --calls /face"}) {
         const CliRun t = run_fb89(tool + " " + stream.string());

@@ -53,13 +53,15 @@ std::vector<pr::Command> three_frames() {
     };
 }
 
-// Cutting this many bytes off three_frames()'s stream ends it inside frame 2's span: the
-// index (85 bytes), FRAME_END (1) and MARKER "done" (7) go, and 2 bytes of the span.
+// Cutting this many bytes off three_frames()'s stream in format version 1 ends it inside
+// frame 2's span: the index (85 bytes), FRAME_END (1) and MARKER "done" (7) go, and 2 bytes
+// of the span. (Version 4 reads a batch whole: cut there, it delivers none of frame 2's
+// batch; stream_checksum_test.cpp.)
 constexpr std::size_t kCutInFrame2 = 95;
 
 std::string write_stream(const std::string& name, const std::vector<pr::Command>& commands,
-                         std::size_t cut_to = 0) {
-    std::vector<uint8_t> bytes = pr::encode_stream(commands, {{"scene", "built"}});
+                         std::size_t cut_to = 0, pr::Checksums checksums = pr::Checksums::On) {
+    std::vector<uint8_t> bytes = pr::encode_stream(commands, {{"scene", "built"}}, true, checksums);
     if (cut_to) bytes.resize(cut_to);
     const std::string path = scratch(name);
     std::ofstream(path, std::ios::binary)
@@ -68,7 +70,7 @@ std::string write_stream(const std::string& name, const std::vector<pr::Command>
     return path;
 }
 
-// Records scenes/A.json at 256x195 with the Z-buffer (with its send times: version 2).
+// Records scenes/A.json at 256x195 with the Z-buffer (with its send times, in version 4).
 std::string record_a(const std::string& name = "a.fb89", const std::string& extra = "") {
     const std::string path = scratch(name);
     CliRun r =
@@ -183,8 +185,10 @@ TEST(ReplayCommand, BenchmarkReportsThroughput) {
 }
 
 TEST(ReplayCommand, TruncatedStreamExitsTwoWritingNothingAndSalvageKeepsCompleteFrames) {
-    const auto full = pr::encode_stream(three_frames(), {{"scene", "built"}});
-    const std::string stream = write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2);
+    const auto full =
+        pr::encode_stream(three_frames(), {{"scene", "built"}}, true, pr::Checksums::Off);
+    const std::string stream =
+        write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2, pr::Checksums::Off);
     const std::string png = scratch("last.png"), stats = scratch("cut.json");
     CliRun r = fb89("replay " + stream + " --png " + png + " --stats " + stats);
     EXPECT_EQ(r.exit_code, 2);
@@ -221,7 +225,7 @@ TEST(ReplayCommand, ATimedStreamGoesThroughThePipelineAtItsSendTimesAsRendered) 
     ASSERT_EQ(render.exit_code, 0) << render.err;
     CliRun r = fb89("replay " + stream + " --buffer 2048 --timeline " + timeline);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("format version 2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("format version 4"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("pipeline, frame 0 (send times from the stream, measured on native; "
                          "buffer 2048 bytes): frame "),
               std::string::npos)
@@ -241,7 +245,7 @@ TEST(StreamTools, InfoDumpTrimAndDiffShowAndKeepTheSendTimes) {
     CliRun info = fb89("info " + stream + " --json");
     ASSERT_EQ(info.exit_code, 0) << info.err;
     const nlohmann::json j = nlohmann::json::parse(info.out);
-    EXPECT_EQ(j["version"], 2);
+    EXPECT_EQ(j["version"], 4);
     EXPECT_EQ(j["send_times"], "measured on native");
     const double host_end_us = j["frames"][0]["host_end_us"].get<double>();
     EXPECT_GT(host_end_us, 0);
@@ -351,21 +355,32 @@ TEST(DumpCommand, CallsAndGrepSelectLines) {
 
 TEST(DumpCommand, SeeksThroughTheFrameIndexPastACorruptFrame) {
     // corrupt frame 0's span (x1 < x0) but leave the index valid: reading from the start
-    // fails there, reading calls 5- seeks to frame 1 and never sees it
-    auto bytes = pr::encode_stream(three_frames(), {{"scene", "built"}});
-    const std::size_t span_at = 12 + 6 + 5 + 5 + 16 + 10 + 20;  // header, FRAME_BEGIN, MARKER, FILL
-    ASSERT_EQ(bytes[span_at], 0x03);
-    bytes[span_at + 12] = 0x80;  // x1's top byte: x1 < 0 < x0
-    const std::string path = scratch("bad0.fb89");
-    std::ofstream(path, std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()),
-               static_cast<std::streamsize>(bytes.size()));
-    CliRun all = fb89("dump " + path);
-    EXPECT_EQ(all.exit_code, 2);
-    EXPECT_NE(all.err.find("(command 3)"), std::string::npos) << all.err;
-    CliRun later = fb89("dump " + path + " --calls 5-");
-    EXPECT_EQ(later.exit_code, 0) << later.err;
-    EXPECT_EQ(lines_of(later.out).size(), 7u) << later.out;
+    // fails there (version 1: at the span; version 4: frame 0's batch fails its checksum),
+    // reading calls 5- seeks to frame 1 and never sees it
+    for (const pr::Checksums checksums : {pr::Checksums::Off, pr::Checksums::On}) {
+        auto bytes = pr::encode_stream(three_frames(), {{"scene", "built"}}, true, checksums);
+        pr::StreamReader reader(bytes);
+        pr::Command c;
+        for (int i = 0; i < 4; ++i)
+            ASSERT_TRUE(reader.next(c));
+        const std::size_t span_at = reader.command_offset();  // command 3
+        ASSERT_EQ(bytes[span_at], 0x03);
+        bytes[span_at + 12] = 0x80;  // x1's top byte: x1 < 0 < x0
+        const std::string path = scratch("bad0.fb89");
+        std::ofstream(path, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()),
+                   static_cast<std::streamsize>(bytes.size()));
+        CliRun all = fb89("dump " + path);
+        EXPECT_EQ(all.exit_code, 2);
+        EXPECT_NE(all.err.find(checksums == pr::Checksums::On
+                                   ? "batch 0 fails its checksum at byte 36 (commands 0-4)"
+                                   : "(command 3)"),
+                  std::string::npos)
+            << all.err;
+        CliRun later = fb89("dump " + path + " --calls 5-");
+        EXPECT_EQ(later.exit_code, 0) << later.err;
+        EXPECT_EQ(lines_of(later.out).size(), 7u) << later.out;
+    }
 }
 
 TEST(DumpCommand, BadCallSetExitsTwoNamingIt) {
@@ -387,7 +402,9 @@ TEST(InfoCommand, JsonHasPerFrameOpcodesPixelsAndBytes) {
     CliRun r = fb89("info " + stream + " --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
-    EXPECT_EQ(j["version"], 1);
+    EXPECT_EQ(j["version"], 4);
+    EXPECT_EQ(j["checksums"]["all_good"], true);
+    EXPECT_EQ(j["checksums"]["batches_checked"], 4);  // a batch a frame, and the index's
     EXPECT_EQ(j["properties"]["scene"], "built");
     EXPECT_TRUE(j["frame_index"].get<bool>());
     EXPECT_EQ(j["commands"], 12);
@@ -410,7 +427,8 @@ TEST(InfoCommand, TextShowsHeaderAndOneRowPerFrame) {
     const std::string stream = record_a();
     CliRun r = fb89("info " + stream);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("format version 2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("format version 4"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("batches, all good"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("zbuffer"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("256x195"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("frame index    present"), std::string::npos) << r.out;
@@ -418,16 +436,16 @@ TEST(InfoCommand, TextShowsHeaderAndOneRowPerFrame) {
 
 TEST(InfoCommand, NewerVersionNamesBothVersions) {
     auto bytes = pr::encode_stream(three_frames());
-    bytes[4] = 4;
-    const std::string path = scratch("v4.fb89");
+    bytes[4] = 5;
+    const std::string path = scratch("v5.fb89");
     std::ofstream(path, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));
     CliRun r = fb89("info " + path);
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("v4.fb89"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("version 4"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("up to 3"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("v5.fb89"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("version 5"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("up to 4"), std::string::npos) << r.err;
 }
 
 TEST(TrimCommand, WholeFramesKeepTheirChecksums) {
@@ -468,8 +486,10 @@ TEST(TrimCommand, AKeptCommandBringsItsFramesBeginAndEnd) {
 }
 
 TEST(TrimCommand, TruncatedInputLeavesNothingAndSalvageGivesAStreamThatReplays) {
-    const auto full = pr::encode_stream(three_frames(), {{"scene", "built"}});
-    const std::string stream = write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2);
+    const auto full =
+        pr::encode_stream(three_frames(), {{"scene", "built"}}, true, pr::Checksums::Off);
+    const std::string stream =
+        write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2, pr::Checksums::Off);
     const std::string out = scratch("from_cut.fb89");
     CliRun r = fb89("trim " + stream + " --calls 0- -o " + out);
     EXPECT_EQ(r.exit_code, 2);
@@ -576,8 +596,10 @@ TEST(ReplayTools, EveryToolReportsATruncatedStreamAndExitsTwo) {
           "trim " + cut + " --frames 0 -o " + scratch("t.fb89"), "diff " + a + " " + cut}) {
         CliRun r = fb89(args);
         EXPECT_EQ(r.exit_code, 2) << args;
-        EXPECT_NE(r.err.find("cut.fb89: truncated DRAW_SPAN at byte"), std::string::npos)
+        // (version 4: the batch holding the span, read whole, is cut short)
+        EXPECT_NE(r.err.find("cut.fb89: truncated batch "), std::string::npos)
             << args << ": " << r.err;
+        EXPECT_NE(r.err.find(" at byte "), std::string::npos) << args << ": " << r.err;
     }
     for (const char* tool : {"replay", "dump", "info"}) {
         CliRun missing = fb89(std::string(tool) + " /nonexistent/s.fb89");

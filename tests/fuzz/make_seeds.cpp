@@ -1,6 +1,8 @@
 // Writes the generated seed corpora: stream_reader (streams from the project's StreamWriter,
-// whole, cut and corrupted) and controller (command lists in controller_fuzz.cpp's tiny
-// encoding). Run from the source tree after changing the stream format or that encoding:
+// whole, cut and corrupted: version 1 under the seeds' first names, version 4 -- checksummed
+// batches, send times, depth commands -- as *_v4) and controller (command lists in
+// controller_fuzz.cpp's tiny encoding). Run from the source tree after changing the stream format
+// or that encoding:
 //   cmake --build build --target fb89_fuzz_make_seeds
 //   build/tests/fuzz/fb89_fuzz_make_seeds tests/fuzz/corpus
 // The other corpora (scene, obj, call_set) are hand-written files.
@@ -27,25 +29,29 @@ void save(const fs::path& dir, const std::string& name, const std::vector<uint8_
 }
 
 std::vector<uint8_t> encode(const std::vector<Command>& commands, const Properties& props,
-                            bool close) {
-    StreamWriter w(props);
+                            bool close, Checksums checksums = Checksums::Off) {
+    StreamWriter w(props, Timing::Untimed, Commands::Tiling, checksums);
     for (const Command& c : commands)
         w.submit(c);
     if (close) w.close();
     return w.take_bytes();
 }
 
+std::vector<uint8_t> cut(const std::vector<uint8_t>& bytes, std::size_t size) {
+    return std::vector<uint8_t>(bytes.begin(), bytes.begin() + static_cast<long>(size));
+}
+
 void stream_seeds(const fs::path& dir) {
     const Properties props = testing::sample_properties();
+    // version 1
     const auto two = encode(testing::two_frames(), props, true);
     save(dir, "two_frames.stream", two);
     save(dir, "two_frames_no_index.stream", encode(testing::two_frames(), props, false));
     save(dir, "every_opcode.stream", encode(testing::every_opcode(), {}, true));
     save(dir, "header_only.stream", encode({}, props, true));
     // cut inside a record, inside the index, inside the footer
-    save(dir, "two_frames_cut_record.stream",
-         std::vector<uint8_t>(two.begin(), two.begin() + static_cast<long>(two.size() / 2)));
-    save(dir, "two_frames_cut_footer.stream", std::vector<uint8_t>(two.begin(), two.end() - 7));
+    save(dir, "two_frames_cut_record.stream", cut(two, two.size() / 2));
+    save(dir, "two_frames_cut_footer.stream", cut(two, two.size() - 7));
     // corruption: an unknown opcode after the header, a wrong index entry
     auto bad_op = two;
     bad_op[encode({}, props, false).size()] = 0x7f;
@@ -53,6 +59,33 @@ void stream_seeds(const fs::path& dir) {
     auto bad_index = two;
     bad_index[bad_index.size() - 30] ^= 0x55;
     save(dir, "two_frames_bad_index.stream", bad_index);
+
+    // version 4: batches with their checksums, a timed stream with depth commands
+    const auto two4 = encode(testing::two_frames(), props, true, Checksums::On);
+    save(dir, "two_frames_v4.stream", two4);
+    save(dir, "two_frames_no_index_v4.stream",
+         encode(testing::two_frames(), props, false, Checksums::On));
+    save(dir, "every_opcode_v4.stream", encode(testing::every_opcode(), {}, true, Checksums::On));
+    save(dir, "header_only_v4.stream", encode({}, props, true, Checksums::On));
+    const auto mixed = testing::mixed_stream(Checksums::On, 300).bytes;
+    save(dir, "timed_depth_v4.stream", mixed);
+    save(dir, "timed_depth_cut_batch_v4.stream", cut(mixed, mixed.size() / 2));
+    save(dir, "two_frames_cut_footer_v4.stream", cut(two4, two4.size() - 7));
+    // damage: a flipped bit in a command, in a BATCH record's length, in the frame index, in
+    // the header
+    const std::size_t header = encode({}, props, false, Checksums::On).size();
+    auto flipped = two4;
+    flipped[header + kBatchRecordSize + 20] ^= 0x04;
+    save(dir, "two_frames_flipped_command_v4.stream", flipped);
+    auto length = two4;
+    length[header + 25] ^= 0x10;
+    save(dir, "two_frames_flipped_length_v4.stream", length);
+    auto index = two4;
+    index[index.size() - 30] ^= 0x01;
+    save(dir, "two_frames_flipped_index_v4.stream", index);
+    auto head = two4;
+    head[16] ^= 0x20;  // a letter of the first key: the header fails its checksum
+    save(dir, "two_frames_flipped_header_v4.stream", head);
 }
 
 void put32(std::vector<uint8_t>& out, uint32_t v) {

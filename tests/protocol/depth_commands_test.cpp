@@ -1,5 +1,6 @@
 // Stream format version 3 (docs/PROTOCOL.md, "Version 3: depth commands"): the depth
-// commands' encoding, the spec's example, the version a writer picks, and what readers refuse.
+// commands' encoding, the spec's example, the version a writer picks without checksums, and
+// what readers refuse (version 4 carries the depth commands as version 3 does).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -33,7 +34,7 @@ std::string read_error(Bytes bytes) {
 }
 
 TEST(StreamFormat, Version3ExampleIsWhatTheWriterProduces) {
-    StreamWriter w(Properties{}, Timing::Untimed, Commands::Depth);
+    StreamWriter w(Properties{}, Timing::Untimed, Commands::Depth, Checksums::Off);
     w.submit(FrameBegin{0, 4, 3, Rgb{0, 0, 0}});
     w.submit(DepthClear{});
     w.submit(DepthSpan{1, 0, 2, 0x08000000u, -1, Rgb{0, 255, 0}});
@@ -58,31 +59,44 @@ TEST(DepthCommands, EveryFieldRoundTripsThroughAVersion3Stream) {
              std::numeric_limits<int32_t>::max(),
              {{0, 0}, {kMaxFaceCoordinate, -kMaxFaceCoordinate}, {-kMaxFaceCoordinate, 256}}},
         FrameEnd{}};
-    for (const Timing timing : {Timing::Untimed, Timing::Timed}) {
-        StreamWriter w(Properties{}, timing, Commands::Depth);
-        for (const Command& c : commands)
-            w.submit(c);
-        w.close();
-        StreamReader r(w.take_bytes());
-        EXPECT_EQ(r.version(), kDepthVersion);
-        EXPECT_EQ(r.timed(), timing == Timing::Timed);
-        Command c;
-        std::vector<Command> got;
-        while (r.next(c))
-            got.push_back(c);
-        EXPECT_EQ(got, commands);
-    }
+    for (const Checksums checksums : {Checksums::Off, Checksums::On})
+        for (const Timing timing : {Timing::Untimed, Timing::Timed}) {
+            StreamWriter w(Properties{}, timing, Commands::Depth, checksums);
+            for (const Command& c : commands)
+                w.submit(c);
+            w.close();
+            StreamReader r(w.take_bytes());
+            EXPECT_EQ(r.version(), checksums == Checksums::On ? kChecksumVersion : kDepthVersion);
+            EXPECT_EQ(r.timed(), timing == Timing::Timed);
+            Command c;
+            std::vector<Command> got;
+            while (r.next(c))
+                got.push_back(c);
+            EXPECT_EQ(got, commands);
+        }
 }
 
-TEST(DepthCommands, AWriterPicksTheOldestVersionThatCarriesItsCommands) {
-    EXPECT_EQ(StreamWriter(Properties{}).version(), kUntimedVersion);
-    EXPECT_EQ(StreamWriter(Properties{}, Timing::Timed).version(), kTimedVersion);
-    EXPECT_EQ(StreamWriter(Properties{}, Timing::Untimed, Commands::Depth).version(),
+TEST(DepthCommands, WithoutChecksumsAWriterPicksTheOldestVersionThatCarriesItsCommands) {
+    const Checksums off = Checksums::Off;
+    EXPECT_EQ(StreamWriter(Properties{}, Timing::Untimed, Commands::Tiling, off).version(),
+              kUntimedVersion);
+    EXPECT_EQ(StreamWriter(Properties{}, Timing::Timed, Commands::Tiling, off).version(),
+              kTimedVersion);
+    EXPECT_EQ(StreamWriter(Properties{}, Timing::Untimed, Commands::Depth, off).version(),
               kDepthVersion);
-    EXPECT_EQ(encode_stream({FrameBegin{0, 2, 2, {}}, FrameEnd{}})[4], kUntimedVersion);
-    EXPECT_EQ(encode_stream({FrameBegin{0, 2, 2, {}}, DepthClear{}, FrameEnd{}})[4], kDepthVersion);
-    // a tiling writer refuses a depth command before writing a byte of it
-    StreamWriter w(Properties{});
+    EXPECT_EQ(encode_stream({FrameBegin{0, 2, 2, {}}, FrameEnd{}}, {}, true, off)[4],
+              kUntimedVersion);
+    EXPECT_EQ(encode_stream({FrameBegin{0, 2, 2, {}}, DepthClear{}, FrameEnd{}}, {}, true, off)[4],
+              kDepthVersion);
+    // with checksums, version 4, which carries them all
+    EXPECT_EQ(encode_stream({FrameBegin{0, 2, 2, {}}, DepthClear{}, FrameEnd{}})[4],
+              kChecksumVersion);
+    StreamWriter v4(Properties{});
+    EXPECT_TRUE(v4.depth());
+    v4.submit(FrameBegin{0, 2, 2, {}});
+    EXPECT_NO_THROW(v4.submit(DepthClear{}));
+    // a version-1 writer refuses a depth command before writing a byte of it
+    StreamWriter w(Properties{}, Timing::Untimed, Commands::Tiling, off);
     w.submit(FrameBegin{0, 2, 2, {}});
     const std::size_t before = w.bytes().size();
     try {
@@ -96,7 +110,8 @@ TEST(DepthCommands, AWriterPicksTheOldestVersionThatCarriesItsCommands) {
 }
 
 TEST(DepthCommands, OlderVersionsAndBadRecordsAreRefusedNamingTheByte) {
-    const Bytes v3 = encode_stream({FrameBegin{0, 4, 3, {}}, DepthClear{}, FrameEnd{}}, {}, false);
+    const Bytes v3 = encode_stream({FrameBegin{0, 4, 3, {}}, DepthClear{}, FrameEnd{}}, {}, false,
+                                   Checksums::Off);
     Bytes as_v2 = v3;
     as_v2[4] = 2;
     EXPECT_NE(read_error(as_v2).find("at byte 28"), std::string::npos) << read_error(as_v2);
@@ -106,8 +121,8 @@ TEST(DepthCommands, OlderVersionsAndBadRecordsAreRefusedNamingTheByte) {
     EXPECT_NE(read_error(flags).find("header flags"), std::string::npos) << read_error(flags);
     // a FACE of 2 points, and one of 65, and one cut inside its points
     Bytes face = encode_stream(
-        {FrameBegin{0, 4, 3, {}}, Face{{}, 0, 0, 0, 0, 0, {{0, 0}, {256, 0}, {0, 256}}}}, {},
-        false);
+        {FrameBegin{0, 4, 3, {}}, Face{{}, 0, 0, 0, 0, 0, {{0, 0}, {256, 0}, {0, 256}}}}, {}, false,
+        Checksums::Off);
     for (const uint8_t n : {uint8_t{2}, uint8_t{65}}) {
         Bytes bad = face;
         bad[29] = n;
@@ -118,7 +133,8 @@ TEST(DepthCommands, OlderVersionsAndBadRecordsAreRefusedNamingTheByte) {
     cut.resize(cut.size() - 3);
     EXPECT_NE(read_error(cut).find("truncated FACE"), std::string::npos) << read_error(cut);
     // a DEPTH_SPAN with x1 < x0, through the fast path and the general one alike
-    Bytes span = encode_stream({FrameBegin{0, 4, 3, {}}, DepthSpan{0, 1, 2, 0, 0, {}}}, {}, false);
+    Bytes span = encode_stream({FrameBegin{0, 4, 3, {}}, DepthSpan{0, 1, 2, 0, 0, {}}}, {}, false,
+                               Checksums::Off);
     span[29 + 8] = 0;  // x1 = 0 < x0 = 1
     EXPECT_NE(read_error(span).find("x1 0 < x0 1"), std::string::npos) << read_error(span);
 }

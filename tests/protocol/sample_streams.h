@@ -13,6 +13,7 @@
 #include "protocol/memory_buffer.h"
 #include "protocol/stream_format.h"
 #include "protocol/stream_reader.h"
+#include "protocol/stream_writer.h"
 
 namespace fb89::protocol::testing {
 
@@ -49,6 +50,56 @@ inline Properties sample_properties() {
             {"scene", "scenes/ideal.json"},
             {"threshold", "16"},
             {"tool", "fb89 0.1.0"}};
+}
+
+// A stream of every kind of record, as a renderer with send times and depth commands writes
+// it: frame 0 with markers, a fill, a span, a depth buffer, a DEPTH_SPAN and a FACE between send
+// times and its HOST_END; frame 1 of `spans` spans sent in packets of 64 (300: two batches and
+// more in version 4); frame 2 a fill; then (closed) the frame index. The commands beside the
+// bytes.
+struct WrittenStream {
+    std::vector<uint8_t> bytes;
+    std::vector<Command> commands;
+};
+
+inline WrittenStream mixed_stream(Checksums checksums = Checksums::On, int spans = 300,
+                                  bool close = true) {
+    StreamWriter w(sample_properties(), Timing::Timed, Commands::Depth, checksums);
+    WrittenStream out;
+    const auto send = [&](Command c) {
+        out.commands.push_back(c);
+        w.submit(c);
+    };
+    send(FrameBegin{0, 8, 6, Rgb{0, 0, 0}});
+    send(Marker{"zbuffer"});
+    w.send_time(100);
+    send(FillRect{0, 0, 4, 4, Rgb{255, 0, 0}});
+    send(DrawSpan{5, 1, 6, Rgb{0, 255, 0}});
+    send(DepthClear{});
+    send(DepthSpan{2, 0, 7, 1u << 27, -4096, Rgb{0, 0, 255}});
+    w.send_time(250);
+    send(Face{Rgb{255, 255, 0},
+              2,
+              2,
+              1u << 26,
+              512,
+              -256,
+              {{256, 256}, {6 * 256, 512}, {3 * 256, 5 * 256}}});
+    send(Marker{"done"});
+    w.host_end(300);
+    send(FrameEnd{});
+    send(FrameBegin{1, 16, 12, Rgb{0, 0, 64}});
+    for (int i = 0; i < spans; ++i) {
+        if (i % 64 == 0) w.send_time(1000 + i);
+        send(DrawSpan{i % 12, i % 16, 15, Rgb{static_cast<uint8_t>(i), 9, 9}});
+    }
+    send(FrameEnd{});
+    send(FrameBegin{2, 8, 6, Rgb{9, 9, 9}});
+    send(FillRect{1, 1, 2, 2, Rgb{1, 2, 3}});
+    send(FrameEnd{});
+    if (close) w.close();
+    out.bytes = w.take_bytes();
+    return out;
 }
 
 // What reading a stream to its end gives: the commands delivered, and the error, if any.

@@ -1,7 +1,8 @@
 // Tests of the stream format's version 2 (docs/PROTOCOL.md, "Version 2: send times"): the
 // SEND_TIME and HOST_END records as the writer writes them and the reader reads them back,
 // beside the same commands numbered as in version 1; and every time the format refuses, by
-// the writer before it writes and by the reader with the byte and the command.
+// the writer before it writes and by the reader with the byte and the command. On version-2
+// streams (a writer without checksums); version 4 carries the same records.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -24,7 +25,7 @@ bool contains(const std::string& text, const std::string& part) {
 // the host done at 3000 ns; frame 1 without a HOST_END, its span at 40 ns.
 Bytes timed_two_frames() {
     const std::vector<Command> c = testing::two_frames();
-    StreamWriter w(testing::sample_properties(), Timing::Timed);
+    StreamWriter w(testing::sample_properties(), Timing::Timed, Commands::Tiling, Checksums::Off);
     w.submit(c[0]);  // FRAME_BEGIN: 0
     w.submit(c[1]);  // MARKER: still 0
     w.send_time(1000);
@@ -46,7 +47,8 @@ Bytes timed_two_frames() {
 const std::vector<int64_t> kSendNs = {0, 0, 1000, 2500, 2500, 0, 40, 40, 40};
 
 TEST(SendTimes, ATimedStreamIsVersionTwoWithTheSameCommandsAndNumbers) {
-    const Bytes v1 = encode_stream(testing::two_frames(), testing::sample_properties());
+    const Bytes v1 =
+        encode_stream(testing::two_frames(), testing::sample_properties(), true, Checksums::Off);
     const Bytes v2 = timed_two_frames();
     // three SEND_TIMEs and a HOST_END, 9 bytes each; the header's version says 2
     EXPECT_EQ(v2.size(), v1.size() + 4 * kTimeRecordSize);
@@ -96,7 +98,7 @@ TEST(SendTimes, ReadInBatchesEachCommandGetsItsTime) {
 
 TEST(SendTimes, AVersionOneStreamHasNoTimeRecords) {
     // 0x06 in a version-1 stream is the unknown opcode it always was
-    Bytes v1 = encode_stream({FrameBegin{0, 4, 4, Rgb{}}, FrameEnd{}});
+    Bytes v1 = encode_stream({FrameBegin{0, 4, 4, Rgb{}}, FrameEnd{}}, {}, true, Checksums::Off);
     const std::size_t at = v1.size() - (kIndexPrefixSize + kIndexEntrySize + kFooterSize) - 1;
     v1[at] = kSendTimeOpcode;  // the FRAME_END
     const auto r = testing::read_all(v1);
@@ -208,7 +210,7 @@ TEST(SendTimes, TruncationAtEveryByteOfATimedStreamDeliversTheCompleteCommands) 
 
 // docs/PROTOCOL.md, "Version 2: send times": the example's 67 bytes.
 TEST(SendTimes, SpecHexExampleIsWhatTheWriterProduces) {
-    StreamWriter w(Properties{}, Timing::Timed);
+    StreamWriter w(Properties{}, Timing::Timed, Commands::Tiling, Checksums::Off);
     w.submit(FrameBegin{0, 4, 3, Rgb{0, 0, 0}});
     w.send_time(1500);
     w.submit(FillRect{0, 0, 2, 2, Rgb{255, 0, 0}});

@@ -1,6 +1,7 @@
 // Tests of protocol/stream_reader.h on commands and the header: numbers and offsets,
 // truncation at every byte, versions, bad magic, unknown opcodes, fields out of range,
-// bounded lengths, random corruption, files and pipes.
+// bounded lengths, random corruption, files and pipes. The rules every version keeps, on
+// version-1 streams (what version 4's checksums add: stream_checksum_test.cpp).
 #include "protocol/stream_reader.h"
 
 #include <fmt/format.h>
@@ -29,6 +30,12 @@ bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
+// A version-1 stream: the records back to back, as this file's offsets count them.
+Bytes encode_v1(const std::vector<Command>& commands, const Properties& properties = {},
+                bool with_index = true) {
+    return encode_stream(commands, properties, with_index, Checksums::Off);
+}
+
 // Byte offsets of every command record of a stream, then of its index (or its end).
 std::vector<uint64_t> record_offsets(const Bytes& bytes) {
     StreamReader reader(bytes);
@@ -44,7 +51,7 @@ std::vector<uint64_t> record_offsets(const Bytes& bytes) {
 }
 
 TEST(StreamReader, NumbersCommandsFromZeroWithTheirByteOffsets) {
-    const Bytes bytes = encode_stream(testing::two_frames(), testing::sample_properties());
+    const Bytes bytes = encode_v1(testing::two_frames(), testing::sample_properties());
     StreamReader reader(bytes);
     const std::vector<std::size_t> sizes = {16, 1 + 2 + 7, 20, 16, 1, 16, 16, 1 + 2 + 4, 1};
     uint64_t offset = reader.header_size();
@@ -62,7 +69,7 @@ TEST(StreamReader, NumbersCommandsFromZeroWithTheirByteOffsets) {
 }
 
 TEST(StreamReader, TruncationAtEveryByteDeliversExactlyTheCompleteCommands) {
-    const Bytes full = encode_stream(testing::two_frames(), testing::sample_properties());
+    const Bytes full = encode_v1(testing::two_frames(), testing::sample_properties());
     const std::vector<Command> all = testing::two_frames();
     const std::vector<uint64_t> starts = record_offsets(full);  // records, then the index
     const uint64_t index_at = starts.back();
@@ -105,21 +112,21 @@ TEST(StreamReader, TruncationAtEveryByteDeliversExactlyTheCompleteCommands) {
 }
 
 TEST(StreamReader, RefusesANewerVersionNamingBothVersions) {
-    Bytes bytes = encode_stream(testing::two_frames());
-    bytes[4] = 4;
+    Bytes bytes = encode_v1(testing::two_frames());
+    bytes[4] = 5;
     const ReadResult r = read_all(bytes);
     ASSERT_TRUE(r.error);
     EXPECT_STREQ(r.error->what(),
-                 "stream.fb89: stream is format version 4; this fb89 reads versions up to 3");
+                 "stream.fb89: stream is format version 5; this fb89 reads versions up to 4");
     // a newer version may lay out everything after the version differently
     const ReadResult short_header = read_all(Bytes{'F', 'B', '8', '9', 0x00, 0x01});
     ASSERT_TRUE(short_header.error);
     EXPECT_STREQ(short_header.error->what(),
-                 "stream.fb89: stream is format version 256; this fb89 reads versions up to 3");
+                 "stream.fb89: stream is format version 256; this fb89 reads versions up to 4");
 }
 
 TEST(StreamReader, RefusesVersionZeroAndNonZeroFlags) {
-    Bytes bytes = encode_stream(testing::two_frames());
+    Bytes bytes = encode_v1(testing::two_frames());
     bytes[4] = 0;
     EXPECT_TRUE(contains(read_all(bytes).error->what(), "format version 0 at byte 4"));
     bytes[4] = 1;
@@ -139,7 +146,7 @@ TEST(StreamReader, RejectsBadMagic) {
 }
 
 TEST(StreamReader, RejectsUnknownOpcodesWithOffsetAndCommandNumber) {
-    const Bytes good = encode_stream(testing::two_frames());
+    const Bytes good = encode_v1(testing::two_frames());
     const std::vector<uint64_t> starts = record_offsets(good);
     for (const uint8_t opcode : {uint8_t{0x00}, uint8_t{0x06}, uint8_t{0x7f}, uint8_t{0xff}}) {
         Bytes bytes = good;
@@ -154,7 +161,7 @@ TEST(StreamReader, RejectsUnknownOpcodesWithOffsetAndCommandNumber) {
 }
 
 TEST(StreamReader, RejectsFrameSizesOutsideOneTo16384) {
-    const Bytes good = encode_stream(testing::two_frames());
+    const Bytes good = encode_v1(testing::two_frames());
     const uint64_t at = record_offsets(good)[5];  // second FRAME_BEGIN
     Bytes bytes = good;
     bytes[at + 5] = 0;  // width 8 -> 0
@@ -172,7 +179,7 @@ TEST(StreamReader, RejectsFrameSizesOutsideOneTo16384) {
 }
 
 TEST(StreamReader, RejectsASpanWhoseX1IsBeforeX0) {
-    const Bytes good = encode_stream(testing::two_frames());
+    const Bytes good = encode_v1(testing::two_frames());
     const uint64_t at = record_offsets(good)[3];  // DRAW_SPAN y=5 x0=1 x1=6
     Bytes bytes = good;
     bytes[at + 9] = 0;
@@ -183,7 +190,7 @@ TEST(StreamReader, RejectsASpanWhoseX1IsBeforeX0) {
 }
 
 TEST(StreamReader, RejectsAMarkerLongerThanTheLimit) {
-    Bytes bytes = encode_stream({FrameBegin{0, 1, 1, Rgb{}}, Marker{"abc"}}, {}, false);
+    Bytes bytes = encode_v1({FrameBegin{0, 1, 1, Rgb{}}, Marker{"abc"}}, {}, false);
     const uint64_t at = record_offsets(bytes)[1];
     for (const uint16_t length : {uint16_t{kMaxMarkerLength + 1}, uint16_t{0xffff}}) {
         bytes[at + 1] = static_cast<uint8_t>(length);
@@ -215,7 +222,7 @@ TEST(StreamReader, BoundsHeaderLengthsBeforeAllocating) {
 }
 
 TEST(StreamReader, KeepsThrowingAfterAnError) {
-    Bytes bytes = encode_stream(testing::two_frames());
+    Bytes bytes = encode_v1(testing::two_frames());
     bytes[record_offsets(bytes)[2]] = 0x42;
     StreamReader reader(bytes);
     Command c;
@@ -226,20 +233,23 @@ TEST(StreamReader, KeepsThrowingAfterAnError) {
 }
 
 TEST(StreamReader, RandomCorruptionGivesCommandsOrStreamErrorsOnly) {
-    const Bytes good = encode_stream(testing::every_opcode(), testing::sample_properties());
-    std::mt19937 random(89);
-    for (int trial = 0; trial < 4000; ++trial) {
-        Bytes bytes = good;
-        const int flips = 1 + trial % 4;
-        for (int i = 0; i < flips; ++i) {
-            bytes[random() % bytes.size()] = static_cast<uint8_t>(random());
+    for (const Checksums checksums : {Checksums::Off, Checksums::On}) {
+        const Bytes good =
+            encode_stream(testing::every_opcode(), testing::sample_properties(), true, checksums);
+        std::mt19937 random(89);
+        for (int trial = 0; trial < 4000; ++trial) {
+            Bytes bytes = good;
+            const int flips = 1 + trial % 4;
+            for (int i = 0; i < flips; ++i) {
+                bytes[random() % bytes.size()] = static_cast<uint8_t>(random());
+            }
+            if (trial % 3 == 0) bytes.resize(random() % bytes.size());
+            const ReadResult r = read_all(bytes);  // anything but a StreamError escapes and fails
+            if (r.error) {
+                EXPECT_LE(r.error->offset(), bytes.size());
+            }
+            EXPECT_LE(r.commands.size(), bytes.size());  // every record is at least a byte
         }
-        if (trial % 3 == 0) bytes.resize(random() % bytes.size());
-        const ReadResult r = read_all(bytes);  // anything but a StreamError escapes and fails
-        if (r.error) {
-            EXPECT_LE(r.error->offset(), bytes.size());
-        }
-        EXPECT_LE(r.commands.size(), bytes.size());  // every record is at least a byte
     }
 }
 
@@ -262,42 +272,46 @@ std::vector<Command> long_stream() {
 }
 
 TEST(StreamReader, ReadsAFileIncrementallyLikeABuffer) {
-    const auto path = temp_path("long.fb89");
-    const std::vector<Command> commands = long_stream();
-    const Bytes bytes = encode_stream(commands, testing::sample_properties());
-    {
-        StreamWriter writer(path.string(), testing::sample_properties());
-        for (const Command& c : commands)
-            writer.submit(c);
-        writer.close();
-    }
-    StreamReader reader(path.string());
-    EXPECT_EQ(reader.properties(), testing::sample_properties());
-    MemoryBuffer buffer;
-    EXPECT_EQ(reader.replay_into(buffer), commands.size());
-    EXPECT_EQ(buffer.commands(), commands);
-    ASSERT_TRUE(reader.frame_index());
-    EXPECT_EQ(reader.frame_index()->size(), 40u);
+    for (const Checksums checksums : {Checksums::Off, Checksums::On}) {
+        SCOPED_TRACE(checksums == Checksums::On ? "version 4" : "version 1");
+        const auto path = temp_path("long.fb89");
+        const std::vector<Command> commands = long_stream();
+        const Bytes bytes = encode_stream(commands, testing::sample_properties(), true, checksums);
+        {
+            StreamWriter writer(path.string(), testing::sample_properties(), Timing::Untimed,
+                                Commands::Tiling, checksums);
+            for (const Command& c : commands)
+                writer.submit(c);
+            writer.close();
+        }
+        StreamReader reader(path.string());
+        EXPECT_EQ(reader.properties(), testing::sample_properties());
+        MemoryBuffer buffer;
+        EXPECT_EQ(reader.replay_into(buffer), commands.size());
+        EXPECT_EQ(buffer.commands(), commands);
+        ASSERT_TRUE(reader.frame_index());
+        EXPECT_EQ(reader.frame_index()->size(), 40u);
 
-    // the same file cut inside a record: the same error as from memory
-    std::size_t victim = commands.size() * 2 / 3;
-    while (!std::holds_alternative<DrawSpan>(commands[victim]))
-        ++victim;
-    const uint64_t cut = record_offsets(bytes)[victim] + 7;
-    std::filesystem::resize_file(path, cut);
-    const ReadResult from_memory =
-        read_all(Bytes(bytes.begin(), bytes.begin() + cut), path.string());
-    ASSERT_TRUE(from_memory.error);
-    StreamReader cut_reader(path.string());
-    MemoryBuffer partial;
-    try {
-        cut_reader.replay_into(partial);
-        FAIL() << "no error reading a file cut at byte " << cut;
-    } catch (const StreamError& e) {
-        EXPECT_STREQ(e.what(), from_memory.error->what());
+        // the same file cut inside a record: the same error as from memory
+        std::size_t victim = commands.size() * 2 / 3;
+        while (!std::holds_alternative<DrawSpan>(commands[victim]))
+            ++victim;
+        const uint64_t cut = record_offsets(bytes)[victim] + 7;
+        std::filesystem::resize_file(path, cut);
+        const ReadResult from_memory =
+            read_all(Bytes(bytes.begin(), bytes.begin() + cut), path.string());
+        ASSERT_TRUE(from_memory.error);
+        StreamReader cut_reader(path.string());
+        MemoryBuffer partial;
+        try {
+            cut_reader.replay_into(partial);
+            FAIL() << "no error reading a file cut at byte " << cut;
+        } catch (const StreamError& e) {
+            EXPECT_STREQ(e.what(), from_memory.error->what());
+        }
+        EXPECT_EQ(partial.commands(), from_memory.commands);
+        std::filesystem::remove(path);
     }
-    EXPECT_EQ(partial.commands(), from_memory.commands);
-    std::filesystem::remove(path);
 }
 
 TEST(StreamReader, MissingFileThrowsNamingThePath) {

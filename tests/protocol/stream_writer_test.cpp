@@ -62,15 +62,19 @@ TEST(StreamWriter, HeaderPropertiesRoundTrip) {
     properties["binary"] = std::string("a\0b\xff", 4);
     properties[std::string(kMaxPropertyKeyLength, 'k')] = std::string(kMaxPropertyValueLength, 'v');
     StreamReader reader(encode_stream(testing::two_frames(), properties));
-    EXPECT_EQ(reader.version(), kUntimedVersion);
+    EXPECT_EQ(reader.version(), kChecksumVersion);
     EXPECT_EQ(reader.properties(), properties);
+    StreamReader v1(encode_stream(testing::two_frames(), properties, true, Checksums::Off));
+    EXPECT_EQ(v1.version(), kUntimedVersion);
+    EXPECT_EQ(v1.properties(), properties);
 }
 
 TEST(StreamWriter, CloseWritesTheFrameIndex) {
     StreamWriter writer(testing::sample_properties());
     for (const Command& c : testing::two_frames())
         writer.submit(c);
-    const uint64_t index_offset = writer.byte_count();
+    // version 4: the index in a batch of its own, after its BATCH record
+    const uint64_t index_offset = writer.byte_count() + kBatchRecordSize;
     writer.close();
     writer.close();  // a second close does nothing
     const FrameIndex expected = {{0, 0, writer.frame_index()[0].offset},
@@ -81,6 +85,8 @@ TEST(StreamWriter, CloseWritesTheFrameIndex) {
               index_offset + kIndexPrefixSize + 2 * kIndexEntrySize + kFooterSize);
     EXPECT_EQ(writer.bytes()[index_offset], kIndexOpcode);
     EXPECT_EQ(get_u64(&writer.bytes()[writer.bytes().size() - kFooterSize]), index_offset);
+    EXPECT_EQ(writer.bytes()[index_offset - kBatchRecordSize], kBatchOpcode);
+    EXPECT_EQ(writer.batch_count(), 3u);
 }
 
 TEST(StreamWriter, FileBytesEqualMemoryBytes) {

@@ -1,12 +1,12 @@
 // XXH64, step by step as in its specification (see xxhash64.h): stripe accumulation,
 // convergence of the four accumulators, the tail, the avalanche.
-#include "controller_sim/xxhash64.h"
+#include "protocol/xxhash64.h"
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
 
-namespace fb89::controller {
+namespace fb89::protocol {
 
 namespace {
 
@@ -119,4 +119,4 @@ uint64_t xxh64(const uint8_t* p, std::size_t n, uint64_t seed) {
     return h.digest();
 }
 
-}  // namespace fb89::controller
+}  // namespace fb89::protocol
