@@ -77,13 +77,14 @@ DepthAgreement depth_agreement(const host::ScreenScene& scene,
 }
 
 std::string z_fighting_note(const DepthAgreement& a) {
-    if (a.pixels == 0 || static_cast<double>(a.ties) <= kZFightingShare * a.pixels) return "";
+    const auto pixels = static_cast<double>(a.pixels), ties = static_cast<double>(a.ties);
+    if (a.pixels == 0 || ties <= kZFightingShare * pixels) return "";
     return fmt::format(
         "z-fighting: {} pixels ({:.2f}% of the frame) tie in the {}-bit depth word, whose step "
         "is {:.2g} in window depth: the controller may keep either face there; the pair tying "
         "most is faces {} and {} ({} pixels, {:.2g} apart in depth where they first tie). A "
         "32-bit word (\"depth_bits\": 32 in a profile) or a farther near plane tells them apart",
-        controller::grouped(a.ties), 100.0 * static_cast<double>(a.ties) / a.pixels, a.depth_bits,
+        controller::grouped(a.ties), 100.0 * ties / pixels, a.depth_bits,
         protocol::depth_step(a.depth_bits), a.tie_near, a.tie_far,
         controller::grouped(a.tie_pair_pixels), a.tie_pair_dz);
 }

@@ -254,9 +254,12 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
             const controller::Framebuffer ids =
                 i == 0 ? truth : id_frame(scene, o, profile.depth_bits);
             const uint64_t wrong = id_differences(truth, ids).total();
-            const std::optional<DepthAgreement> agreement =
-                depth ? std::optional(depth_agreement(id_screen, truth, ids, profile.depth_bits))
-                      : std::nullopt;
+            std::string ties, bits;  // the depth commands' ties of the profile's word
+            if (depth) {
+                ties =
+                    std::to_string(depth_agreement(id_screen, truth, ids, profile.depth_bits).ties);
+                bits = std::to_string(profile.depth_bits);
+            }
             table.add(
                 {file, settings[i].label, std::string(host::method_info(o.method).name),
                  o.method == host::Method::Hybrid ? fmt::format("{:.6g}", o.hybrid.threshold) : "",
@@ -266,8 +269,7 @@ Table experiment_accuracy(const ExperimentSettings& s, double threshold) {
                  fixed(ctl.controller_ms, 3), std::to_string(wrong),
                  fmt::format("{:.6f}", static_cast<double>(wrong) /
                                            static_cast<double>(screen.width * screen.height)),
-                 agreement ? std::to_string(agreement->ties) : "",
-                 agreement ? std::to_string(profile.depth_bits) : ""});
+                 ties, bits});
         }
     }
     return table;
