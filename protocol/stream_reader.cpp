@@ -648,7 +648,7 @@ bool StreamReader::trailing_index_checked(const Footer& footer) {
         return false;
     Xxh64 hash;
     hash.update(record + kBatchHashedFrom, kBatchRecordSize - kBatchHashedFrom);
-    std::vector<uint8_t> chunk(std::min<uint64_t>(b.length, kReadChunk));
+    std::vector<uint8_t> chunk(static_cast<std::size_t>(std::min<uint64_t>(b.length, kReadChunk)));
     for (uint64_t done = 0; done < b.length;) {
         const std::size_t n =
             static_cast<std::size_t>(std::min<uint64_t>(chunk.size(), b.length - done));
