@@ -43,8 +43,7 @@ ExperimentSettings settings_of(const RunRequest& r, std::vector<std::string> def
     s.repeat = r.repeat;
     s.profile = r.profile;
     s.progress = r.progress;
-    profile_option(r.profile,
-                   named(r, "--profile", "profile"));  // one there is, before any work
+    profile_option(r.profile, named(r, "--profile", "profile"));  // one there is, before any work
     if (!r.size.empty()) s.size = parse_size(r.size, r.spelling);
     s.period = make_period_runs(r.host);
     return s;
