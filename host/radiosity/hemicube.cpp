@@ -36,7 +36,7 @@ struct HemicubeFace {
     const std::vector<double>* delta;  // rows x resolution, row-major
 };
 
-struct ZBuffer {
+struct HemicubeZBuffer {
     int cols = 0, rows = 0;
     std::vector<double> inv_depth;  // 0: nothing seen
     std::vector<int32_t> id;
@@ -72,7 +72,7 @@ int first_cell_at_or_after(double v, double origin, double s, int n) {
 // Scan converts a convex polygon of the face's plane with inverse depth
 // `plane.x a + plane.y b + plane.z`, keeping the nearest per cell.
 uint64_t scan_convex(const std::array<Point2, 8>& poly, int count, const glm::dvec3& plane,
-                     int32_t patch, const HemicubeFace& face, ZBuffer& z) {
+                     int32_t patch, const HemicubeFace& face, HemicubeZBuffer& z) {
     const int cols = z.cols;
     const double s = 2.0 / cols;
     double bmin = poly[0].b, bmax = poly[0].b;
@@ -108,7 +108,7 @@ uint64_t scan_convex(const std::array<Point2, 8>& poly, int count, const glm::dv
 
 // Clips patch `j` to the face's near plane, projects it and scan converts it.
 uint64_t rasterise_patch(const Mesh& mesh, uint32_t j, const glm::dvec3& eye,
-                         const HemicubeFace& face, double near, ZBuffer& z) {
+                         const HemicubeFace& face, double near, HemicubeZBuffer& z) {
     const Patch& p = mesh.patches[j];
     const glm::dvec3& normal = mesh.elements[p.element].normal;
     // the patch's plane as inverse depth over the face: n·(z (a, b, 1)) = n·(p0 − eye)
@@ -168,7 +168,7 @@ std::vector<double> hemicube_form_factors(const Mesh& mesh, int resolution, Hemi
     const std::vector<double> top = delta_form_factors(resolution, false);
     const std::vector<double> side = delta_form_factors(resolution, true);
     const double near = 1e-9 * std::max(mesh_extent(mesh), 1e-300);
-    ZBuffer z;
+    HemicubeZBuffer z;
     z.cols = resolution;
     z.inv_depth.resize(top.size());
     z.id.resize(top.size());

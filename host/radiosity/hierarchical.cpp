@@ -23,7 +23,7 @@ struct Link {
     double factor = 0;  // F_pq times the visibility: the share of p's light that q gives
 };
 
-struct Node {
+struct HierarchyNode {
     uint32_t root = 0;  // the input element
     int depth = 0;
     double s0 = 0, s1 = 1, t0 = 0, t1 = 1;
@@ -63,7 +63,7 @@ class Hierarchy {
         for (const Element& e : mesh.elements)
             m_max_emission = std::max(m_max_emission, max_component(e.emission));
         for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
-            Node n;
+            HierarchyNode n;
             n.root = e;
             set_region(n);
             n.radiosity = mesh.elements[e].emission;
@@ -102,7 +102,7 @@ class Hierarchy {
     bool solve(RadiositySolution& solution) {
         const double limit = m_options.tolerance * m_max_emission;
         for (int it = 0; it < m_options.max_iterations; ++it) {
-            for (Node& n : m_nodes) {
+            for (HierarchyNode& n : m_nodes) {
                 glm::dvec3 sum{0};
                 for (const Link& l : n.links)
                     sum += l.factor * m_nodes[l.source].radiosity;
@@ -132,7 +132,7 @@ class Hierarchy {
     bool budget_hit() const { return counts.budget_hit; }
 
   private:
-    void set_region(Node& n) const {
+    void set_region(HierarchyNode& n) const {
         n.shape.element = n.root;
         n.shape.corners = region_corners(m_mesh.elements[n.root], n.s0, n.s1, n.t0, n.t1);
         set_shape(n.shape);
@@ -148,7 +148,8 @@ class Hierarchy {
 
     // Whether no piece but the two nodes' own meets the shaft between them: then no segment
     // between them is blocked, and the link needs no rays.
-    bool shaft_clear(const Node& a, uint32_t skip_a, const Node& b, uint32_t skip_b) {
+    bool shaft_clear(const HierarchyNode& a, uint32_t skip_a, const HierarchyNode& b,
+                     uint32_t skip_b) {
         ++counts.shafts;
         const Shaft shaft(a.box, b.box);
         const auto pieces = static_cast<uint32_t>(m_scene.faces().size());
@@ -161,15 +162,15 @@ class Hierarchy {
         return true;
     }
 
-    std::vector<glm::dvec3> polygon(const Node& n) const {
+    std::vector<glm::dvec3> polygon(const HierarchyNode& n) const {
         return {n.shape.corners.begin(), n.shape.corners.begin() + n.shape.corner_count};
     }
 
     // Whether any part of q lies in front of p's plane and any part of p in front of q's.
-    bool exchange(const Node& p, const Node& q) const {
+    bool exchange(const HierarchyNode& p, const HierarchyNode& q) const {
         const Element& ep = m_mesh.elements[p.root];
         const Element& eq = m_mesh.elements[q.root];
-        auto some_in_front = [](const Element& e, const Node& n) {
+        auto some_in_front = [](const Element& e, const HierarchyNode& n) {
             for (int k = 0; k < n.shape.corner_count; ++k)
                 if (in_front(e, n.shape.corners[k])) return true;
             return in_front(e, n.shape.centre);
@@ -179,7 +180,7 @@ class Hierarchy {
 
     // The oracle's unoccluded estimate of F_pq, never below the truth by much: the disk form
     // between centres with each cosine raised by the angle the two nodes' extents subtend.
-    double estimate(const Node& p, const Node& q) const {
+    double estimate(const HierarchyNode& p, const HierarchyNode& q) const {
         const glm::dvec3 r = q.shape.centre - p.shape.centre;
         const double d = glm::length(r);
         if (d <= p.radius + q.radius) return 1;  // close: anything is possible
@@ -192,7 +193,7 @@ class Hierarchy {
     }
 
     bool can_split(uint32_t n) {
-        const Node& node = m_nodes[n];
+        const HierarchyNode& node = m_nodes[n];
         if (node.children > 0) return true;
         if (node.depth >= kMaxDepth || node.shape.area <= m_options.min_area) return false;
         if (m_nodes.size() + 4 > m_options.max_nodes || m_link_count >= m_options.max_links) {
@@ -210,7 +211,7 @@ class Hierarchy {
         const double along_t = std::max(glm::length(c[3] - c[0]), glm::length(c[2] - c[1]));
         const int ns = along_t > 2 * along_s ? 1 : 2;
         const int nt = along_s > 2 * along_t ? 1 : 2;
-        const Node& node = m_nodes[n];
+        const HierarchyNode& node = m_nodes[n];
         const uint32_t root = node.root;
         const int depth = node.depth + 1;
         const double s0 = node.s0, t0 = node.t0;
@@ -221,7 +222,7 @@ class Hierarchy {
         m_nodes[n].children = static_cast<uint32_t>(ns * nt);
         for (int j = 0; j < nt; ++j)
             for (int i = 0; i < ns; ++i) {
-                Node child;
+                HierarchyNode child;
                 child.root = root;
                 child.depth = depth;
                 child.s0 = s0 + i * ds;
@@ -264,8 +265,8 @@ class Hierarchy {
     }
 
     void make_link(uint32_t p, uint32_t q) {
-        const Node& a = m_nodes[p];
-        const Node& b = m_nodes[q];
+        const HierarchyNode& a = m_nodes[p];
+        const HierarchyNode& b = m_nodes[q];
         const double f = polygon_to_polygon(polygon(a), polygon(b));
         ++counts.form_factors;
         if (!(f > 0)) return;
@@ -281,8 +282,8 @@ class Hierarchy {
         for (int i = 0; i < k; ++i) {
             glm::dvec3 from = a.shape.centre, to = b.shape.centre;
             if (k > 1) {
-                auto at = [&](const Node& n, const Element& e, uint32_t base_s, uint32_t base_t,
-                              uint32_t salt) {
+                auto at = [&](const HierarchyNode& n, const Element& e, uint32_t base_s,
+                              uint32_t base_t, uint32_t salt) {
                     const double u =
                         std::fmod(radical_inverse(static_cast<uint32_t>(i + 1), base_s) +
                                       rotation(p, q, salt),
@@ -308,7 +309,7 @@ class Hierarchy {
     // Radiosity gathered above a node is pushed down to its leaves; a node's radiosity is its
     // children's area average. `change` gathers the largest change at a leaf.
     glm::dvec3 push_pull(uint32_t n, const glm::dvec3& down, double& change) {
-        Node& node = m_nodes[n];
+        HierarchyNode& node = m_nodes[n];
         const glm::dvec3 total = down + node.gathered;
         glm::dvec3 b;
         if (node.children == 0) {
@@ -332,7 +333,7 @@ class Hierarchy {
     // The leaves, in tree order, as one-patch elements; rows: each leaf's factors summed
     // with its ancestors'.
     void collect(uint32_t n, double above, HierarchicalResult& out) {
-        const Node& node = m_nodes[n];
+        const HierarchyNode& node = m_nodes[n];
         double row = above;
         for (const Link& l : node.links)
             row += l.factor;
@@ -356,7 +357,7 @@ class Hierarchy {
     FluxTracer m_rays;
     const TraceScene& m_scene;
     double m_slack = 0;
-    std::vector<Node> m_nodes;
+    std::vector<HierarchyNode> m_nodes;
     uint32_t m_roots = 0;
     uint64_t m_link_count = 0;
     double m_max_emission = 0;

@@ -90,13 +90,13 @@ double largest(const glm::dvec3& v) {
     return std::max({v.x, v.y, v.z});
 }
 
-struct Box {
+struct MeshBox {
     glm::dvec3 lo{INFINITY}, hi{-INFINITY};
     void add(const glm::dvec3& p) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
     }
-    bool touches(const Box& o, double margin) const {
+    bool touches(const MeshBox& o, double margin) const {
         for (int a = 0; a < 3; ++a)
             if (o.lo[a] > hi[a] + margin || lo[a] > o.hi[a] + margin) return false;
         return true;
@@ -195,8 +195,8 @@ std::vector<bool> patches_to_split(const Mesh& mesh, const std::vector<glm::dvec
     };
 
     // neighbours: patches of one piece whose bounding boxes touch
-    std::vector<Box> boxes(n);
-    Box all;
+    std::vector<MeshBox> boxes(n);
+    MeshBox all;
     std::vector<std::vector<uint32_t>> by_piece;
     for (size_t p = 0; p < n; ++p) {
         const Patch& patch = mesh.patches[p];
@@ -215,8 +215,8 @@ std::vector<bool> patches_to_split(const Mesh& mesh, const std::vector<glm::dvec
                   [&](uint32_t a, uint32_t b) { return boxes[a].lo.x < boxes[b].lo.x; });
         for (size_t a = 0; a < group.size(); ++a)
             for (size_t b = a + 1; b < group.size(); ++b) {
-                const Box& A = boxes[group[a]];
-                const Box& B = boxes[group[b]];
+                const MeshBox& A = boxes[group[a]];
+                const MeshBox& B = boxes[group[b]];
                 if (B.lo.x > A.hi.x + margin) break;
                 if (A.touches(B, margin) && differ(group[a], group[b]))
                     split[group[a]] = split[group[b]] = true;

@@ -13,7 +13,7 @@ namespace fb89::host {
 
 namespace {
 
-double largest(const glm::dvec3& v) {
+double largest_channel(const glm::dvec3& v) {
     return std::max({v.x, v.y, v.z});
 }
 
@@ -118,9 +118,9 @@ double automatic_exposure(const Mesh& mesh, const std::vector<glm::dvec3>& radio
     // (largest channel, area) of the non-emitting patches, or of all when every patch emits
     std::vector<std::pair<double, double>> lit, all;
     for (size_t p = 0; p < mesh.patches.size(); ++p) {
-        const std::pair<double, double> v{largest(radiosity[p]), mesh.patches[p].area};
+        const std::pair<double, double> v{largest_channel(radiosity[p]), mesh.patches[p].area};
         all.push_back(v);
-        if (largest(mesh.elements[mesh.patches[p].element].emission) == 0) lit.push_back(v);
+        if (largest_channel(mesh.elements[mesh.patches[p].element].emission) == 0) lit.push_back(v);
     }
     std::vector<std::pair<double, double>>& v = lit.empty() ? all : lit;
     std::sort(v.begin(), v.end());

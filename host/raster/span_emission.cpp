@@ -8,7 +8,7 @@ namespace fb89::host {
 
 namespace {
 
-uint32_t packed(protocol::Rgb c) {
+uint32_t packed_rgb(protocol::Rgb c) {
     return (uint32_t{c.r} << 16) | (uint32_t{c.g} << 8) | c.b;
 }
 
@@ -37,10 +37,10 @@ uint64_t emit_row_spans(const ScreenScene& scene, const uint32_t* row, int y, in
         // a run: the same face, or faces of the same colour
         const uint32_t face = row[x];
         const protocol::Rgb color = scene.faces[face - 1].color;
-        const uint32_t key = packed(color);
+        const uint32_t key = packed_rgb(color);
         const int start = x;
         x = skip_equal(row, x, x1, face);
-        while (x < x1 && row[x] != 0 && packed(scene.faces[row[x] - 1].color) == key)
+        while (x < x1 && row[x] != 0 && packed_rgb(scene.faces[row[x] - 1].color) == key)
             x = skip_equal(row, x, x1, row[x]);
         sink.draw_span({y, start, x - 1, color});
         ++spans;

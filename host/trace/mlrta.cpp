@@ -95,7 +95,7 @@ struct Frustum {
     }
 };
 
-struct BeamCounts {
+struct MlrtaBeamCounts {
     uint64_t beams = 0, beams_missed = 0, nodes = 0, entry_points = 0, entry_depth = 0,
              unordered = 0, settled = 0, filled = 0, pixels_by_beams = 0, pixels_by_rays = 0;
 };
@@ -110,7 +110,7 @@ struct Frame {
     uint32_t hint = kNoFace;           // the piece the last primary ray hit
     std::vector<uint32_t> candidates;  // a settled beam's pieces
     TraceCounts rays;
-    BeamCounts beams;
+    MlrtaBeamCounts beams;
     RayTrace scratch;
 
     enum class Found { Leaf, Unordered, Nothing };
@@ -380,7 +380,7 @@ void MultiLevelRayTracer::render(const ScreenScene& scene, protocol::CommandSink
         spans += emit_packed_row(&m_pixels[static_cast<size_t>(y) * scene.width], y, 0, scene.width,
                                  sink);
     frame.rays.publish(stats.counters);
-    const BeamCounts& b = frame.beams;
+    const MlrtaBeamCounts& b = frame.beams;
     Counters& c = stats.counters;
     c.add("beams", b.beams);
     c.add("beams_missed", b.beams_missed);

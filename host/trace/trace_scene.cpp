@@ -13,7 +13,7 @@ namespace fb89::host {
 
 namespace {
 
-uint8_t to_byte(double v) {
+uint8_t trace_byte(double v) {
     return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
 }
 
@@ -104,7 +104,7 @@ protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count
         const glm::dvec3& local = f.local_color[hits[i].back ? 1 : 0];
         c = f.mirror > 0 ? (1.0 - f.mirror) * local + f.mirror * c : local;
     }
-    return {to_byte(c.r), to_byte(c.g), to_byte(c.b)};
+    return {trace_byte(c.r), trace_byte(c.g), trace_byte(c.b)};
 }
 
 }  // namespace fb89::host
