@@ -44,6 +44,9 @@
 
 namespace fb89::controller {
 
+// Unnamed, so that in a unity build no enumerator of the same name in a later header
+// (ViewGoal::Command) shadows them (-Wshadow).
+namespace {
 using protocol::Command;
 using protocol::DepthClear;
 using protocol::DepthSpan;
@@ -55,6 +58,7 @@ using protocol::FrameEnd;
 using protocol::Marker;
 using protocol::Opcode;
 using protocol::opcode_index;
+}  // namespace
 
 OpcodeCounters& OpcodeCounters::operator+=(const OpcodeCounters& o) {
     commands += o.commands;

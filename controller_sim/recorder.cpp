@@ -18,9 +18,13 @@
 
 namespace fb89::controller {
 
+// Unnamed, so that in a unity build no enumerator of the same name in a later header
+// (ViewGoal::Command) shadows them (-Wshadow).
+namespace {
 using protocol::Command;
 using protocol::Opcode;
 using protocol::Rgb;
+}  // namespace
 
 void Recorder::reset() {
     *this = Recorder{};
