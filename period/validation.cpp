@@ -13,25 +13,26 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& origin, const std::string& what) {
+[[noreturn]] void validation_fail(const std::string& origin, const std::string& what) {
     throw std::runtime_error(fmt::format("{}: {}", origin, what));
 }
 
 std::string text(const json& j, const char* key, const std::string& origin, const std::string& at,
                  bool required = true) {
     if (!j.contains(key)) {
-        if (required) fail(origin, fmt::format("{}\"{}\" is missing", at, key));
+        if (required) validation_fail(origin, fmt::format("{}\"{}\" is missing", at, key));
         return "";
     }
-    if (!j[key].is_string()) fail(origin, fmt::format("{}\"{}\" must be a string", at, key));
+    if (!j[key].is_string())
+        validation_fail(origin, fmt::format("{}\"{}\" must be a string", at, key));
     return j[key].get<std::string>();
 }
 
 double positive(const json& j, const char* key, const std::string& origin, const std::string& at) {
     if (!j.contains(key) || !j[key].is_number())
-        fail(origin, fmt::format("{}\"{}\" must be a number", at, key));
+        validation_fail(origin, fmt::format("{}\"{}\" must be a number", at, key));
     const double v = j[key].get<double>();
-    if (!(v > 0)) fail(origin, fmt::format("{}\"{}\" must be > 0, got {}", at, key, v));
+    if (!(v > 0)) validation_fail(origin, fmt::format("{}\"{}\" must be > 0, got {}", at, key, v));
     return v;
 }
 
@@ -53,17 +54,17 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
     try {
         j = json::parse(source);
     } catch (const json::exception& e) {  // a syntax error, or a number too large for a double
-        fail(origin, std::string("not valid JSON: ") + e.what());
+        validation_fail(origin, std::string("not valid JSON: ") + e.what());
     }
     if (!j.is_object() || !j.contains("schema") || j["schema"] != 1)
-        fail(origin, "must be an object with \"schema\": 1");
+        validation_fail(origin, "must be an object with \"schema\": 1");
     ValidationData out;
     if (!j.contains("kernels") || !j["kernels"].is_array() || j["kernels"].empty())
-        fail(origin, "\"kernels\" must be a non-empty list");
+        validation_fail(origin, "\"kernels\" must be a non-empty list");
     for (size_t i = 0; i < j["kernels"].size(); ++i) {
         const json& k = j["kernels"][i];
         const std::string at = fmt::format("kernel {}: ", i);
-        if (!k.is_object()) fail(origin, at + "must be an object");
+        if (!k.is_object()) validation_fail(origin, at + "must be an object");
         ValidationKernel kernel;
         kernel.name = text(k, "name", origin, at);
         kernel.program = text(k, "program", origin, at);
@@ -71,17 +72,18 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
         kernel.operation = text(k, "operation", origin, at);
         kernel.unit = text(k, "unit", origin, at);
         if (!known_unit(kernel.unit))
-            fail(origin, fmt::format("{}unit '{}' is not Mflop/s, kflop/s, us/... or s/...", at,
-                                     kernel.unit));
+            validation_fail(origin,
+                            fmt::format("{}unit '{}' is not Mflop/s, kflop/s, us/... or s/...", at,
+                                        kernel.unit));
         kernel.description = text(k, "description", origin, at, false);
         out.kernels.push_back(std::move(kernel));
     }
     if (!j.contains("figures") || !j["figures"].is_array() || j["figures"].empty())
-        fail(origin, "\"figures\" must be a non-empty list");
+        validation_fail(origin, "\"figures\" must be a non-empty list");
     for (size_t i = 0; i < j["figures"].size(); ++i) {
         const json& f = j["figures"][i];
         std::string at = fmt::format("figure {}: ", i);
-        if (!f.is_object()) fail(origin, at + "must be an object");
+        if (!f.is_object()) validation_fail(origin, at + "must be an object");
         PublishedFigure figure;
         figure.id = text(f, "id", origin, at);
         at = fmt::format("figure {} ({}): ", i, figure.id);
@@ -91,13 +93,14 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
         try {
             (void)out.kernel(figure.kernel);
         } catch (const std::runtime_error& e) {
-            fail(origin, at + e.what());
+            validation_fail(origin, at + e.what());
         }
         figure.value = positive(f, "value", origin, at);
         figure.unit = text(f, "unit", origin, at);
         if (!known_unit(figure.unit))
-            fail(origin, fmt::format("{}unit '{}' is not Mflop/s, kflop/s, us/... or s/...", at,
-                                     figure.unit));
+            validation_fail(origin,
+                            fmt::format("{}unit '{}' is not Mflop/s, kflop/s, us/... or s/...", at,
+                                        figure.unit));
         const std::string check = text(f, "check", origin, at, false);
         if (check.empty() || check == "within")
             figure.check = FigureCheck::Within;
@@ -106,33 +109,36 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
         else if (check == "at_least")
             figure.check = FigureCheck::AtLeast;
         else
-            fail(origin,
-                 fmt::format("{}\"check\" '{}' is not within, at_most or at_least", at, check));
+            validation_fail(
+                origin,
+                fmt::format("{}\"check\" '{}' is not within, at_most or at_least", at, check));
         if (f.contains("clock_mhz")) figure.clock_mhz = positive(f, "clock_mhz", origin, at);
         figure.tolerance =
             f.contains("tolerance") ? positive(f, "tolerance", origin, at) : kValidationTolerance;
         if (figure.tolerance >= 1)
-            fail(origin, at + "\"tolerance\" is a fraction, e.g. 0.15 for 15%");
+            validation_fail(origin, at + "\"tolerance\" is a fraction, e.g. 0.15 for 15%");
         figure.source = text(f, "source", origin, at);
         figure.cite = text(f, "cite", origin, at, false);
         if (figure.cite.empty()) figure.cite = figure.id;
-        if (figure.source.empty()) fail(origin, at + "\"source\" must name the source");
+        if (figure.source.empty()) validation_fail(origin, at + "\"source\" must name the source");
         figure.note = text(f, "note", origin, at, false);
         if (f.contains("profiles")) {
-            if (!f["profiles"].is_array()) fail(origin, at + "\"profiles\" must be a list");
+            if (!f["profiles"].is_array())
+                validation_fail(origin, at + "\"profiles\" must be a list");
             for (const json& p : f["profiles"]) {
-                if (!p.is_string()) fail(origin, at + "\"profiles\" holds profile names");
+                if (!p.is_string())
+                    validation_fail(origin, at + "\"profiles\" holds profile names");
                 figure.profiles.push_back(p.get<std::string>());
             }
         }
         out.figures.push_back(std::move(figure));
     }
     if (j.contains("ratios")) {
-        if (!j["ratios"].is_array()) fail(origin, "\"ratios\" must be a list");
+        if (!j["ratios"].is_array()) validation_fail(origin, "\"ratios\" must be a list");
         for (size_t i = 0; i < j["ratios"].size(); ++i) {
             const json& r = j["ratios"][i];
             const std::string at = fmt::format("ratios[{}]: ", i);
-            if (!r.is_object()) fail(origin, at + "must be an object");
+            if (!r.is_object()) validation_fail(origin, at + "must be an object");
             RatioCheck ratio;
             ratio.id = text(r, "id", origin, at);
             ratio.numerator = text(r, "numerator", origin, at);
@@ -145,13 +151,13 @@ ValidationData parse_validation(std::string_view source, const std::string& orig
                 if (f.id == ratio.denominator) other = &f;
             }
             if (!one || !other)
-                fail(origin, fmt::format("{}no figure '{}'", at,
-                                         one ? ratio.denominator : ratio.numerator));
+                validation_fail(origin, fmt::format("{}no figure '{}'", at,
+                                                    one ? ratio.denominator : ratio.numerator));
             if (one->kernel != other->kernel || one->unit != other->unit)
-                fail(origin, at + "the two figures must be of one kernel, in one unit");
+                validation_fail(origin, at + "the two figures must be of one kernel, in one unit");
             if (one->profiles.size() != 1 || other->profiles.size() != 1 || one->clock_mhz > 0 ||
                 other->clock_mhz > 0)
-                fail(origin, at + "each figure must name one profile, at its own clock");
+                validation_fail(origin, at + "each figure must name one profile, at its own clock");
             out.ratios.push_back(std::move(ratio));
         }
     }
