@@ -91,7 +91,7 @@ double beam_share(const host::Counters& c) {
     return all > 0 ? 100.0 * static_cast<double>(c.get("pixels_by_beams")) / all : 0;
 }
 
-uint64_t frame_checksum(const protocol::MemoryBuffer& commands) {
+uint64_t trace_frame_checksum(const protocol::MemoryBuffer& commands) {
     controller::Controller ctl(controller::load_profile("ideal"));
     commands.replay_into(ctl);
     return ctl.framebuffer().checksum();
@@ -127,8 +127,8 @@ Table experiment_beam_resolution(const ExperimentSettings& s, const std::vector<
                 }
             }
             const double rays_ms = r[0].end_to_end.cpu_ms;
-            const bool same =
-                frame_checksum(r[0].last.commands) == frame_checksum(r[1].last.commands);
+            const bool same = trace_frame_checksum(r[0].last.commands) ==
+                              trace_frame_checksum(r[1].last.commands);
             for (size_t m = 0; m < 2; ++m) {
                 const auto& c = r[m].last.counters;
                 const ControllerFigures ctl = controller_figures(r[m].last.commands, profile);
@@ -191,7 +191,7 @@ Table experiment_beam_threshold(const ExperimentSettings& s, const std::vector<d
             settings.push_back(trace_setting(host::Method::Beam, t, s.accel));
         auto r = measure_settings(file, screen, settings, s);
         const double rays_ms = r[0].median.cpu_ms;
-        const uint64_t rays_frame = frame_checksum(r[0].commands);
+        const uint64_t rays_frame = trace_frame_checksum(r[0].commands);
         for (size_t m = 0; m < settings.size(); ++m) {
             const auto& c = r[m].counters;
             const std::string threshold =
@@ -202,7 +202,7 @@ Table experiment_beam_threshold(const ExperimentSettings& s, const std::vector<d
                        std::to_string(c.get("beam_queries")),
                        std::to_string(c.get("window_face_counts")),
                        std::to_string(c.get("query_face_tests")),
-                       frame_checksum(r[m].commands) == rays_frame ? "yes" : "NO"});
+                       trace_frame_checksum(r[m].commands) == rays_frame ? "yes" : "NO"});
         }
     }
     return table;
