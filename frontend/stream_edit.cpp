@@ -184,7 +184,7 @@ class FrameSource {
     bool m_open_compared = false;
 };
 
-struct Comparison {
+struct FrameComparison {
     uint64_t differing = 0;
     uint64_t compared = 0;  // pixels of the larger frame's extent
 };
@@ -195,8 +195,8 @@ bool same_pixel(const controller::Framebuffer& fb, const controller::Framebuffer
            fb.pixel(x, y) == other.pixel(x, y);
 }
 
-Comparison compare(const controller::Framebuffer& a, const controller::Framebuffer& b) {
-    Comparison out;
+FrameComparison compare(const controller::Framebuffer& a, const controller::Framebuffer& b) {
+    FrameComparison out;
     const uint32_t w = std::max(a.width(), b.width()), h = std::max(a.height(), b.height());
     out.compared = uint64_t{w} * h;
     if (a.width() == b.width() && a.height() == b.height()) {
@@ -308,7 +308,7 @@ DiffOutcome diff_streams(const std::string& path_a, const std::string& path_b,
             if (has_a) f.size_a = size_of(a.framebuffer()), f.host_end_ms_a = a.host_end_ms();
             if (has_b) f.size_b = size_of(b.framebuffer()), f.host_end_ms_b = b.host_end_ms();
             if (has_a && has_b) {
-                const Comparison cmp = compare(a.framebuffer(), b.framebuffer());
+                const FrameComparison cmp = compare(a.framebuffer(), b.framebuffer());
                 f.differing = cmp.differing;
                 f.compared = cmp.compared;
             }
