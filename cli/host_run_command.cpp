@@ -21,10 +21,10 @@ struct HostRunArgs {
     std::vector<std::string> options;
 };
 
-volatile std::sig_atomic_t g_signal = 0;
+volatile std::sig_atomic_t g_host_run_signal = 0;
 
 extern "C" void ask_stop(int signal) {
-    g_signal = signal;
+    g_host_run_signal = signal;
     period::request_stop();  // a lock-free atomic store: safe in a handler
 }
 
@@ -61,8 +61,9 @@ void register_host_run(CLI::App& app, int& exit_code) {
         } catch (const period::Stopped&) {
             fmt::print(stderr,
                        "fb89 host-run: stopped by {} before the run ended; nothing written to {}\n",
-                       g_signal == SIGINT ? "SIGINT" : "SIGTERM", a->results);
-            exit_code = 128 + (g_signal != 0 ? static_cast<int>(g_signal) : SIGTERM);
+                       g_host_run_signal == SIGINT ? "SIGINT" : "SIGTERM", a->results);
+            exit_code =
+                128 + (g_host_run_signal != 0 ? static_cast<int>(g_host_run_signal) : SIGTERM);
         }
     });
 }
