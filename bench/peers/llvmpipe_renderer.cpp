@@ -130,3 +130,5 @@ std::string LlvmpipeRenderer::renderer_string() const {
 }
 
 }  // namespace fb89::peers
+
+#undef GL_GLEXT_PROTOTYPES
