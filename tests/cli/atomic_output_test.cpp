@@ -22,16 +22,18 @@
 #include "controller_sim/png_io.h"
 #include "tests/cli/cli_process.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/scenes_dir.h"
 
 namespace fs = std::filesystem;
 using fb89::testing::CliRun;
+using fb89::testing::put;
 using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
 
 namespace {
 
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 const std::string kOld = "the old file, which must survive\n";
 
 // A fresh folder for the outputs (test_dir() also holds the captured stdout and stderr).
@@ -40,10 +42,6 @@ fs::path outputs() {
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
-}
-
-void put(const fs::path& p, const std::string& bytes) {
-    std::ofstream(p, std::ios::binary) << bytes;
 }
 
 // Hidden temporaries (".NAME.tmp-XXXXXX") left in `dir`.

@@ -25,13 +25,10 @@ using fb89::testing::test_dir;
 using fb89::testing::bad_input::expect_refused;
 using fb89::testing::bad_input::put_u16;
 using fb89::testing::bad_input::put_u32;
+using fb89::testing::bad_input::run_with_timeout;
 using fb89::testing::bad_input::scratch;
 using fb89::testing::bad_input::write_bytes;
 using fb89::testing::bad_input::write_file;
-
-CliRun fb89(const std::string& args) {
-    return fb89::testing::bad_input::run_with_timeout(args);
-}
 
 const char* const kCamera =
     R"("camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 45, "near": 1, "far": 20})";
@@ -56,8 +53,8 @@ void expect_scenes_refused(const std::vector<SceneCase>& cases, const std::strin
         const std::string path = write_file("bad.json", c.json);
         const std::string png = scratch("o.png"), ids = scratch("o_ids.png"),
                           stream = scratch("o.fb89"), stats = scratch("o.json");
-        CliRun r = fb89("render " + path + " -m " + method + " --png " + png + " --ids " + ids +
-                        " --stream " + stream + " --stats " + stats);
+        CliRun r = run_with_timeout("render " + path + " -m " + method + " --png " + png +
+                                    " --ids " + ids + " --stream " + stream + " --stats " + stats);
         expect_refused(r, "bad.json", {c.says});
         for (const auto& out : {png, ids, stream, stats})
             EXPECT_FALSE(fs::exists(out)) << out << " must not be written";
@@ -136,7 +133,7 @@ TEST(BadInputScene, HugeImageSizesAreRefused) {
     for (const char* size : {"99999x10", "0x10", "16385x1", "10x-1"}) {
         SCOPED_TRACE(size);
         const std::string png = scratch("o.png");
-        CliRun r = fb89("render " + ok + " --size " + size + " --png " + png);
+        CliRun r = run_with_timeout("render " + ok + " --size " + size + " --png " + png);
         EXPECT_EQ(r.exit_code, 2) << r.err;
         EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(png));
@@ -159,7 +156,7 @@ TEST(BadInputScene, AFaceOf1e30ExtentIsRefusedAndOneOf1e12CoversTheScreen) {
     for (const char* method : {"zbuffer", "warnock", "scanline", "hybrid", "raytrace", "beam"}) {
         SCOPED_TRACE(method);
         const std::string ids = scratch(std::string(method) + "_ids.png");
-        CliRun r = fb89("render " + path + " -q -m " + method + " --ids " + ids);
+        CliRun r = run_with_timeout("render " + path + " -q -m " + method + " --ids " + ids);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const auto image = fb89::controller::read_png(ids);
         size_t vast = 0, small = 0;
@@ -186,7 +183,7 @@ TEST(BadInputScene, DegenerateFacesAreDroppedAndReportedNeverDrawn) {
     for (const char* method : {"zbuffer", "warnock", "scanline", "raytrace", "beam"}) {
         SCOPED_TRACE(method);
         const std::string ids = scratch("flat_ids.png");
-        CliRun r = fb89("render " + path + " -m " + method + " --ids " + ids);
+        CliRun r = run_with_timeout("render " + path + " -m " + method + " --ids " + ids);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         for (const char* where : {"objects[0]: face 0: dropped", "objects[1]: face 0: dropped",
                                   "objects[2]: face 0: dropped", "objects[3]: face 0: dropped"})
@@ -216,12 +213,12 @@ TEST(BadInputScene, MissingEmptyAndDirectoryFilesNameThePath) {
          "meshdir.obj: is a directory, not an OBJ file"},
     };
     expect_scenes_refused(cases, "zbuffer");
-    CliRun missing = fb89("render /nonexistent/scene.json");
+    CliRun missing = run_with_timeout("render /nonexistent/scene.json");
     expect_refused(missing, "/nonexistent/scene.json", {"cannot open"});
-    expect_refused(fb89("render " + dir), "dir.json", {"is a directory"});
-    expect_refused(fb89("render " + write_file("scene.yaml", "camera: {}")), "scene.yaml",
-                   {"unknown scene format"});
-    expect_refused(fb89("radiosity " + write_file("empty.json", "")), "empty.json", {});
+    expect_refused(run_with_timeout("render " + dir), "dir.json", {"is a directory"});
+    expect_refused(run_with_timeout("render " + write_file("scene.yaml", "camera: {}")),
+                   "scene.yaml", {"unknown scene format"});
+    expect_refused(run_with_timeout("radiosity " + write_file("empty.json", "")), "empty.json", {});
 }
 
 TEST(BadInputScene, BrokenObjFilesNameTheFile) {
@@ -289,7 +286,7 @@ TEST(BadInputScene, DroppedObjFacesLeaveTheirIdsUnusedAndTheRestKeepTheirIndex) 
     for (const char* method : {"zbuffer", "warnock", "scanline", "hybrid", "raytrace", "beam"}) {
         SCOPED_TRACE(method);
         const std::string ids = scratch("strip_ids.png");
-        CliRun r = fb89("render " + scene + " -m " + method + " --ids " + ids);
+        CliRun r = run_with_timeout("render " + scene + " -m " + method + " --ids " + ids);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         // ids count across objects: the big triangle is 0, the OBJ's faces 1 to 7
         for (const char* note :
@@ -315,11 +312,11 @@ TEST(BadInputScene, RadiosityWithoutAnEmitterOrFacesIsAnError) {
     const std::string dark =
         write_file("dark.json", scene_with(std::string(R"("objects": [)") + kTriangle + "]"));
     const std::string png = scratch("r.png");
-    CliRun r = fb89("radiosity " + dark + " --png " + png);
+    CliRun r = run_with_timeout("radiosity " + dark + " --png " + png);
     expect_refused(r, "dark.json", {"emi"});
     EXPECT_FALSE(fs::exists(png));
     const std::string none = write_file("none.json", scene_with(R"("objects": [])"));
-    EXPECT_EQ(fb89("radiosity " + none + " --png " + png).exit_code, 2);
+    EXPECT_EQ(run_with_timeout("radiosity " + none + " --png " + png).exit_code, 2);
     EXPECT_FALSE(fs::exists(png));
 }
 

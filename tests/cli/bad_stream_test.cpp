@@ -25,13 +25,10 @@ using fb89::testing::test_dir;
 using fb89::testing::bad_input::expect_refused;
 using fb89::testing::bad_input::put_u16;
 using fb89::testing::bad_input::put_u32;
+using fb89::testing::bad_input::run_with_timeout;
 using fb89::testing::bad_input::scratch;
 using fb89::testing::bad_input::write_bytes;
 using fb89::testing::bad_input::write_file;
-
-CliRun fb89(const std::string& args) {
-    return fb89::testing::bad_input::run_with_timeout(args);
-}
 
 // Two 8x6 frames, no properties, in format version 1 (version 4's damage, which its checksums
 // catch: stream_checksum_test.cpp): FRAME_BEGIN @12, FILL_RECT @28, FRAME_END @48,
@@ -68,7 +65,7 @@ TEST(BadInputStream, NewerVersionsAreRefusedNamingBothVersions) {
             SCOPED_TRACE(std::string(tool) + " version " + std::to_string(version));
             const std::string extra =
                 std::string(tool) == "trim" ? " --calls 0- -o " + scratch("t.fb89") : "";
-            expect_refused(fb89(std::string(tool) + " " + path + extra), "v.fb89",
+            expect_refused(run_with_timeout(std::string(tool) + " " + path + extra), "v.fb89",
                            {"version " + std::to_string(version), "up to 4"});
         }
     }
@@ -91,7 +88,7 @@ TEST(BadInputStream, TruncationWritesNothingAndSalvageKeepsCompleteFrames) {
         b.resize(cut.size);
         const std::string path = write_bytes("cut.fb89", b), png = scratch("cut.png");
         fs::remove(png);
-        CliRun r = fb89("replay " + path + " --png " + png);
+        CliRun r = run_with_timeout("replay " + path + " --png " + png);
         EXPECT_EQ(r.exit_code, 2) << r.err;
         EXPECT_NE(r.err.find("fb89: error: " + path + ": " + cut.says), std::string::npos) << r.err;
         EXPECT_NE(r.err.find("at byte"), std::string::npos) << r.err;
@@ -99,7 +96,7 @@ TEST(BadInputStream, TruncationWritesNothingAndSalvageKeepsCompleteFrames) {
         // a cut header leaves nothing to salvage: still an error
         const bool header_cut = r.err.find("truncated header") != std::string::npos;
         // nor does a stream without a complete frame: the PNG asked for is not written
-        r = fb89("replay --salvage " + path + " --png " + png);
+        r = run_with_timeout("replay --salvage " + path + " --png " + png);
         EXPECT_EQ(r.exit_code, header_cut || cut.frames == 0 ? 2 : 0) << r.err;
         EXPECT_NE(r.err.find(std::string(header_cut ? "fb89: error: " : "fb89: warning: ") + path +
                              ": " + cut.says),
@@ -119,19 +116,19 @@ TEST(BadInputStream, TruncationWritesNothingAndSalvageKeepsCompleteFrames) {
             EXPECT_EQ(image.pixels[2], cut.frames == 1 ? 0 : 64) << "the last complete frame";
         }
         for (const char* tool : {"dump", "info"})
-            EXPECT_EQ(fb89(std::string(tool) + " " + path).exit_code, 2) << tool;
+            EXPECT_EQ(run_with_timeout(std::string(tool) + " " + path).exit_code, 2) << tool;
     }
     // a stream cut right after a complete record is a valid (cut) stream
     std::vector<uint8_t> b = two_frames();
     b.resize(kFrame0End);
-    EXPECT_EQ(fb89("replay " + write_bytes("cut.fb89", b)).exit_code, 0);
+    EXPECT_EQ(run_with_timeout("replay " + write_bytes("cut.fb89", b)).exit_code, 0);
 }
 
 // A stream cut inside a frame: the summary says the frame is open, beside those closed.
 TEST(BadInputStream, ACutStreamsSummarySaysItsLastFrameIsStillOpen) {
     std::vector<uint8_t> b = two_frames();
     b.resize(70);  // frame 0 whole, frame 1 begun, its FILL_RECT cut
-    const CliRun r = fb89("replay " + write_bytes("open.fb89", b));
+    const CliRun r = run_with_timeout("replay " + write_bytes("open.fb89", b));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.out.find("frames: 1 closed (0 incomplete), 1 still open (begun, never ended"),
               std::string::npos)
@@ -143,7 +140,7 @@ TEST(BadInputStream, AFooterThatDisagreesSaysWhatItClaimsAndWhatIsSo) {
     std::vector<uint8_t> b = two_frames();
     ASSERT_EQ(b.size(), kStreamSize);
     b[kStreamSize - 20 + 8] = 7;  // the footer's command count: 7, where there are 6
-    const CliRun r = fb89("info " + write_bytes("footer.fb89", b));
+    const CliRun r = run_with_timeout("info " + write_bytes("footer.fb89", b));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("says the index is at byte 86 after 7 commands; it is at byte 86 after "
                          "6 commands"),
@@ -157,16 +154,16 @@ TEST(BadInputStream, CorruptOpcodesNameTheOffsetAndCommand) {
         std::vector<uint8_t> b = two_frames();
         b[kFrame0End] = static_cast<uint8_t>(opcode);  // command 3
         const std::string path = write_bytes("bad.fb89", b), png = scratch("bad.png");
-        expect_refused(fb89("replay " + path + " --png " + png), "bad.fb89",
+        expect_refused(run_with_timeout("replay " + path + " --png " + png), "bad.fb89",
                        {"at byte 49", "command 3"});
         EXPECT_FALSE(fs::exists(png)) << "a failed replay writes nothing";
-        EXPECT_EQ(fb89("replay --salvage " + path + " --png " + png).exit_code, 0);
+        EXPECT_EQ(run_with_timeout("replay --salvage " + path + " --png " + png).exit_code, 0);
         EXPECT_TRUE(fs::exists(png)) << "frame 0 stays usable with --salvage";
         fs::remove(png);
     }
     // garbage from the first byte: not a stream at all
     const std::string text = write_file("text.fb89", "this is not an fb89 stream\n");
-    expect_refused(fb89("info " + text), "text.fb89", {"magic"});
+    expect_refused(run_with_timeout("info " + text), "text.fb89", {"magic"});
 }
 
 TEST(BadInputStream, SizesClaimingGigabytesAreRefusedBeforeAllocating) {
@@ -218,7 +215,8 @@ TEST(BadInputStream, SizesClaimingGigabytesAreRefusedBeforeAllocating) {
         SCOPED_TRACE(c.name);
         const std::string path = write_bytes("huge.fb89", c.bytes);
         for (const char* tool : {"replay", "dump", "info"})
-            expect_refused(fb89(std::string(tool) + " " + path), "huge.fb89", {c.says, "byte"});
+            expect_refused(run_with_timeout(std::string(tool) + " " + path), "huge.fb89",
+                           {c.says, "byte"});
     }
 }
 
@@ -232,7 +230,7 @@ TEST(BadInputStream, FillsAndSpansReachingFarOutsideAreClippedNotRefused) {
                            pr::FillRect{INT_MAX, INT_MAX, 0xFFFFFFFF, 1, pr::Rgb{1, 1, 1}},
                            pr::FrameEnd{}}));
     const std::string stats = scratch("far.json");
-    CliRun r = fb89("replay " + path + " -q --stats " + stats);
+    CliRun r = run_with_timeout("replay " + path + " -q --stats " + stats);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(fb89::testing::slurp(stats).find("\"frames_closed\": 1"), std::string::npos);
 }
@@ -243,9 +241,11 @@ TEST(BadInputStream, MissingEmptyAndDirectoryStreamsNameThePath) {
     const std::string empty = write_file("empty.fb89", "");
     for (const char* tool : {"replay", "dump", "info"}) {
         SCOPED_TRACE(tool);
-        expect_refused(fb89(std::string(tool) + " /nonexistent/s.fb89"), "/nonexistent/s.fb89", {});
-        expect_refused(fb89(std::string(tool) + " " + empty), "empty.fb89", {"truncated"});
-        expect_refused(fb89(std::string(tool) + " " + dir), "dir.fb89", {});
+        expect_refused(run_with_timeout(std::string(tool) + " /nonexistent/s.fb89"),
+                       "/nonexistent/s.fb89", {});
+        expect_refused(run_with_timeout(std::string(tool) + " " + empty), "empty.fb89",
+                       {"truncated"});
+        expect_refused(run_with_timeout(std::string(tool) + " " + dir), "dir.fb89", {});
     }
 }
 

@@ -35,6 +35,11 @@ inline std::string slurp(const std::filesystem::path& p) {
     return ss.str();
 }
 
+// Writes `bytes` to `p`, replacing what was there.
+inline void put(const std::filesystem::path& p, const std::string& bytes) {
+    std::ofstream(p, std::ios::binary) << bytes;
+}
+
 // A folder of this test's own.
 inline std::filesystem::path test_dir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -42,6 +47,11 @@ inline std::filesystem::path test_dir() {
         scratch_dir() / (std::string(info->test_suite_name()) + "." + info->name());
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+// `name` in test_dir().
+inline std::filesystem::path test_file(const std::string& name) {
+    return test_dir() / name;
 }
 
 // `xvfb-run` on a free display, 24-bit so colours survive, with its X authority file in this

@@ -30,7 +30,7 @@ using fb89::testing::slurp;
 using fb89::testing::test_dir;
 
 // Runs fb89 from the repository root, where scenes/A.json is.
-CliRun fb89(const std::string& args) {
+CliRun fb89_from_root(const std::string& args) {
     return fb89::testing::run_fb89(
         args, "cd " + fs::path(FB89_SCENES_DIR).parent_path().string() + " && ");
 }
@@ -44,7 +44,7 @@ std::vector<std::string> split(const std::string& line) {
 }
 
 // The CSV's rows as column -> value, one map per row.
-std::vector<std::map<std::string, std::string>> read_csv(const std::string& text) {
+std::vector<std::map<std::string, std::string>> parse_csv(const std::string& text) {
     std::stringstream in(text);
     std::string line;
     std::getline(in, line);
@@ -66,8 +66,9 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
                    json = dir / "compare.json";
     for (const fs::path& p : {sheet, csv, json})
         fs::remove(p);
-    CliRun r = fb89("compare scenes/A.json --size 128x98 --repeat 1 --sheet " + sheet.string() +
-                    " --csv " + csv.string() + " --json " + json.string());
+    CliRun r =
+        fb89_from_root("compare scenes/A.json --size 128x98 --repeat 1 --sheet " + sheet.string() +
+                       " --csv " + csv.string() + " --json " + json.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("pixels_differing"), std::string::npos) << r.out;  // the text table
 
@@ -87,7 +88,7 @@ TEST(CompareCommand, WritesTheSheetAndOneRowPerMethod) {
                          0),
               0u)
         << text;
-    const auto rows = read_csv(text);
+    const auto rows = parse_csv(text);
     ASSERT_EQ(rows.size(), methods);
     for (const auto& row : rows) {
         EXPECT_EQ(row.at("scene"), "A");  // a bundled scene, by its name
@@ -183,7 +184,7 @@ TEST(CompareCommand, ABundledSceneIsNamedByItsNameOnTheSheetAndInTheTables) {
         ASSERT_EQ(caption.size(), 6u) << ::testing::PrintToString(caption);
         EXPECT_NE(caption[4].find(" spans"), std::string::npos) << caption[4];
     }
-    for (const auto& row : read_csv(slurp(csv)))
+    for (const auto& row : parse_csv(slurp(csv)))
         EXPECT_EQ(row.at("scene"), "A");
     for (const auto& row : nlohmann::json::parse(slurp(json)))
         EXPECT_EQ(row["scene"], "A");
@@ -223,7 +224,7 @@ TEST(CompareCommand, AFileIsNamedAsGivenAndALongTitleWrapsInsideTheSheet) {
 }
 
 // The figure after "<label> " in `text` (digits and the thousands' commas), as a number.
-uint64_t number_after(const std::string& text, const std::string& label) {
+uint64_t count_after(const std::string& text, const std::string& label) {
     const size_t at = text.find(label);
     if (at == std::string::npos) return ~uint64_t{0};
     std::string digits;
@@ -236,21 +237,21 @@ uint64_t number_after(const std::string& text, const std::string& label) {
 // The depth-command methods' frames as the default profile draws them (a 16-bit depth word):
 // compare counts the ties `render --ids` counts, pixel for pixel, and none wrong.
 TEST(CompareCommand, TheDepthCommandsDifferAsTheProfilesDepthWordDrawsThem) {
-    const CliRun c = fb89("compare demo --repeat 1 -q --csv -");
+    const CliRun c = fb89_from_root("compare demo --repeat 1 -q --csv -");
     ASSERT_EQ(c.exit_code, 0) << c.err;
     std::map<std::string, std::map<std::string, std::string>> by_method;
-    for (const auto& row : read_csv(c.out))
+    for (const auto& row : parse_csv(c.out))
         by_method[row.at("method")] = row;
     for (const char* method : {"zspans", "faces"}) {
         const auto& row = by_method.at(method);
         const fs::path ids = test_dir() / fmt::format("{}.ids.png", method);
         const CliRun r =
-            fb89(fmt::format("render demo --method {} --ids {}", method, ids.string()));
+            fb89_from_root(fmt::format("render demo --method {} --ids {}", method, ids.string()));
         ASSERT_EQ(r.exit_code, 0) << r.err;
-        const uint64_t differ = number_after(r.out, "(16-bit depth word): ");
+        const uint64_t differ = count_after(r.out, "(16-bit depth word): ");
         EXPECT_EQ(row.at("depth_bits"), "16") << method;
         EXPECT_EQ(std::stoull(row.at("pixels_differing")), differ) << method << "\n" << r.out;
-        EXPECT_EQ(std::stoull(row.at("px_ties")), number_after(r.out, "pixels differ: ")) << method;
+        EXPECT_EQ(std::stoull(row.at("px_ties")), count_after(r.out, "pixels differ: ")) << method;
         EXPECT_GT(std::stoull(row.at("px_ties")), 1000u) << method;
         EXPECT_EQ(row.at("px_coverage"), "0") << method;
         EXPECT_GT(std::stoull(row.at(std::string(method) == "faces" ? "faces" : "depth_spans")),
@@ -260,21 +261,21 @@ TEST(CompareCommand, TheDepthCommandsDifferAsTheProfilesDepthWordDrawsThem) {
 }
 
 TEST(CompareCommand, BadInputExitsTwo) {
-    CliRun missing =
-        fb89("compare nowhere.json --repeat 1 --sheet " + (test_dir() / "sheet.png").string());
+    CliRun missing = fb89_from_root("compare nowhere.json --repeat 1 --sheet " +
+                                    (test_dir() / "sheet.png").string());
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_NE(missing.err.find("nowhere.json"), std::string::npos) << missing.err;
-    EXPECT_EQ(fb89("compare scenes/A.json --threshold lots").exit_code, 2);
-    EXPECT_EQ(fb89("compare scenes/A.json --threshold -1").exit_code, 2);
-    EXPECT_EQ(fb89("compare").exit_code, 2);
+    EXPECT_EQ(fb89_from_root("compare scenes/A.json --threshold lots").exit_code, 2);
+    EXPECT_EQ(fb89_from_root("compare scenes/A.json --threshold -1").exit_code, 2);
+    EXPECT_EQ(fb89_from_root("compare").exit_code, 2);
 }
 
 TEST(PeriodCompare, TimesEveryMethodOnA1989Host) {
     const fs::path sheet = test_dir() / "sheet.png";
-    CliRun r = fb89("compare scenes/A.json --size 32x24 --host sun3-60 -q --sheet " +
-                    sheet.string() + " --csv -");
+    CliRun r = fb89_from_root("compare scenes/A.json --size 32x24 --host sun3-60 -q --sheet " +
+                              sheet.string() + " --csv -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto rows = read_csv(r.out);
+    const auto rows = parse_csv(r.out);
     ASSERT_EQ(rows.size(), fb89::host::methods().size()) << r.out;
     for (const auto& row : rows) {
         EXPECT_EQ(row.at("host"), "sun3-60");

@@ -30,17 +30,26 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
+using fb89::protocol::Command;
+using fb89::protocol::connect_socket;
+using fb89::protocol::DrawSpan;
+using fb89::protocol::FillRect;
+using fb89::protocol::finish_and_read_reply;
+using fb89::protocol::FrameBegin;
+using fb89::protocol::FrameEnd;
+using fb89::protocol::Rgb;
+using fb89::protocol::StreamWriter;
+using fb89::protocol::UniqueFd;
 using fb89::testing::Process;
 using fb89::testing::slurp;
 using fb89::testing::spawn_fb89;
 using fb89::testing::test_dir;
 using fb89::testing::wait_until_listening;
-using namespace fb89::protocol;
 namespace controller = fb89::controller;
 
 // Generous: a sanitizer build replays the million commands several times slower.
-constexpr auto kGenerous = 120s;
-constexpr uint32_t kWidth = 640, kHeight = 480;
+constexpr auto kGenerousUnderLoad = 120s;
+constexpr uint32_t kFrameWidth = 640, kFrameHeight = 480;
 
 // One frame's commands, made on the fly: `count` commands between FRAME_BEGIN and
 // FRAME_END, every fifth a FILL_RECT, the rest DRAW_SPANs, all inside the frame.
@@ -52,19 +61,19 @@ struct FramePlan {
     template <typename Sink>
     void emit(Sink&& sink) {
         spans = span_pixels = fills = fill_pixels = 0;
-        sink(Command{FrameBegin{frame, kWidth, kHeight, Rgb{}}});
+        sink(Command{FrameBegin{frame, kFrameWidth, kFrameHeight, Rgb{}}});
         for (uint32_t i = 0; i < count; ++i) {
             const auto shade = static_cast<uint8_t>(i * 7 + frame);
             if (i % 5 == 4) {
-                const FillRect f{static_cast<int32_t>((i * 7) % (kWidth - 16)),
-                                 static_cast<int32_t>((i * 13) % (kHeight - 16)), 1 + i % 16,
+                const FillRect f{static_cast<int32_t>((i * 7) % (kFrameWidth - 16)),
+                                 static_cast<int32_t>((i * 13) % (kFrameHeight - 16)), 1 + i % 16,
                                  1 + (i / 16) % 16, Rgb{shade, 40, 200}};
                 ++fills;
                 fill_pixels += uint64_t{f.w} * f.h;
                 sink(Command{f});
             } else {
-                const auto x0 = static_cast<int32_t>((i * 31) % (kWidth - 128));
-                const DrawSpan s{static_cast<int32_t>(i % kHeight), x0,
+                const auto x0 = static_cast<int32_t>((i * 31) % (kFrameWidth - 128));
+                const DrawSpan s{static_cast<int32_t>(i % kFrameHeight), x0,
                                  x0 + static_cast<int32_t>(i % 128), Rgb{200, shade, 40}};
                 ++spans;
                 span_pixels += static_cast<uint64_t>(s.x1 - s.x0 + 1);
@@ -89,7 +98,7 @@ std::string stream_frames(const std::string& socket, const std::string& scene,
         });
     }
     writer.close();
-    std::optional<std::string> reply = finish_and_read_reply(fd.get(), socket, kGenerous);
+    std::optional<std::string> reply = finish_and_read_reply(fd.get(), socket, kGenerousUnderLoad);
     if (!reply) throw std::runtime_error("the controller closed without answering");
     return *reply;
 }
@@ -127,7 +136,7 @@ class ControllerLoad : public ::testing::Test {
         std::vector<std::string> args = {"controller", "--listen", m_socket};
         args.insert(args.end(), extra.begin(), extra.end());
         Process p = spawn_fb89(args, "controller");
-        if (!wait_until_listening(m_socket, kGenerous))
+        if (!wait_until_listening(m_socket, kGenerousUnderLoad))
             ADD_FAILURE() << "the controller did not listen on " << m_socket;
         return p;
     }
@@ -149,7 +158,7 @@ TEST_F(ControllerLoad, MillionCommandStreamKeepsEveryFrameAndItsCounts) {
         commands += f.commands();
     ASSERT_GE(commands, 1'000'000u);
     EXPECT_EQ(reply, fmt::format("ok {} commands, 5 frames", commands));
-    ASSERT_EQ(ctl.wait(kGenerous), 0) << slurp(ctl.err);
+    ASSERT_EQ(ctl.wait(kGenerousUnderLoad), 0) << slurp(ctl.err);
 
     const std::string out = slurp(ctl.out);
     for (const FramePlan& f : frames)
@@ -213,9 +222,9 @@ TEST_F(ControllerLoad, SeveralHostsInTurnKeepEveryFrame) {
     for (pid_t pid : hosts) {
         Process host;
         host.pid = pid;
-        EXPECT_EQ(host.wait(kGenerous), 0) << "host process " << pid;
+        EXPECT_EQ(host.wait(kGenerousUnderLoad), 0) << "host process " << pid;
     }
-    ASSERT_EQ(ctl.wait(kGenerous), 0) << slurp(ctl.err);
+    ASSERT_EQ(ctl.wait(kGenerousUnderLoad), 0) << slurp(ctl.err);
     const std::string out = slurp(ctl.out);
     EXPECT_NE(out.find(fmt::format("all {} connections: {} frames kept, 0 cut", kHosts,
                                    kHosts * kFrames)),

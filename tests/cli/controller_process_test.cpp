@@ -21,20 +21,34 @@
 #include "protocol/stream_writer.h"
 #include "tests/cli/cli_process.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/scenes_dir.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
+using fb89::protocol::Checksums;
+using fb89::protocol::Command;
+using fb89::protocol::connect_socket;
+using fb89::protocol::DrawSpan;
+using fb89::protocol::encode_stream;
+using fb89::protocol::FillRect;
+using fb89::protocol::FrameBegin;
+using fb89::protocol::FrameEnd;
+using fb89::protocol::Rgb;
+using fb89::protocol::SocketListener;
+using fb89::protocol::StreamWriter;
+using fb89::protocol::UniqueFd;
+using fb89::protocol::wait_readable;
+using fb89::protocol::WaitResult;
 using fb89::testing::CliRun;
 using fb89::testing::Process;
 using fb89::testing::slurp;
 using fb89::testing::spawn_fb89;
 using fb89::testing::test_dir;
 using fb89::testing::wait_until_listening;
-using namespace fb89::protocol;
 
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 constexpr auto kGenerous = 30s;
 
 class ControllerProcess : public ::testing::Test {

@@ -24,6 +24,7 @@ namespace fs = std::filesystem;
 using fb89::testing::CliRun;
 using fb89::testing::every_output;
 using fb89::testing::OutputCase;
+using fb89::testing::put;
 using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::streams;
@@ -32,11 +33,7 @@ using fb89::testing::with_target;
 
 namespace {
 
-const std::string kOld = "the old file, which must survive\n";
-
-void put(const fs::path& p, const std::string& bytes) {
-    std::ofstream(p, std::ios::binary) << bytes;
-}
+const std::string kOldBytes = "the old file, which must survive\n";
 
 // Every file under `dir` (but the captured stdout and stderr, and a full disk's filler) with
 // its bytes: what a failed command must leave as it found.
@@ -70,8 +67,8 @@ int expect_failures_change_nothing(const Breaker& breaker, const fs::path& where
             fs::remove(test_dir() / "sheet.png");  // compare's other output, when a file
             fs::remove(target);
             if (old) {
-                put(target, kOld);
-                put(test_dir() / "sheet.png", kOld);
+                put(target, kOldBytes);
+                put(test_dir() / "sheet.png", kOldBytes);
             }
             const std::optional<std::string> command =
                 breaker(c, with_target(c.command, target.string()));
@@ -100,7 +97,7 @@ std::optional<std::string> blocked_sibling(const OutputCase& c, const std::strin
     if (s == siblings.end()) return std::nullopt;
     const std::string option =
         c.option == kind + " " + s->second.first ? s->second.second : s->second.first;
-    put(test_dir() / "a_file", kOld);
+    put(test_dir() / "a_file", kOldBytes);
     return command + " " + option + " " + (test_dir() / "a_file" / "x.out").string();
 }
 

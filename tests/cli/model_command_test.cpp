@@ -18,12 +18,9 @@ namespace {
 namespace fs = std::filesystem;
 
 using fb89::testing::CliRun;
+using fb89::testing::run_fb89;
 
-CliRun fb89(const std::string& args) {
-    return fb89::testing::run_fb89(args);
-}
-
-std::vector<std::string> lines(const std::string& text) {
+std::vector<std::string> text_lines(const std::string& text) {
     std::vector<std::string> out;
     std::istringstream in(text);
     for (std::string line; std::getline(in, line);)
@@ -32,7 +29,7 @@ std::vector<std::string> lines(const std::string& text) {
 }
 
 TEST(ModelCommand, TablePrintsThe1685SamplesOfEs64Fv16) {
-    CliRun r = fb89("model --es 64 --fv 16");
+    CliRun r = run_fb89("model --es 64 --fv 16");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("Eqs. 2.1-2.4"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("S(F_v) 2.4"), std::string::npos) << r.out;
@@ -41,7 +38,7 @@ TEST(ModelCommand, TablePrintsThe1685SamplesOfEs64Fv16) {
 }
 
 TEST(ModelCommand, JsonGivesTheThreeSanityValues) {
-    CliRun r = fb89("model --es 64,128 --fv 16 --fv 1024,16384 --json");
+    CliRun r = run_fb89("model --es 64,128 --fv 16 --fv 1024,16384 --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["samples"].size(), 6u);
@@ -60,9 +57,9 @@ TEST(ModelCommand, JsonGivesTheThreeSanityValues) {
 }
 
 TEST(ModelCommand, CsvTabulatesAGeometricGridWithOneHeaderRow) {
-    CliRun r = fb89("model --es 16..1024*2 --fv 1..1048576*4 --d 2 --csv -");
+    CliRun r = run_fb89("model --es 16..1024*2 --fv 1..1048576*4 --d 2 --csv -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    auto rows = lines(r.out);
+    auto rows = text_lines(r.out);
     ASSERT_EQ(rows.size(), 1u + 7 * 11);
     EXPECT_EQ(rows[0], "e_s,f_v,d,e_f,s_sort_2_1,s_split_2_3,s_2_4,f,c_sort,valid,ideal,note");
     EXPECT_NE(r.out.find("\n128,16384,2,1,5461,1,21845,32768,229376,true,true,\n"),
@@ -71,16 +68,16 @@ TEST(ModelCommand, CsvTabulatesAGeometricGridWithOneHeaderRow) {
 }
 
 TEST(ModelCommand, LinearRangesAndNonIntegerValuesAreAccepted) {
-    CliRun r = fb89("model --es 780 --fv 1..2+0.5 --csv -");
+    CliRun r = run_fb89("model --es 780 --fv 1..2+0.5 --csv -");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    auto rows = lines(r.out);
+    auto rows = text_lines(r.out);
     ASSERT_EQ(rows.size(), 4u);
     EXPECT_EQ(rows[2].substr(0, 8), "780,1.5,");
     EXPECT_NE(rows[2].find(",true,false,"), std::string::npos) << rows[2];  // valid, not ideal
 }
 
 TEST(ModelCommand, WindowCostsGiveExpr31AndExpr27) {
-    CliRun r = fb89("model --fw 64 --ew 32 --d 4 --faces 1000 --json");
+    CliRun r = run_fb89("model --fw 64 --ew 32 --d 4 --faces 1000 --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["window_costs"].size(), 1u);
@@ -94,7 +91,7 @@ TEST(ModelCommand, WindowCostsGiveExpr31AndExpr27) {
 }
 
 TEST(ModelCommand, WindowTableOmitsExpr27WithoutFaces) {
-    CliRun r = fb89("model --fw 64 --ew 32 --d 4");
+    CliRun r = run_fb89("model --fw 64 --ew 32 --d 4");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("3.1"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("0.1875"), std::string::npos) << r.out;
@@ -102,16 +99,16 @@ TEST(ModelCommand, WindowTableOmitsExpr27WithoutFaces) {
 }
 
 TEST(ModelCommand, OutOfDomainRowsAreReportedNotRefused) {
-    CliRun r = fb89("model --es 64 --fv 0.5");
+    CliRun r = run_fb89("model --es 64 --fv 0.5");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("F_v < 1"), std::string::npos) << r.out;
-    CliRun w = fb89("model --fw 2 --ew 32 --d 4");
+    CliRun w = run_fb89("model --fw 2 --ew 32 --d 4");
     ASSERT_EQ(w.exit_code, 0) << w.err;
     EXPECT_NE(w.out.find("F_w < D"), std::string::npos) << w.out;
 }
 
 TEST(ModelCommand, HelpDescribesEveryEquationByNumber) {
-    CliRun r = fb89("model --help");
+    CliRun r = run_fb89("model --help");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* eq :
          {"Eq. 2.1", "Eqs. 2.2-2.3", "Eq. 2.4", "Expr. 2.5", "Expr. 2.6", "Expr. 2.7", "Expr. 3.1",
@@ -132,16 +129,16 @@ TEST(ModelCommand, BadValuesExitTwoNamingTheOption) {
           Case{"--fw 64 --ew -2", "--ew"}, Case{"--fw 64 --ew 8 --faces 0", "--faces"},
           Case{"--es 64..16 --fv 16", "--es"}, Case{"--es 1..64*1 --fv 16", "--es"},
           Case{"--es 1..1e9 --fv 16", "--es"}, Case{"--es 64", "--fv"}, Case{"--fw 64", "--ew"}}) {
-        CliRun r = fb89(std::string("model ") + c.args);
+        CliRun r = run_fb89(std::string("model ") + c.args);
         EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.out;
         EXPECT_NE(r.err.find(c.option), std::string::npos) << c.args << "\n" << r.err;
     }
 }
 
 TEST(ModelCommand, MissingOrConflictingRequestsExitTwo) {
-    EXPECT_EQ(fb89("model").exit_code, 2);
-    EXPECT_EQ(fb89("model --es 64 --fv 16 --json --csv -").exit_code, 2);
-    CliRun both = fb89("model --es 64 --fv 16 --fw 64 --ew 32 --csv -");
+    EXPECT_EQ(run_fb89("model").exit_code, 2);
+    EXPECT_EQ(run_fb89("model --es 64 --fv 16 --json --csv -").exit_code, 2);
+    CliRun both = run_fb89("model --es 64 --fv 16 --fw 64 --ew 32 --csv -");
     EXPECT_EQ(both.exit_code, 2);
     EXPECT_NE(both.err.find("--csv"), std::string::npos) << both.err;
 }

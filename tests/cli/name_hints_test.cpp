@@ -10,14 +10,14 @@
 
 namespace {
 
-struct Case {
+struct HintCase {
     std::string args;  // after fb89
     std::string says;  // part of the one line of error
 };
 
 TEST(NameHints, EveryCommandAnswersANearMissWithTheNearestName) {
     const std::string out = (fb89::testing::test_dir() / "out.png").string();
-    const std::vector<Case> cases = {
+    const std::vector<HintCase> cases = {
         {"render A --method zbufer",
          "render: --method: unknown method 'zbufer'; did you mean "
          "'zbuffer'?"},
@@ -73,7 +73,7 @@ TEST(NameHints, EveryCommandAnswersANearMissWithTheNearestName) {
         {"host-run --isa spar --results r x", "did you mean 'sparc'?"},
         {"render A --metod zbuffer", "unknown option '--metod'; did you mean '--method'?"},
     };
-    for (const Case& c : cases) {
+    for (const HintCase& c : cases) {
         const fb89::testing::CliRun r = fb89::testing::run_fb89(c.args);
         EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
         EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
@@ -85,7 +85,7 @@ TEST(NameHints, EveryCommandAnswersANearMissWithTheNearestName) {
 // CLI11's own problems with a value, said in fb89's words: the option, what is wrong and
 // what to give.
 TEST(NameHints, AValueCLI11RefusesIsSaidInTheProjectsWords) {
-    const std::vector<Case> cases = {
+    const std::vector<HintCase> cases = {
         {"radiosity garish_room --patches 0", "radiosity: --patches: 0 is not in [1, 8192]"},
         {"view in.fb89 --scale 9", "view: --scale: 9 is not in [0.125, 8]"},
         {"render A --method zbuffer --method hybrid",
@@ -94,7 +94,7 @@ TEST(NameHints, AValueCLI11RefusesIsSaidInTheProjectsWords) {
         {"radiosity garish_room --ff", "--ff: needs one of flux, hybrid"},
         {"model --json --csv out.csv", "exclude each other: give one of them"},
     };
-    for (const Case& c : cases) {
+    for (const HintCase& c : cases) {
         const fb89::testing::CliRun r = fb89::testing::run_fb89(c.args);
         EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
         EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;

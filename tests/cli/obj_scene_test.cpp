@@ -22,12 +22,9 @@ namespace fs = std::filesystem;
 
 using fb89::testing::CliRun;
 using fb89::testing::bad_input::expect_refused;
+using fb89::testing::bad_input::run_with_timeout;
 using fb89::testing::bad_input::scratch;
 using fb89::testing::bad_input::write_file;
-
-CliRun fb89(const std::string& args) {
-    return fb89::testing::bad_input::run_with_timeout(args);
-}
 
 const std::string kIcosahedron = std::string(FB89_SCENES_DIR) + "/models/icosahedron.obj";
 
@@ -46,7 +43,7 @@ std::set<uint32_t> front_faces(const fb89::host::Scene& s) {
 
 TEST(ObjScene, ABareObjModelRendersFramedAutomaticallyWithEveryFrontFaceVisible) {
     const std::string ids = scratch("ico_ids.png"), png = scratch("ico.png");
-    CliRun r = fb89("render " + kIcosahedron + " --ids " + ids + " --png " + png);
+    CliRun r = run_with_timeout("render " + kIcosahedron + " --ids " + ids + " --png " + png);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find(": 20 faces (20 pieces on screen), 1024x780"), std::string::npos) << r.out;
     EXPECT_NE(r.err.find("icosahedron.obj: a bare OBJ model: camera framed automatically (eye ("),
@@ -85,20 +82,21 @@ TEST(ObjScene, GarbagePlainTextAndEmptyModelsAreRefusedNamingTheFile) {
         x = x * 1103515245u + 12345u;
         bytes += static_cast<char>(x >> 16);
     }
-    expect_refused(fb89("render " + write_file("noise.obj", bytes)), "noise.obj",
+    expect_refused(run_with_timeout("render " + write_file("noise.obj", bytes)), "noise.obj",
                    {"line ", "not text"});
-    expect_refused(fb89("render " + write_file("notes.obj", "shopping list\neggs\n")), "notes.obj",
-                   {"no faces", "line 1, 'shopping list', is not an OBJ statement"});
-    expect_refused(fb89("render " + write_file("empty.obj", "")), "empty.obj",
+    expect_refused(run_with_timeout("render " + write_file("notes.obj", "shopping list\neggs\n")),
+                   "notes.obj", {"no faces", "line 1, 'shopping list', is not an OBJ statement"});
+    expect_refused(run_with_timeout("render " + write_file("empty.obj", "")), "empty.obj",
                    {"no faces", "the file is empty"});
-    expect_refused(fb89("render " + write_file("cloud.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n")),
-                   "cloud.obj", {"no faces", "read 3 vertices, 0 faces from 3 lines"});
+    expect_refused(
+        run_with_timeout("render " + write_file("cloud.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n")),
+        "cloud.obj", {"no faces", "read 3 vertices, 0 faces from 3 lines"});
 }
 
 TEST(ObjScene, AMissingMaterialLibraryIsAWarningNamingItAndTheModelRenders) {
     const std::string obj = write_file(
         "grey.obj", "mtllib grey.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl stone\nf 1 2 3\n");
-    CliRun r = fb89("render " + obj);
+    CliRun r = run_with_timeout("render " + obj);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("grey.obj: line 1: material library 'grey.mtl' not found"),
               std::string::npos)
@@ -108,14 +106,17 @@ TEST(ObjScene, AMissingMaterialLibraryIsAWarningNamingItAndTheModelRenders) {
 
 TEST(ObjScene, ABadVertexIndexNamesItsLine) {
     const std::string obj = write_file("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 3 2 7\n");
-    expect_refused(fb89("render " + obj), "bad.obj", {"line 5: face refers to vertex 7 of 3"});
+    expect_refused(run_with_timeout("render " + obj), "bad.obj",
+                   {"line 5: face refers to vertex 7 of 3"});
     const std::string zero = write_file("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
-    expect_refused(fb89("render " + zero), "zero.obj", {"line 4: face vertex 1: index 0"});
+    expect_refused(run_with_timeout("render " + zero), "zero.obj",
+                   {"line 4: face vertex 1: index 0"});
 }
 
 TEST(ObjScene, CompareTakesABareObjModelToo) {
     const std::string sheet = scratch("sheet.png");
-    CliRun r = fb89("compare " + kIcosahedron + " --size 128x98 --repeat 1 -q --sheet " + sheet);
+    CliRun r = run_with_timeout("compare " + kIcosahedron +
+                                " --size 128x98 --repeat 1 -q --sheet " + sheet);
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_TRUE(fs::exists(sheet));
 }

@@ -12,6 +12,7 @@
 
 #include "tests/cli/cli_runner.h"
 #include "tests/cli/every_output.h"
+#include "tests/scenes_dir.h"
 #include "tests/special_files.h"
 
 namespace fs = std::filesystem;
@@ -29,7 +30,7 @@ using fb89::testing::with_target;
 
 namespace {
 
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 
 // compare --sheet is the one whose other outputs are files: an own sheet for each run
 std::string fresh_sheet(const OutputCase& c) {

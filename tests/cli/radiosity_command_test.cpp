@@ -12,30 +12,25 @@
 
 #include "controller_sim/png_io.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/scenes_dir.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 using fb89::testing::CliRun;
+using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
+using fb89::testing::test_file;
 
-CliRun fb89(const std::string& args) {
-    return fb89::testing::run_fb89(args);
-}
-
-fs::path scratch(const std::string& name) {
-    return test_dir() / name;
-}
-
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 const std::string kGarish = kScenes + "/garish_room.json";
 // a small run: a coarse mesh and a small image
 const std::string kSmall = " --patches 120 --size 256x195 ";
 
 void expect_usage_error(const std::string& args, const std::string& names) {
-    CliRun r = fb89(args);
+    CliRun r = run_fb89(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(names), std::string::npos) << args << "\n" << r.err;
 }
@@ -49,8 +44,8 @@ TEST(RadiosityCommand, BadOptionsExitTwoNamingTheOption) {
     expect_usage_error("radiosity " + kGarish + " --hemicube-res 64", "--hemicube-res");
     expect_usage_error("radiosity " + kGarish + " --adaptive-passes 2", "--adaptive-passes");
     expect_usage_error("radiosity " + kGarish + " --adaptive -1", "--adaptive");
-    EXPECT_EQ(fb89("radiosity").exit_code, 2);
-    EXPECT_EQ(fb89("radiosity " + kScenes + "/no_such_scene.json").exit_code, 2);
+    EXPECT_EQ(run_fb89("radiosity").exit_code, 2);
+    EXPECT_EQ(run_fb89("radiosity " + kScenes + "/no_such_scene.json").exit_code, 2);
     // the hierarchy's options need it, and it takes no other solver or re-meshing
     expect_usage_error("radiosity " + kGarish + " --epsilon 0.1", "--epsilon");
     expect_usage_error("radiosity " + kGarish + " --link-rays 2", "--link-rays");
@@ -63,9 +58,10 @@ TEST(RadiosityCommand, BadOptionsExitTwoNamingTheOption) {
 }
 
 TEST(RadiosityCommand, HierarchicalRendersTheRoomAndReportsItsLinks) {
-    fs::path png = scratch("room_hr.png"), stats = scratch("room_hr.json");
-    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --ff hierarchical --epsilon 0.05 --png " +
-                    png.string() + " --stats " + stats.string());
+    fs::path png = test_file("room_hr.png"), stats = test_file("room_hr.json");
+    CliRun r =
+        run_fb89("radiosity " + kGarish + kSmall + "-q --ff hierarchical --epsilon 0.05 --png " +
+                 png.string() + " --stats " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(slurp(stats));
     const auto& h = j["radiosity"]["hierarchical"];
@@ -80,8 +76,8 @@ TEST(RadiosityCommand, HierarchicalRendersTheRoomAndReportsItsLinks) {
     EXPECT_TRUE(j["radiosity"]["converged"].get<bool>());
     EXPECT_TRUE(fs::exists(png));
     // a budget reached is said, and the run still renders
-    CliRun budget = fb89("radiosity " + kGarish + kSmall +
-                         "--ff hierarchical --epsilon 0 --max-links 500 --png " + png.string());
+    CliRun budget = run_fb89("radiosity " + kGarish + kSmall +
+                             "--ff hierarchical --epsilon 0 --max-links 500 --png " + png.string());
     ASSERT_EQ(budget.exit_code, 0) << budget.err;
     EXPECT_NE(budget.out.find("budget reached"), std::string::npos) << budget.out;
     EXPECT_NE((budget.err + budget.out).find("reached its budget"), std::string::npos);
@@ -89,15 +85,15 @@ TEST(RadiosityCommand, HierarchicalRendersTheRoomAndReportsItsLinks) {
 
 // --shaft-culling: the same room, image and links, fewer rays; the shafts counted.
 TEST(RadiosityCommand, ShaftCullingRendersTheSameRoomWithFewerRays) {
-    fs::path plain_png = scratch("plain.png"), culled_png = scratch("culled.png");
-    fs::path plain_stats = scratch("plain.json"), culled_stats = scratch("culled.json");
+    fs::path plain_png = test_file("plain.png"), culled_png = test_file("culled.png");
+    fs::path plain_stats = test_file("plain.json"), culled_stats = test_file("culled.json");
     const std::string run =
         "radiosity " + kGarish + kSmall + "-q --ff hierarchical --epsilon 0.05 ";
-    ASSERT_EQ(
-        fb89(run + "--png " + plain_png.string() + " --stats " + plain_stats.string()).exit_code,
-        0);
-    CliRun r = fb89(run + "--shaft-culling --png " + culled_png.string() + " --stats " +
-                    culled_stats.string());
+    ASSERT_EQ(run_fb89(run + "--png " + plain_png.string() + " --stats " + plain_stats.string())
+                  .exit_code,
+              0);
+    CliRun r = run_fb89(run + "--shaft-culling --png " + culled_png.string() + " --stats " +
+                        culled_stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto plain = nlohmann::json::parse(slurp(plain_stats))["radiosity"]["hierarchical"];
     const auto culled = nlohmann::json::parse(slurp(culled_stats))["radiosity"]["hierarchical"];
@@ -115,16 +111,16 @@ TEST(RadiosityCommand, ShaftCullingRendersTheSameRoomWithFewerRays) {
 }
 
 TEST(RadiosityCommand, SceneWithoutEmitterIsAnError) {
-    CliRun r = fb89("radiosity " + kScenes + "/A.json" + kSmall);
+    CliRun r = run_fb89("radiosity " + kScenes + "/A.json" + kSmall);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("emits"), std::string::npos) << r.err;
 }
 
 TEST(RadiosityCommand, WritesImageStreamAndStatsWithTheCounters) {
-    fs::path png = scratch("room.png"), stats = scratch("room.json"), stream = scratch("room.fb89"),
-             replayed = scratch("replayed.png");
-    CliRun r = fb89("radiosity " + kGarish + kSmall + "--png " + png.string() + " --stats " +
-                    stats.string() + " --stream " + stream.string());
+    fs::path png = test_file("room.png"), stats = test_file("room.json"),
+             stream = test_file("room.fb89"), replayed = test_file("replayed.png");
+    CliRun r = run_fb89("radiosity " + kGarish + kSmall + "--png " + png.string() + " --stats " +
+                        stats.string() + " --stream " + stream.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* word : {"patches", "visibility", "form factors", "solving", "rendering",
                              "flux_rays", "DRAW_SPAN"})
@@ -149,17 +145,17 @@ TEST(RadiosityCommand, WritesImageStreamAndStatsWithTheCounters) {
     EXPECT_TRUE(j["controller"].is_object());
 
     // the stream replays to the same picture
-    CliRun replay = fb89("replay " + stream.string() + " -q --png " + replayed.string());
+    CliRun replay = run_fb89("replay " + stream.string() + " -q --png " + replayed.string());
     ASSERT_EQ(replay.exit_code, 0) << replay.err;
     EXPECT_EQ(slurp(replayed), slurp(png));
 }
 
 TEST(RadiosityCommand, FluxAndHybridGiveTheSameImage) {
-    fs::path flux = scratch("flux.png"), hybrid = scratch("hybrid.png"),
-             stats = scratch("hybrid.json");
-    ASSERT_EQ(fb89("radiosity " + kGarish + kSmall + "-q --png " + flux.string()).exit_code, 0);
-    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --ff hybrid --png " + hybrid.string() +
-                    " --stats " + stats.string());
+    fs::path flux = test_file("flux.png"), hybrid = test_file("hybrid.png"),
+             stats = test_file("hybrid.json");
+    ASSERT_EQ(run_fb89("radiosity " + kGarish + kSmall + "-q --png " + flux.string()).exit_code, 0);
+    CliRun r = run_fb89("radiosity " + kGarish + kSmall + "-q --ff hybrid --png " +
+                        hybrid.string() + " --stats " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(slurp(flux), slurp(hybrid));
     nlohmann::json j = nlohmann::json::parse(slurp(stats));
@@ -170,12 +166,12 @@ TEST(RadiosityCommand, FluxAndHybridGiveTheSameImage) {
 }
 
 TEST(RadiosityCommand, BothSolversGiveTheSamePicture) {
-    fs::path gs = scratch("gs.png"), pr = scratch("pr.png");
-    ASSERT_EQ(fb89("radiosity " + kGarish + kSmall + "-q --tolerance 1e-6 --png " + gs.string())
+    fs::path gs = test_file("gs.png"), pr = test_file("pr.png");
+    ASSERT_EQ(run_fb89("radiosity " + kGarish + kSmall + "-q --tolerance 1e-6 --png " + gs.string())
                   .exit_code,
               0);
-    ASSERT_EQ(fb89("radiosity " + kGarish + kSmall +
-                   "-q --tolerance 1e-6 --solver progressive --png " + pr.string())
+    ASSERT_EQ(run_fb89("radiosity " + kGarish + kSmall +
+                       "-q --tolerance 1e-6 --solver progressive --png " + pr.string())
                   .exit_code,
               0);
     auto a = fb89::controller::read_png(gs);
@@ -188,9 +184,9 @@ TEST(RadiosityCommand, BothSolversGiveTheSamePicture) {
 }
 
 TEST(RadiosityCommand, AdaptiveRefinementAddsPatches) {
-    fs::path stats = scratch("adaptive.json");
-    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --adaptive 0.3 --adaptive-passes 2 " +
-                    "--stats " + stats.string());
+    fs::path stats = test_file("adaptive.json");
+    CliRun r = run_fb89("radiosity " + kGarish + kSmall + "-q --adaptive 0.3 --adaptive-passes 2 " +
+                        "--stats " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     nlohmann::json j = nlohmann::json::parse(slurp(stats));
     const auto& passes = j["radiosity"]["adaptive"]["patches_per_pass"];
@@ -200,12 +196,12 @@ TEST(RadiosityCommand, AdaptiveRefinementAddsPatches) {
 }
 
 TEST(RadiosityCommand, IdsWritesThePatchSceneFaceIdBufferAndIdsViewItsColours) {
-    fs::path ids = scratch("room.ids.png"), view = scratch("room.view.png"),
-             stats = scratch("room.json");
+    fs::path ids = test_file("room.ids.png"), view = test_file("room.view.png"),
+             stats = test_file("room.json");
     fs::remove(ids);
     fs::remove(view);
-    CliRun r = fb89("radiosity " + kGarish + kSmall + "-q --ids " + ids.string() + " --ids-view " +
-                    view.string() + " --stats " + stats.string());
+    CliRun r = run_fb89("radiosity " + kGarish + kSmall + "-q --ids " + ids.string() +
+                        " --ids-view " + view.string() + " --stats " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_TRUE(fs::exists(ids));
     ASSERT_TRUE(fs::exists(view));
@@ -245,8 +241,8 @@ TEST(RadiosityCommand, IdsWritesThePatchSceneFaceIdBufferAndIdsViewItsColours) {
 // to the camera, so every pixel of its id buffer is some patch's, as with a uniform mesh.
 TEST(RadiosityCommand, HierarchicalPatchesCoverEveryPixelOfTheClosedRoom) {
     for (const std::string ff : {"hierarchical", "hybrid"}) {
-        const fs::path ids = scratch("covered." + ff + ".png");
-        CliRun r = fb89("radiosity " + kGarish + " -q --ff " + ff + " --ids " + ids.string());
+        const fs::path ids = test_file("covered." + ff + ".png");
+        CliRun r = run_fb89("radiosity " + kGarish + " -q --ff " + ff + " --ids " + ids.string());
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const auto image = fb89::controller::read_png(ids);
         ASSERT_EQ(image.channels, 3u);
@@ -260,10 +256,10 @@ TEST(RadiosityCommand, HierarchicalPatchesCoverEveryPixelOfTheClosedRoom) {
 
 TEST(RadiosityCommand, OtherFormFactorsRunAndQuietPrintsNothing) {
     for (const std::string ff : {"disk", "exact", "hemicube --hemicube-res 16"}) {
-        CliRun r = fb89("radiosity " + kScenes +
-                        "/cornell_box.json --patches 60 --size 128x98 -q "
-                        "--ff " +
-                        ff);
+        CliRun r = run_fb89("radiosity " + kScenes +
+                            "/cornell_box.json --patches 60 --size 128x98 -q "
+                            "--ff " +
+                            ff);
         EXPECT_EQ(r.exit_code, 0) << ff << "\n" << r.err;
         EXPECT_EQ(r.out, "") << ff;
     }
@@ -272,18 +268,21 @@ TEST(RadiosityCommand, OtherFormFactorsRunAndQuietPrintsNothing) {
 // Rows of F above 1 are flagged on stdout, counted, located and explained for the form used.
 TEST(RadiosityCommand, RowSumsAboveOneAreFlaggedAndExplained) {
     const std::string png = (fb89::testing::test_dir() / "room.png").string();
-    CliRun point = fb89("radiosity cornell_box --patches 60 --size 128x98 --ff flux --png " + png);
+    CliRun point =
+        run_fb89("radiosity cornell_box --patches 60 --size 128x98 --ff flux --png " + png);
     ASSERT_EQ(point.exit_code, 0) << point.err;
     EXPECT_NE(point.out.find("! 34 of 75 rows of F sum above 1, the largest by 26.7%"),
               std::string::npos)
         << point.out;
     EXPECT_NE(point.out.find("point form over-counts patches close to one another"),
               std::string::npos);
-    CliRun exact = fb89("radiosity cornell_box --patches 60 --size 128x98 --ff exact --png " + png);
+    CliRun exact =
+        run_fb89("radiosity cornell_box --patches 60 --size 128x98 --ff exact --png " + png);
     ASSERT_EQ(exact.exit_code, 0) << exact.err;
     EXPECT_NE(exact.out.find("all or nothing"), std::string::npos) << exact.out;
     // the disk form keeps every row of this box below 1: nothing to flag
-    CliRun disk = fb89("radiosity cornell_box --patches 60 --size 128x98 --ff disk --png " + png);
+    CliRun disk =
+        run_fb89("radiosity cornell_box --patches 60 --size 128x98 --ff disk --png " + png);
     ASSERT_EQ(disk.exit_code, 0) << disk.err;
     EXPECT_EQ(disk.out.find("rows of F sum above 1"), std::string::npos) << disk.out;
 }

@@ -12,30 +12,26 @@
 
 #include "controller_sim/png_io.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/scenes_dir.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 using fb89::testing::CliRun;
+using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
+using fb89::testing::test_file;
 
-CliRun fb89(const std::string& args) {
-    return fb89::testing::run_fb89(args);
-}
-
-fs::path scratch(const std::string& name) {
-    return test_dir() / name;
-}
-
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 
 TEST(RenderCommand, WritesImageIdsStreamAndStats) {
-    fs::path png = scratch("demo.png"), ids = scratch("demo.ids.png"),
-             stream = scratch("demo.fb89"), stats = scratch("demo.json");
-    CliRun r = fb89("render " + kScenes + "/demo.json --png " + png.string() + " --ids " +
-                    ids.string() + " --stream " + stream.string() + " --stats " + stats.string());
+    fs::path png = test_file("demo.png"), ids = test_file("demo.ids.png"),
+             stream = test_file("demo.fb89"), stats = test_file("demo.json");
+    CliRun r =
+        run_fb89("render " + kScenes + "/demo.json --png " + png.string() + " --ids " +
+                 ids.string() + " --stream " + stream.string() + " --stats " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("hidden-surface"), std::string::npos);
     EXPECT_NE(r.out.find("DRAW_SPAN"), std::string::npos);
@@ -53,8 +49,8 @@ TEST(RenderCommand, WritesImageIdsStreamAndStats) {
 // The pipeline in time: the profile's buffer (unbounded), or --buffer's; a buffer too small for
 // a command, or not a number, is a usage error naming --buffer.
 TEST(RenderCommand, TheBufferBoundsThePipelineInTime) {
-    const fs::path stats = scratch("buffer.json");
-    CliRun r = fb89("render " + kScenes + "/A.json --size 128x98 --stats " + stats.string());
+    const fs::path stats = test_file("buffer.json");
+    CliRun r = run_fb89("render " + kScenes + "/A.json --size 128x98 --stats " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("pipeline (send times measured, buffer unbounded): frame "),
               std::string::npos)
@@ -62,7 +58,8 @@ TEST(RenderCommand, TheBufferBoundsThePipelineInTime) {
     nlohmann::json j = nlohmann::json::parse(slurp(stats));
     EXPECT_EQ(j["pipeline"]["buffer_bytes"], "unbounded");
     const uint64_t unbounded_high = j["pipeline"]["buffer_high_water_bytes"].get<uint64_t>();
-    r = fb89("render " + kScenes + "/A.json --size 128x98 --buffer 64 --stats " + stats.string());
+    r = run_fb89("render " + kScenes + "/A.json --size 128x98 --buffer 64 --stats " +
+                 stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("buffer 64 bytes"), std::string::npos) << r.out;
     j = nlohmann::json::parse(slurp(stats));
@@ -71,7 +68,7 @@ TEST(RenderCommand, TheBufferBoundsThePipelineInTime) {
     EXPECT_GT(unbounded_high, 64u);  // the host sends faster than the controller draws
     EXPECT_GT(j["pipeline"]["host_stalls"].get<uint64_t>(), 0u);
     for (const char* bad : {"5", "lots", "0"}) {
-        r = fb89("render " + kScenes + "/A.json --size 128x98 --buffer " + std::string(bad));
+        r = run_fb89("render " + kScenes + "/A.json --size 128x98 --buffer " + std::string(bad));
         EXPECT_EQ(r.exit_code, 2) << bad;
         EXPECT_NE(r.err.find("--buffer"), std::string::npos) << r.err;
     }
@@ -80,21 +77,21 @@ TEST(RenderCommand, TheBufferBoundsThePipelineInTime) {
 // --timeline writes the frame through the pipeline as trace-event JSON beside the other
 // outputs; a path that cannot be written is an error naming it, exit 2, nothing written.
 TEST(RenderCommand, TheTimelineIsWrittenWholeOrNotAtAll) {
-    const fs::path timeline = scratch("timeline.json");
-    const fs::path png = scratch("timeline.png");
-    CliRun r = fb89("render " + kScenes + "/A.json --size 128x98 -q --buffer 256 --timeline " +
-                    timeline.string());
+    const fs::path timeline = test_file("timeline.json");
+    const fs::path png = test_file("timeline.png");
+    CliRun r = run_fb89("render " + kScenes + "/A.json --size 128x98 -q --buffer 256 --timeline " +
+                        timeline.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(slurp(timeline));
     EXPECT_EQ(j.at("otherData").at("buffer_bytes"), 256);
     EXPECT_NE(j.at("otherData").at("title").get<std::string>().find("zbuffer"), std::string::npos);
     EXPECT_GT(j.at("traceEvents").size(), 100u);
     // into a folder that is a file: refused, and the PNG of the same command not written
-    const fs::path blocked = scratch("a-file");
+    const fs::path blocked = test_file("a-file");
     { std::ofstream(blocked) << "x"; }
     fs::remove(png);
-    r = fb89("render " + kScenes + "/A.json --size 128x98 -q --png " + png.string() +
-             " --timeline " + (blocked / "t.json").string());
+    r = run_fb89("render " + kScenes + "/A.json --size 128x98 -q --png " + png.string() +
+                 " --timeline " + (blocked / "t.json").string());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("a-file"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(png));
@@ -104,11 +101,11 @@ TEST(RenderCommand, TheTimelineIsWrittenWholeOrNotAtAll) {
 // one this machine runs counts the same; a name it does not know is a usage error naming it.
 TEST(RenderCommand, TheKernelsInstructionSetIsChosenReportedAndChecked) {
     const std::string render = "render G --size 96x73 -q --stats - -m beam";
-    const CliRun best = fb89(render);
+    const CliRun best = run_fb89(render);
     ASSERT_EQ(best.exit_code, 0) << best.err;
     const nlohmann::json best_stats = nlohmann::json::parse(best.out);
     EXPECT_EQ(best_stats.at("accel"), "bvh");
-    const CliRun baseline = fb89(render + " --isa baseline");
+    const CliRun baseline = run_fb89(render + " --isa baseline");
     ASSERT_EQ(baseline.exit_code, 0) << baseline.err;
     const nlohmann::json stats = nlohmann::json::parse(baseline.out);
     EXPECT_EQ(stats.at("kernels"), "baseline");
@@ -117,7 +114,7 @@ TEST(RenderCommand, TheKernelsInstructionSetIsChosenReportedAndChecked) {
     ASSERT_EQ(from_env.exit_code, 0) << from_env.err;
     EXPECT_EQ(nlohmann::json::parse(from_env.out).at("kernels"), "baseline");
 
-    const CliRun bad = fb89(render + " --isa v9");
+    const CliRun bad = run_fb89(render + " --isa v9");
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find("v9"), std::string::npos) << bad.err;
     const CliRun bad_env = fb89::testing::run_fb89(render, "FB89_ISA=v9 ");
@@ -125,15 +122,15 @@ TEST(RenderCommand, TheKernelsInstructionSetIsChosenReportedAndChecked) {
     EXPECT_NE(bad_env.err.find("$FB89_ISA: expected baseline, v3 or v4, got 'v9'"),
               std::string::npos)
         << bad_env.err;
-    const CliRun bad_accel = fb89(render + " --accel octree");
+    const CliRun bad_accel = run_fb89(render + " --accel octree");
     EXPECT_EQ(bad_accel.exit_code, 2);
     EXPECT_NE(bad_accel.err.find("octree"), std::string::npos) << bad_accel.err;
 }
 
 TEST(RenderCommand, SizeOverridesTheScene) {
-    fs::path png = scratch("small.png");
+    fs::path png = test_file("small.png");
     CliRun r =
-        fb89("render " + kScenes + "/cornell_box.json --size 256x195 -q --png " + png.string());
+        run_fb89("render " + kScenes + "/cornell_box.json --size 256x195 -q --png " + png.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, "");
     auto image = fb89::controller::read_png(png);
@@ -143,11 +140,11 @@ TEST(RenderCommand, SizeOverridesTheScene) {
 
 TEST(RenderCommand, ASizeOutOfRangeSaysTheRange) {
     for (const char* size : {"100000x100000", "0x10", "99999999999x2"}) {
-        const CliRun r = fb89(std::string("render A --size ") + size);
+        const CliRun r = run_fb89(std::string("render A --size ") + size);
         EXPECT_EQ(r.exit_code, 2) << size;
         EXPECT_NE(r.err.find("width and height must be in [1, 16384]"), std::string::npos) << r.err;
     }
-    const CliRun shape = fb89("render A --size big");
+    const CliRun shape = run_fb89("render A --size big");
     EXPECT_EQ(shape.exit_code, 2);
     EXPECT_NE(shape.err.find("expected WxH such as 1024x780, width and height in [1, 16384]"),
               std::string::npos)
@@ -156,7 +153,7 @@ TEST(RenderCommand, ASizeOutOfRangeSaysTheRange) {
 
 // A bundled scene by name, from any folder; a name that is nowhere lists the bundled ones.
 TEST(RenderCommand, BundledScenesAreFoundByNameFromAnyFolder) {
-    const fs::path png = scratch("by_name.png");
+    const fs::path png = test_file("by_name.png");
     const CliRun r = fb89::testing::run_fb89("render demo -q --png " + png.string(), "cd / && ");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(fs::exists(png));
@@ -200,7 +197,7 @@ TEST(RenderCommand, ARelativeScenePathIsReadFromTheCurrentFolderOnly) {
 
 // Counter names of any length keep the values in one column.
 TEST(RenderCommand, CountedOperationsLineUp) {
-    const CliRun r = fb89("render F --size 128x98 --png " + scratch("f.png").string());
+    const CliRun r = run_fb89("render F --size 128x98 --png " + test_file("f.png").string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const size_t begin = r.out.find("host counted operations:\n");
     ASSERT_NE(begin, std::string::npos) << r.out;
@@ -219,51 +216,51 @@ TEST(RenderCommand, CountedOperationsLineUp) {
 }
 
 TEST(RenderCommand, ReportsTriangulatedPolygons) {
-    CliRun r = fb89("render " + kScenes + "/cornell_box.json --size 64x48");
+    CliRun r = run_fb89("render " + kScenes + "/cornell_box.json --size 64x48");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("triangulated"), std::string::npos) << r.err;
 }
 
 TEST(RenderCommand, VersionAndHelpExitZero) {
-    EXPECT_EQ(fb89("--version").exit_code, 0);
-    CliRun help = fb89("render --help");
+    EXPECT_EQ(run_fb89("--version").exit_code, 0);
+    CliRun help = run_fb89("render --help");
     EXPECT_EQ(help.exit_code, 0);
     EXPECT_NE(help.out.find("--ids"), std::string::npos);
 }
 
 TEST(RenderCommand, UsageErrorsExitTwo) {
-    EXPECT_EQ(fb89("").exit_code, 2);
-    EXPECT_EQ(fb89("render").exit_code, 2);
-    EXPECT_EQ(fb89("frobnicate").exit_code, 2);
-    CliRun method = fb89("render " + kScenes + "/demo.json --method painter");
+    EXPECT_EQ(run_fb89("").exit_code, 2);
+    EXPECT_EQ(run_fb89("render").exit_code, 2);
+    EXPECT_EQ(run_fb89("frobnicate").exit_code, 2);
+    CliRun method = run_fb89("render " + kScenes + "/demo.json --method painter");
     EXPECT_EQ(method.exit_code, 2);
     EXPECT_NE(method.err.find("unknown method 'painter'"), std::string::npos) << method.err;
-    CliRun size = fb89("render " + kScenes + "/demo.json --size 12by7");
+    CliRun size = run_fb89("render " + kScenes + "/demo.json --size 12by7");
     EXPECT_EQ(size.exit_code, 2);
     EXPECT_NE(size.err.find("--size"), std::string::npos) << size.err;
 }
 
 TEST(RenderCommand, BadInputExitsTwoNamingTheFile) {
-    CliRun missing = fb89("render /nonexistent/scene.json");
+    CliRun missing = run_fb89("render /nonexistent/scene.json");
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_NE(missing.err.find("/nonexistent/scene.json"), std::string::npos) << missing.err;
 
-    fs::path bad = scratch("bad.json");
+    fs::path bad = test_file("bad.json");
     std::ofstream(bad)
         << "{ \"camera\": { \"eye\": [0, 0, 1], \"look_at\": [0, 0, 0], \"fovy\": 45,\n"
            "  \"near\": 1, \"far\": 10 }, \"objects\": [ { \"polygon\": 3 } ] }\n";
-    CliRun r = fb89("render " + bad.string());
+    CliRun r = run_fb89("render " + bad.string());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("bad.json: objects[0].polygon: expected an array"), std::string::npos)
         << r.err;
 
-    CliRun profile = fb89("render " + kScenes + "/demo.json --profile no-such-profile");
+    CliRun profile = run_fb89("render " + kScenes + "/demo.json --profile no-such-profile");
     EXPECT_EQ(profile.exit_code, 2);
     EXPECT_NE(profile.err.find("no-such-profile"), std::string::npos) << profile.err;
 }
 
 TEST(RenderCommand, UnwritableOutputExitsTwo) {
-    CliRun r = fb89("render " + kScenes + "/demo.json -q --png /proc/no/such/dir/x.png");
+    CliRun r = run_fb89("render " + kScenes + "/demo.json -q --png /proc/no/such/dir/x.png");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("x.png"), std::string::npos) << r.err;
 }
@@ -273,14 +270,14 @@ TEST(RenderCommand, UnwritableOutputExitsTwo) {
 namespace {
 
 TEST(RenderCommand, BeamWritesItsMaskAndStatsAndEqualsTheRayTracer) {
-    fs::path beam = scratch("g_beam.png"), rays = scratch("g_rays.png"),
-             mask = scratch("g_mask.png"), stats = scratch("g_beam.json");
-    CliRun b =
-        fb89("render " + kScenes + "/G.json --size 256x195 -q -m beam --beam-threshold 1 " +
-             "--png " + beam.string() + " --mask " + mask.string() + " --stats " + stats.string());
+    fs::path beam = test_file("g_beam.png"), rays = test_file("g_rays.png"),
+             mask = test_file("g_mask.png"), stats = test_file("g_beam.json");
+    CliRun b = run_fb89("render " + kScenes +
+                        "/G.json --size 256x195 -q -m beam --beam-threshold 1 " + "--png " +
+                        beam.string() + " --mask " + mask.string() + " --stats " + stats.string());
     ASSERT_EQ(b.exit_code, 0) << b.err;
-    CliRun r =
-        fb89("render " + kScenes + "/G.json --size 256x195 -q -m raytrace --png " + rays.string());
+    CliRun r = run_fb89("render " + kScenes + "/G.json --size 256x195 -q -m raytrace --png " +
+                        rays.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(slurp(beam), slurp(rays));
     nlohmann::json j = nlohmann::json::parse(slurp(stats));
@@ -297,13 +294,13 @@ TEST(RenderCommand, BeamWritesItsMaskAndStatsAndEqualsTheRayTracer) {
 }
 
 TEST(RenderCommand, BadBeamOptionsAreUsageErrors) {
-    CliRun t = fb89("render " + kScenes + "/G.json -m beam --beam-threshold -3 -q");
+    CliRun t = run_fb89("render " + kScenes + "/G.json -m beam --beam-threshold -3 -q");
     EXPECT_EQ(t.exit_code, 2);
     EXPECT_NE(t.err.find("--beam-threshold"), std::string::npos) << t.err;
-    CliRun m = fb89("render " + kScenes + "/G.json -m zbuffer --mask x.png -q");
+    CliRun m = run_fb89("render " + kScenes + "/G.json -m zbuffer --mask x.png -q");
     EXPECT_EQ(m.exit_code, 2);
     EXPECT_NE(m.err.find("--mask"), std::string::npos) << m.err;
-    CliRun r = fb89("render " + kScenes + "/G.json -m raytrace --reflections 99 -q");
+    CliRun r = run_fb89("render " + kScenes + "/G.json -m raytrace --reflections 99 -q");
     EXPECT_EQ(r.exit_code, 2);
 }
 
@@ -312,26 +309,26 @@ TEST(RenderCommand, OptionsTheMethodDoesNotUseAreRefusedNotIgnored) {
                              "-m warnock --beam-threshold 5", "-m scanline --window-test centres",
                              "-m raytrace --depth-estimate scene", "-m hybrid --grid-density 2",
                              "-m raytrace --grid-density 2"}) {
-        CliRun r = fb89("render " + kScenes + "/A.json --size 32x24 -q " + args);
+        CliRun r = run_fb89("render " + kScenes + "/A.json --size 32x24 -q " + args);
         EXPECT_EQ(r.exit_code, 2) << args;
         EXPECT_NE(r.err.find("method does not use it"), std::string::npos) << args << r.err;
     }
-    EXPECT_EQ(fb89("render " + kScenes +
-                   "/A.json --size 32x24 -q -m hybrid --threshold 0.1 "
-                   "--window-test centres")
+    EXPECT_EQ(run_fb89("render " + kScenes +
+                       "/A.json --size 32x24 -q -m hybrid --threshold 0.1 "
+                       "--window-test centres")
                   .exit_code,
               0);
 }
 
 // The beams query the BVH unless the rays walk the grid: a grid density alone has no grid.
 TEST(RenderCommand, AGridDensityNeedsTheGrid) {
-    CliRun r = fb89("render " + kScenes + "/G.json --size 32x24 -q -m beam --grid-density 2");
+    CliRun r = run_fb89("render " + kScenes + "/G.json --size 32x24 -q -m beam --grid-density 2");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--grid-density"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("--accel grid"), std::string::npos) << r.err;
-    EXPECT_EQ(fb89("render " + kScenes +
-                   "/G.json --size 32x24 -q -m beam --grid-density 2 "
-                   "--accel grid")
+    EXPECT_EQ(run_fb89("render " + kScenes +
+                       "/G.json --size 32x24 -q -m beam --grid-density 2 "
+                       "--accel grid")
                   .exit_code,
               0);
 }
@@ -346,10 +343,10 @@ uint32_t rgb_at(const fb89::controller::PngImage& image, size_t pixel) {
 }
 
 TEST(RenderCommand, IdsViewGivesEachIdItsOwnColourBesideTheExactIds) {
-    fs::path ids = scratch("A.ids.png"), view = scratch("A.view.png"),
-             alone = scratch("A.view_alone.png");
-    CliRun r = fb89("render " + kScenes + "/A.json --size 64x48 -q --ids " + ids.string() +
-                    " --ids-view " + view.string());
+    fs::path ids = test_file("A.ids.png"), view = test_file("A.view.png"),
+             alone = test_file("A.view_alone.png");
+    CliRun r = run_fb89("render " + kScenes + "/A.json --size 64x48 -q --ids " + ids.string() +
+                        " --ids-view " + view.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto exact = fb89::controller::read_png(ids);
     auto colours = fb89::controller::read_png(view);
@@ -377,10 +374,10 @@ TEST(RenderCommand, IdsViewGivesEachIdItsOwnColourBesideTheExactIds) {
 
     // the two options are independent: --ids-view alone writes the same picture
     CliRun only =
-        fb89("render " + kScenes + "/A.json --size 64x48 -q --ids-view " + alone.string());
+        run_fb89("render " + kScenes + "/A.json --size 64x48 -q --ids-view " + alone.string());
     ASSERT_EQ(only.exit_code, 0) << only.err;
     EXPECT_EQ(slurp(alone), slurp(view));
-    EXPECT_NE(fb89("render --help").out.find("--ids-view"), std::string::npos);
+    EXPECT_NE(run_fb89("render --help").out.find("--ids-view"), std::string::npos);
 }
 
 }  // namespace
@@ -389,7 +386,7 @@ namespace {
 
 // Labels that read right without the docs (issue: "do no harm, round 2").
 TEST(RenderCommand, ItsLinesSayWhatEachFigureIs) {
-    const CliRun r = fb89("render " + kScenes + "/demo.json --size 128x98");
+    const CliRun r = run_fb89("render " + kScenes + "/demo.json --size 128x98");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // the controller's header once
     std::size_t headers = 0;
@@ -406,29 +403,29 @@ TEST(RenderCommand, ItsLinesSayWhatEachFigureIs) {
     EXPECT_NE(r.out.find("buffer unbounded): frame "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(", host waited for the bus "), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("host stalled"), std::string::npos) << r.out;
-    const CliRun bounded = fb89("render " + kScenes + "/demo.json --size 128x98 --buffer 64");
+    const CliRun bounded = run_fb89("render " + kScenes + "/demo.json --size 128x98 --buffer 64");
     ASSERT_EQ(bounded.exit_code, 0) << bounded.err;
     EXPECT_NE(bounded.out.find(" ms (bus or full buffer)"), std::string::npos) << bounded.out;
 }
 
 TEST(RenderCommand, SmallMistakesAreRefusedInWords) {
     const std::string demo = "render " + kScenes + "/demo.json --size 64x48 -q ";
-    CliRun r = fb89(demo + "--repeat 1.5");
+    CliRun r = run_fb89(demo + "--repeat 1.5");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err,
               "fb89: usage: render: --repeat: 1.5 is not an integer (fb89 render --help says "
               "more)\n");
-    r = fb89(demo + "--repeat many");
+    r = run_fb89(demo + "--repeat many");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--repeat: many is not an integer"), std::string::npos) << r.err;
-    const std::string same = scratch("same.png").string();
+    const std::string same = test_file("same.png").string();
     fs::remove(same);
-    r = fb89(demo + "--png " + same + " --ids " + same);
+    r = run_fb89(demo + "--png " + same + " --ids " + same);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err, "fb89: usage: --png and --ids both write to " + same +
                          "; give each a file of its own\n");
     EXPECT_FALSE(fs::exists(same));
-    r = fb89(demo + "--untimed-stream");
+    r = run_fb89(demo + "--untimed-stream");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--untimed-stream requires --stream"), std::string::npos) << r.err;
 }

@@ -14,7 +14,9 @@
 #include "controller_sim/png_io.h"
 #include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
+#include "tests/cli/bad_input.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/scenes_dir.h"
 
 namespace {
 
@@ -22,18 +24,12 @@ namespace fs = std::filesystem;
 namespace pr = fb89::protocol;
 
 using fb89::testing::CliRun;
+using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
+using fb89::testing::bad_input::scratch;
 
-CliRun fb89(const std::string& args, const std::string& prefix = "") {
-    return fb89::testing::run_fb89(args, prefix);
-}
-
-std::string scratch(const std::string& name) {
-    return (test_dir() / name).string();
-}
-
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 
 // Three 8x6 frames; frame 1 has a fill at command 6, frame 2 a span and a marker.
 std::vector<pr::Command> three_frames() {
@@ -74,19 +70,19 @@ std::string write_stream(const std::string& name, const std::vector<pr::Command>
 std::string record_a(const std::string& name = "a.fb89", const std::string& extra = "") {
     const std::string path = scratch(name);
     CliRun r =
-        fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + path + " " + extra);
+        run_fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + path + " " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return path;
 }
 
 nlohmann::json replay_stats(const std::string& stream, const std::string& extra = "") {
     const std::string stats = scratch("replay_stats.json");
-    CliRun r = fb89("replay " + stream + " -q --stats " + stats + " " + extra);
+    CliRun r = run_fb89("replay " + stream + " -q --stats " + stats + " " + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(slurp(stats));
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
+std::vector<std::string> complete_lines(const std::string& text) {
     std::vector<std::string> out;
     std::size_t start = 0;
     for (std::size_t nl; (nl = text.find('\n', start)) != std::string::npos; start = nl + 1)
@@ -96,8 +92,8 @@ std::vector<std::string> lines_of(const std::string& text) {
 
 TEST(ReplayCommand, ReplaysUnderAnotherProfileWithTheRendersChecksum) {
     const std::string stream = scratch("a.fb89"), render_stats = scratch("render.json");
-    ASSERT_EQ(fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + stream +
-                   " --stats " + render_stats)
+    ASSERT_EQ(run_fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + stream +
+                       " --stats " + render_stats)
                   .exit_code,
               0);
     const auto rendered = nlohmann::json::parse(slurp(render_stats));
@@ -110,7 +106,7 @@ TEST(ReplayCommand, ReplaysUnderAnotherProfileWithTheRendersChecksum) {
     EXPECT_EQ(slow["controller"]["totals"]["all"]["cycles"],
               rendered["controller"]["totals"]["all"]["cycles"]);
     EXPECT_EQ(ideal["controller"]["totals"]["all"]["cycles"], 0);
-    CliRun text = fb89("replay " + stream + " --profile tms34020-40mhz");
+    CliRun text = run_fb89("replay " + stream + " --profile tms34020-40mhz");
     ASSERT_EQ(text.exit_code, 0) << text.err;
     EXPECT_NE(text.out.find("profile tms34020-40mhz"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find("checksum"), std::string::npos) << text.out;
@@ -122,7 +118,7 @@ TEST(ReplayCommand, ReplaysUnderAnotherProfileWithTheRendersChecksum) {
 TEST(ReplayCommand, TheBufferAndTheTimelineRunTheStreamsFramesThroughThePipeline) {
     const std::string stream = record_a("a_untimed.fb89", "--untimed-stream"),
                       timeline = scratch("replay_timeline.json");
-    CliRun r = fb89("replay " + stream + " --buffer 64 --timeline " + timeline);
+    CliRun r = run_fb89("replay " + stream + " --buffer 64 --timeline " + timeline);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("pipeline, frame 0 (no send times in the stream: every command ready at "
                          "0; buffer 64 bytes): frame "),
@@ -137,12 +133,12 @@ TEST(ReplayCommand, TheBufferAndTheTimelineRunTheStreamsFramesThroughThePipeline
         if (e["ph"] == "X" && e["tid"] == 3) controller_us += e["dur"].get<double>();
     EXPECT_NEAR(controller_us, t["otherData"]["controller_busy_ms"].get<double>() * 1e3,
                 1e-6 * controller_us);
-    r = fb89("replay " + stream + " --buffer 5");
+    r = run_fb89("replay " + stream + " --buffer 5");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--buffer: 5 bytes cannot hold a command"), std::string::npos) << r.err;
     const std::string blocked = scratch("not-a-folder");
     { std::ofstream(blocked) << "x"; }
-    r = fb89("replay " + stream + " -q --timeline " + blocked + "/t.json");
+    r = run_fb89("replay " + stream + " -q --timeline " + blocked + "/t.json");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("not-a-folder"), std::string::npos) << r.err;
 }
@@ -150,18 +146,19 @@ TEST(ReplayCommand, TheBufferAndTheTimelineRunTheStreamsFramesThroughThePipeline
 TEST(ReplayCommand, PngOfTheLastFrameEqualsTheRendersImage) {
     const std::string stream = scratch("a.fb89"), rendered = scratch("r.png"),
                       replayed = scratch("p.png");
-    ASSERT_EQ(fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + stream +
-                   " --png " + rendered)
+    ASSERT_EQ(run_fb89("render " + kScenes + "/A.json --size 256x195 -q --stream " + stream +
+                       " --png " + rendered)
                   .exit_code,
               0);
-    ASSERT_EQ(fb89("replay " + stream + " -q --png " + replayed).exit_code, 0);
+    ASSERT_EQ(run_fb89("replay " + stream + " -q --png " + replayed).exit_code, 0);
     EXPECT_EQ(fb89::controller::read_png(rendered).pixels,
               fb89::controller::read_png(replayed).pixels);
 }
 
 TEST(ReplayCommand, SnapshotsAreNamedWithTheCallNumber) {
     const std::string stream = write_stream("three.fb89", three_frames());
-    CliRun r = fb89("replay " + stream + " -q --png " + scratch("out.png") + " --snapshot frame,2");
+    CliRun r =
+        run_fb89("replay " + stream + " -q --png " + scratch("out.png") + " --snapshot frame,2");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* name :
          {"out-000002.png", "out-000004.png", "out-000007.png", "out-000011.png"})
@@ -171,12 +168,12 @@ TEST(ReplayCommand, SnapshotsAreNamedWithTheCallNumber) {
     const auto snap = fb89::controller::read_png(scratch("out-000002.png"));
     EXPECT_EQ(snap.pixels[0], 255);
     EXPECT_EQ(snap.pixels[(5 * 8 + 1) * 3 + 1], 0);
-    EXPECT_EQ(fb89("replay " + stream + " --snapshot frame").exit_code, 2);
+    EXPECT_EQ(run_fb89("replay " + stream + " --snapshot frame").exit_code, 2);
 }
 
 TEST(ReplayCommand, BenchmarkReportsThroughput) {
     const std::string stream = record_a();
-    CliRun r = fb89("replay " + stream + " --benchmark");
+    CliRun r = run_fb89("replay " + stream + " --benchmark");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("M commands/s"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("Mpixels/s"), std::string::npos) << r.out;
@@ -190,7 +187,7 @@ TEST(ReplayCommand, TruncatedStreamExitsTwoWritingNothingAndSalvageKeepsComplete
     const std::string stream =
         write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2, pr::Checksums::Off);
     const std::string png = scratch("last.png"), stats = scratch("cut.json");
-    CliRun r = fb89("replay " + stream + " --png " + png + " --stats " + stats);
+    CliRun r = run_fb89("replay " + stream + " --png " + png + " --stats " + stats);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("cut.fb89: truncated"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("at byte"), std::string::npos) << r.err;
@@ -199,7 +196,7 @@ TEST(ReplayCommand, TruncatedStreamExitsTwoWritingNothingAndSalvageKeepsComplete
     EXPECT_FALSE(std::filesystem::exists(png));
     EXPECT_FALSE(std::filesystem::exists(stats));
     // with --salvage: exit 0, a warning, and what the complete frames give
-    r = fb89("replay --salvage " + stream + " --png " + png + " --stats " + stats);
+    r = run_fb89("replay --salvage " + stream + " --png " + png + " --stats " + stats);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("fb89: warning: "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("kept the 2 complete frame(s)"), std::string::npos) << r.err;
@@ -213,17 +210,17 @@ TEST(ReplayCommand, TruncatedStreamExitsTwoWritingNothingAndSalvageKeepsComplete
 }
 
 // The number after `label` in `text` (e.g. "frame " -> 12.345), or -1.
-double number_after(const std::string& text, const std::string& label) {
+double value_after(const std::string& text, const std::string& label) {
     const std::size_t at = text.find(label);
     return at == std::string::npos ? -1 : std::stod(text.substr(at + label.size()));
 }
 
 TEST(ReplayCommand, ATimedStreamGoesThroughThePipelineAtItsSendTimesAsRendered) {
     const std::string stream = scratch("timed.fb89"), timeline = scratch("timed_timeline.json");
-    CliRun render = fb89("render " + kScenes + "/A.json --size 256x195 --method scanline " +
-                         "--buffer 2048 --stream " + stream);
+    CliRun render = run_fb89("render " + kScenes + "/A.json --size 256x195 --method scanline " +
+                             "--buffer 2048 --stream " + stream);
     ASSERT_EQ(render.exit_code, 0) << render.err;
-    CliRun r = fb89("replay " + stream + " --buffer 2048 --timeline " + timeline);
+    CliRun r = run_fb89("replay " + stream + " --buffer 2048 --timeline " + timeline);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("format version 4"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("pipeline, frame 0 (send times from the stream, measured on native; "
@@ -231,10 +228,10 @@ TEST(ReplayCommand, ATimedStreamGoesThroughThePipelineAtItsSendTimesAsRendered) 
               std::string::npos)
         << r.out;
     // the render's frame and stalls, to the printed microsecond, without the host
-    const double frame_ms = number_after(render.out, "buffer 2048 bytes): frame ");
+    const double frame_ms = value_after(render.out, "buffer 2048 bytes): frame ");
     EXPECT_GT(frame_ms, 0) << render.out;
-    EXPECT_EQ(number_after(r.out, "buffer 2048 bytes): frame "), frame_ms) << r.out;
-    EXPECT_EQ(number_after(r.out, "host stalled "), number_after(render.out, "host stalled "));
+    EXPECT_EQ(value_after(r.out, "buffer 2048 bytes): frame "), frame_ms) << r.out;
+    EXPECT_EQ(value_after(r.out, "host stalled "), value_after(render.out, "host stalled "));
     const nlohmann::json t = nlohmann::json::parse(slurp(timeline));
     EXPECT_EQ(t["otherData"]["send_times"], "measured on native");
     EXPECT_NEAR(t["otherData"]["frame_ms"].get<double>(), frame_ms, 0.0005);
@@ -242,7 +239,7 @@ TEST(ReplayCommand, ATimedStreamGoesThroughThePipelineAtItsSendTimesAsRendered) 
 
 TEST(StreamTools, InfoDumpTrimAndDiffShowAndKeepTheSendTimes) {
     const std::string stream = record_a("timed_a.fb89"), trimmed = scratch("timed_trim.fb89");
-    CliRun info = fb89("info " + stream + " --json");
+    CliRun info = run_fb89("info " + stream + " --json");
     ASSERT_EQ(info.exit_code, 0) << info.err;
     const nlohmann::json j = nlohmann::json::parse(info.out);
     EXPECT_EQ(j["version"], 4);
@@ -250,12 +247,12 @@ TEST(StreamTools, InfoDumpTrimAndDiffShowAndKeepTheSendTimes) {
     const double host_end_us = j["frames"][0]["host_end_us"].get<double>();
     EXPECT_GT(host_end_us, 0);
     EXPECT_GE(host_end_us, j["frames"][0]["last_send_us"].get<double>());
-    info = fb89("info " + stream);
+    info = run_fb89("info " + stream);
     EXPECT_NE(info.out.find("send times     measured on native"), std::string::npos) << info.out;
 
-    CliRun dump = fb89("dump " + stream);
+    CliRun dump = run_fb89("dump " + stream);
     ASSERT_EQ(dump.exit_code, 0) << dump.err;
-    const auto lines = lines_of(dump.out);
+    const auto lines = complete_lines(dump.out);
     ASSERT_GT(lines.size(), 2u);
     EXPECT_NE(lines.front().find("FRAME_BEGIN"), std::string::npos);
     EXPECT_NE(lines.front().find("  sent 0.000 us"), std::string::npos) << lines.front();
@@ -264,11 +261,11 @@ TEST(StreamTools, InfoDumpTrimAndDiffShowAndKeepTheSendTimes) {
 
     // a frame kept whole keeps every command's time: the same dump, line for line, but for
     // the byte offsets (the trimmed stream's header says where it came from)
-    ASSERT_EQ(fb89("trim " + stream + " --frames 0 -q -o " + trimmed).exit_code, 0);
+    ASSERT_EQ(run_fb89("trim " + stream + " --frames 0 -q -o " + trimmed).exit_code, 0);
     const std::regex offset(" @[0-9]+ +");
-    EXPECT_TRUE(std::regex_replace(fb89("dump " + trimmed).out, offset, " ") ==
+    EXPECT_TRUE(std::regex_replace(run_fb89("dump " + trimmed).out, offset, " ") ==
                 std::regex_replace(dump.out, offset, " "));
-    CliRun diff = fb89("diff " + stream + " " + trimmed);
+    CliRun diff = run_fb89("diff " + stream + " " + trimmed);
     EXPECT_EQ(diff.exit_code, 0) << diff.out << diff.err;
     EXPECT_NE(diff.out.find("host end A ms"), std::string::npos) << diff.out;
     const std::string end_ms = fmt::format("{:.3f}", host_end_us / 1e3);
@@ -290,7 +287,7 @@ TEST(StreamTools, ATimeThatGoesBackIsRefusedNamingItsByteAndCommand) {
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));
     for (const std::string tool : {"replay", "dump", "info"}) {
-        CliRun r = fb89(tool + " " + path + (tool == "replay" ? " --buffer unbounded" : ""));
+        CliRun r = run_fb89(tool + " " + path + (tool == "replay" ? " --buffer unbounded" : ""));
         EXPECT_EQ(r.exit_code, 2) << tool;
         EXPECT_NE(r.err.find("back.fb89: SEND_TIME at byte 57 (command 2): 1000 ns goes back "
                              "from the frame's send time 2000 ns"),
@@ -315,16 +312,16 @@ TEST(InfoCommand, AFrameThatNeverEndedHasNoHostEnd) {
     std::ofstream(path, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));
-    CliRun r = fb89("info " + path + " --json");
+    CliRun r = run_fb89("info " + path + " --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["frames"].size(), 2u);
     EXPECT_EQ(j["frames"][0]["host_end_us"].get<double>(), 3.0);
     EXPECT_TRUE(j["frames"][1]["host_end_us"].is_null()) << j["frames"][1];
     EXPECT_EQ(j["frames"][1]["last_send_us"].get<double>(), 2.0);
-    r = fb89("info " + path);
+    r = run_fb89("info " + path);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto lines = lines_of(r.out);
+    const auto lines = complete_lines(r.out);
     ASSERT_FALSE(lines.empty());
     EXPECT_NE(lines.back().find("never ended"), std::string::npos) << r.out;
     EXPECT_EQ(lines.back().find("0.003000"), std::string::npos) << r.out;
@@ -332,9 +329,9 @@ TEST(InfoCommand, AFrameThatNeverEndedHasNoHostEnd) {
 
 TEST(DumpCommand, PrintsOneNumberedLinePerCommand) {
     const std::string stream = write_stream("three.fb89", three_frames());
-    CliRun r = fb89("dump " + stream);
+    CliRun r = run_fb89("dump " + stream);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto lines = lines_of(r.out);
+    const auto lines = complete_lines(r.out);
     ASSERT_EQ(lines.size(), 12u) << r.out;
     EXPECT_EQ(lines[0].find("      0 @"), 0u) << lines[0];
     EXPECT_NE(lines[2].find("2 @"), std::string::npos);
@@ -344,12 +341,12 @@ TEST(DumpCommand, PrintsOneNumberedLinePerCommand) {
 
 TEST(DumpCommand, CallsAndGrepSelectLines) {
     const std::string stream = write_stream("three.fb89", three_frames());
-    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls /span").out).size(), 2u);
-    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls frame").out).size(), 3u);
-    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls 0-11/2").out).size(), 6u);
-    EXPECT_EQ(lines_of(fb89("dump " + stream + " --calls 6-").out).size(), 6u);
-    CliRun grep = fb89("dump " + stream + " --grep 'color=#0+ff$'");
-    ASSERT_EQ(lines_of(grep.out).size(), 1u) << grep.out;
+    EXPECT_EQ(complete_lines(run_fb89("dump " + stream + " --calls /span").out).size(), 2u);
+    EXPECT_EQ(complete_lines(run_fb89("dump " + stream + " --calls frame").out).size(), 3u);
+    EXPECT_EQ(complete_lines(run_fb89("dump " + stream + " --calls 0-11/2").out).size(), 6u);
+    EXPECT_EQ(complete_lines(run_fb89("dump " + stream + " --calls 6-").out).size(), 6u);
+    CliRun grep = run_fb89("dump " + stream + " --grep 'color=#0+ff$'");
+    ASSERT_EQ(complete_lines(grep.out).size(), 1u) << grep.out;
     EXPECT_NE(grep.out.find("      9 @"), std::string::npos) << grep.out;
 }
 
@@ -370,28 +367,28 @@ TEST(DumpCommand, SeeksThroughTheFrameIndexPastACorruptFrame) {
         std::ofstream(path, std::ios::binary)
             .write(reinterpret_cast<const char*>(bytes.data()),
                    static_cast<std::streamsize>(bytes.size()));
-        CliRun all = fb89("dump " + path);
+        CliRun all = run_fb89("dump " + path);
         EXPECT_EQ(all.exit_code, 2);
         EXPECT_NE(all.err.find(checksums == pr::Checksums::On
                                    ? "batch 0 fails its checksum at byte 36 (commands 0-4)"
                                    : "(command 3)"),
                   std::string::npos)
             << all.err;
-        CliRun later = fb89("dump " + path + " --calls 5-");
+        CliRun later = run_fb89("dump " + path + " --calls 5-");
         EXPECT_EQ(later.exit_code, 0) << later.err;
-        EXPECT_EQ(lines_of(later.out).size(), 7u) << later.out;
+        EXPECT_EQ(complete_lines(later.out).size(), 7u) << later.out;
     }
 }
 
 TEST(DumpCommand, BadCallSetExitsTwoNamingIt) {
     const std::string stream = write_stream("three.fb89", three_frames());
-    CliRun r = fb89("dump " + stream + " --calls 5-2");
+    CliRun r = run_fb89("dump " + stream + " --calls 5-2");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--calls: call set '5-2': at character 3"), std::string::npos) << r.err;
-    CliRun re = fb89("dump " + stream + " --grep '('");
+    CliRun re = run_fb89("dump " + stream + " --grep '('");
     EXPECT_EQ(re.exit_code, 2);
     EXPECT_NE(re.err.find("--grep"), std::string::npos) << re.err;
-    CliRun past = fb89("dump " + stream + " --calls 99999999");
+    CliRun past = run_fb89("dump " + stream + " --calls 99999999");
     EXPECT_EQ(past.exit_code, 2);
     EXPECT_NE(past.err.find("past the stream's last (it has 12 commands)"), std::string::npos)
         << past.err;
@@ -399,7 +396,7 @@ TEST(DumpCommand, BadCallSetExitsTwoNamingIt) {
 
 TEST(InfoCommand, JsonHasPerFrameOpcodesPixelsAndBytes) {
     const std::string stream = write_stream("three.fb89", three_frames());
-    CliRun r = fb89("info " + stream + " --json");
+    CliRun r = run_fb89("info " + stream + " --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["version"], 4);
@@ -418,14 +415,14 @@ TEST(InfoCommand, JsonHasPerFrameOpcodesPixelsAndBytes) {
     EXPECT_EQ(j["frames"][1]["stream_bytes"], 16 + 20 + 1);
 
     // The ideal profile charges no time but counts the same bytes on the bus.
-    CliRun ideal = fb89("info " + stream + " --json --profile ideal");
+    CliRun ideal = run_fb89("info " + stream + " --json --profile ideal");
     ASSERT_EQ(ideal.exit_code, 0) << ideal.err;
     EXPECT_EQ(nlohmann::json::parse(ideal.out)["frames"][0]["bus_bytes"], f0["bus_bytes"]);
 }
 
 TEST(InfoCommand, TextShowsHeaderAndOneRowPerFrame) {
     const std::string stream = record_a();
-    CliRun r = fb89("info " + stream);
+    CliRun r = run_fb89("info " + stream);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("format version 4"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("batches, all good"), std::string::npos) << r.out;
@@ -441,7 +438,7 @@ TEST(InfoCommand, NewerVersionNamesBothVersions) {
     std::ofstream(path, std::ios::binary)
         .write(reinterpret_cast<const char*>(bytes.data()),
                static_cast<std::streamsize>(bytes.size()));
-    CliRun r = fb89("info " + path);
+    CliRun r = run_fb89("info " + path);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("v5.fb89"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("version 5"), std::string::npos) << r.err;
@@ -451,7 +448,7 @@ TEST(InfoCommand, NewerVersionNamesBothVersions) {
 TEST(TrimCommand, WholeFramesKeepTheirChecksums) {
     const std::string stream = write_stream("three.fb89", three_frames());
     const std::string out = scratch("frames12.fb89");
-    CliRun r = fb89("trim " + stream + " --frames 1-2 -o " + out);
+    CliRun r = run_fb89("trim " + stream + " --frames 1-2 -o " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto original = replay_stats(stream);
     const auto trimmed = replay_stats(out);
@@ -460,7 +457,7 @@ TEST(TrimCommand, WholeFramesKeepTheirChecksums) {
               original["controller"]["frames"][1]["checksum"]);
     EXPECT_EQ(trimmed["controller"]["frames"][1]["checksum"],
               original["controller"]["frames"][2]["checksum"]);
-    const auto info = nlohmann::json::parse(fb89("info --json " + out).out);
+    const auto info = nlohmann::json::parse(run_fb89("info --json " + out).out);
     EXPECT_EQ(info["properties"]["trimmed_from"], stream);
     EXPECT_EQ(info["properties"]["trim_frames"], "1-2");
     EXPECT_EQ(info["properties"]["scene"], "built");
@@ -470,19 +467,19 @@ TEST(TrimCommand, WholeFramesKeepTheirChecksums) {
 TEST(TrimCommand, AKeptCommandBringsItsFramesBeginAndEnd) {
     const std::string stream = write_stream("three.fb89", three_frames());
     const std::string out = scratch("call6.fb89");
-    ASSERT_EQ(fb89("trim " + stream + " --calls 6 -o " + out).exit_code, 0);
-    const auto lines = lines_of(fb89("dump " + out).out);
+    ASSERT_EQ(run_fb89("trim " + stream + " --calls 6 -o " + out).exit_code, 0);
+    const auto lines = complete_lines(run_fb89("dump " + out).out);
     ASSERT_EQ(lines.size(), 3u);
     EXPECT_NE(lines[0].find("FRAME_BEGIN frame=1"), std::string::npos) << lines[0];
     EXPECT_NE(lines[1].find("FILL_RECT x=2"), std::string::npos) << lines[1];
     EXPECT_NE(lines[2].find("FRAME_END"), std::string::npos) << lines[2];
     // a slice of a recorded frame replays too
     const std::string a = record_a(), slice = scratch("slice.fb89");
-    ASSERT_EQ(fb89("trim " + a + " --calls 100-300/2/span -o " + slice).exit_code, 0);
+    ASSERT_EQ(run_fb89("trim " + a + " --calls 100-300/2/span -o " + slice).exit_code, 0);
     EXPECT_EQ(replay_stats(slice)["controller"]["frames_closed"], 1);
-    EXPECT_EQ(fb89("trim " + a + " --frames /span -o " + slice).exit_code, 2);
-    EXPECT_EQ(fb89("trim " + a + " -o " + slice).exit_code, 2);
-    EXPECT_EQ(fb89("trim " + a + " --frames 0 -o " + a).exit_code, 2);
+    EXPECT_EQ(run_fb89("trim " + a + " --frames /span -o " + slice).exit_code, 2);
+    EXPECT_EQ(run_fb89("trim " + a + " -o " + slice).exit_code, 2);
+    EXPECT_EQ(run_fb89("trim " + a + " --frames 0 -o " + a).exit_code, 2);
 }
 
 TEST(TrimCommand, TruncatedInputLeavesNothingAndSalvageGivesAStreamThatReplays) {
@@ -491,22 +488,22 @@ TEST(TrimCommand, TruncatedInputLeavesNothingAndSalvageGivesAStreamThatReplays) 
     const std::string stream =
         write_stream("cut.fb89", three_frames(), full.size() - kCutInFrame2, pr::Checksums::Off);
     const std::string out = scratch("from_cut.fb89");
-    CliRun r = fb89("trim " + stream + " --calls 0- -o " + out);
+    CliRun r = run_fb89("trim " + stream + " --calls 0- -o " + out);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("cut.fb89: truncated"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(out + ": not written (--salvage"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
-    r = fb89("trim --salvage " + stream + " --calls 0- -o " + out);
+    r = run_fb89("trim --salvage " + stream + " --calls 0- -o " + out);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("fb89: warning: "), std::string::npos) << r.err;
-    CliRun replay = fb89("replay -q " + out);
+    CliRun replay = run_fb89("replay -q " + out);
     EXPECT_EQ(replay.exit_code, 0) << replay.err;
 }
 
 TEST(TrimCommand, ASelectionMatchingNothingLeavesNoFile) {
     const std::string stream = write_stream("one.fb89", three_frames());
     const std::string out = scratch("f7.fb89");
-    CliRun r = fb89("trim " + stream + " --frames 7 -o " + out);
+    CliRun r = run_fb89("trim " + stream + " --frames 7 -o " + out);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("the selection matched no command"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("not written"), std::string::npos) << r.err;
@@ -515,15 +512,16 @@ TEST(TrimCommand, ASelectionMatchingNothingLeavesNoFile) {
 
 TEST(DiffCommand, SameFramesExitZeroAcrossMethods) {
     const std::string z = record_a("z.fb89"), w = scratch("w.fb89");
-    ASSERT_EQ(fb89("render " + kScenes + "/A.json --size 256x195 -q --method warnock --stream " + w)
-                  .exit_code,
-              0);
-    CliRun r = fb89("diff " + z + " " + w);
+    ASSERT_EQ(
+        run_fb89("render " + kScenes + "/A.json --size 256x195 -q --method warnock --stream " + w)
+            .exit_code,
+        0);
+    CliRun r = run_fb89("diff " + z + " " + w);
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("identical: 1 frame(s)"), std::string::npos) << r.out;
     // an image asked for is written: the first frame, nothing in red
     const std::string image = scratch("same.png");
-    r = fb89("diff " + z + " " + w + " --image " + image);
+    r = run_fb89("diff " + z + " " + w + " --image " + image);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("identical: 1 frame(s); image of frame 0 (nothing differs): " + image),
               std::string::npos)
@@ -540,7 +538,7 @@ TEST(DiffCommand, ADifferentPixelExitsOneWithARedDiffImage) {
     const std::string a = write_stream("a3.fb89", three_frames()),
                       b = write_stream("b3.fb89", changed);
     const std::string image = scratch("diff.png");
-    CliRun r = fb89("diff " + a + " " + b + " --image " + image);
+    CliRun r = run_fb89("diff " + a + " " + b + " --image " + image);
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_NE(r.out.find("differ in 1 of 3 frame(s)"), std::string::npos) << r.out;
     const auto png = fb89::controller::read_png(image);
@@ -551,7 +549,7 @@ TEST(DiffCommand, ADifferentPixelExitsOneWithARedDiffImage) {
     EXPECT_EQ(png.pixels[2], 85);
     auto fewer = three_frames();
     fewer.resize(8);
-    EXPECT_EQ(fb89("diff " + a + " " + write_stream("two.fb89", fewer)).exit_code, 1);
+    EXPECT_EQ(run_fb89("diff " + a + " " + write_stream("two.fb89", fewer)).exit_code, 1);
 }
 
 // The byte offset two bytes into the stream's first DRAW_SPAN record past `after`, found
@@ -572,16 +570,16 @@ TEST(ReplayTools, TheStreamRecordsABundledSceneByNameAndAnyOtherAsTheUserGaveIt)
     // a bundled scene, however it is given, is recorded by its name: the stream's bytes do
     // not depend on where the checkout lives
     for (const std::string& given : std::vector<std::string>{"A", "A.json", kScenes + "/A.json"}) {
-        CliRun r = fb89("render " + given + " --size 64x48 -q --stream " + stream,
-                        "cd " + kScenes + " && ");
+        CliRun r = run_fb89("render " + given + " --size 64x48 -q --stream " + stream,
+                            "cd " + kScenes + " && ");
         ASSERT_EQ(r.exit_code, 0) << r.err;
         EXPECT_EQ(pr::StreamReader(stream).properties().at("scene"), "A") << given;
     }
     // another scene file: the path as given, relative staying relative
     const fs::path mine = fs::path(scratch("mine.json"));
     fs::copy_file(kScenes + "/A.json", mine, fs::copy_options::overwrite_existing);
-    CliRun r = fb89("render mine.json --size 64x48 -q --stream " + stream,
-                    "cd " + mine.parent_path().string() + " && ");
+    CliRun r = run_fb89("render mine.json --size 64x48 -q --stream " + stream,
+                        "cd " + mine.parent_path().string() + " && ");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(pr::StreamReader(stream).properties().at("scene"), "mine.json");
 }
@@ -594,7 +592,7 @@ TEST(ReplayTools, EveryToolReportsATruncatedStreamAndExitsTwo) {
     for (const std::string& args :
          {"replay " + cut, "dump " + cut, "info " + cut, "info --json " + cut,
           "trim " + cut + " --frames 0 -o " + scratch("t.fb89"), "diff " + a + " " + cut}) {
-        CliRun r = fb89(args);
+        CliRun r = run_fb89(args);
         EXPECT_EQ(r.exit_code, 2) << args;
         // (version 4: the batch holding the span, read whole, is cut short)
         EXPECT_NE(r.err.find("cut.fb89: truncated batch "), std::string::npos)
@@ -602,13 +600,13 @@ TEST(ReplayTools, EveryToolReportsATruncatedStreamAndExitsTwo) {
         EXPECT_NE(r.err.find(" at byte "), std::string::npos) << args << ": " << r.err;
     }
     for (const char* tool : {"replay", "dump", "info"}) {
-        CliRun missing = fb89(std::string(tool) + " /nonexistent/s.fb89");
+        CliRun missing = run_fb89(std::string(tool) + " /nonexistent/s.fb89");
         EXPECT_EQ(missing.exit_code, 2) << tool;
         EXPECT_NE(missing.err.find("/nonexistent/s.fb89"), std::string::npos) << missing.err;
     }
     const std::string junk = scratch("junk.fb89");
     std::ofstream(junk) << "not a stream";
-    CliRun bad = fb89("dump " + junk);
+    CliRun bad = run_fb89("dump " + junk);
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find("bad magic"), std::string::npos) << bad.err;
 }

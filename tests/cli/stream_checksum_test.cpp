@@ -17,6 +17,7 @@
 #include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
 #include "tests/cli/bad_input.h"
+#include "tests/text_contains.h"
 
 namespace {
 
@@ -24,17 +25,11 @@ namespace fs = std::filesystem;
 namespace pr = fb89::protocol;
 
 using fb89::testing::CliRun;
+using fb89::testing::contains;
 using fb89::testing::slurp;
+using fb89::testing::bad_input::run_with_timeout;
 using fb89::testing::bad_input::scratch;
 using fb89::testing::bad_input::write_bytes;
-
-CliRun fb89(const std::string& args) {
-    return fb89::testing::bad_input::run_with_timeout(args);
-}
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // Four 8x6 frames, each its own colour, one a batch; frame 2 with a marker and 300 spans, so
 // that it takes two batches.
@@ -77,9 +72,9 @@ TEST(StreamChecksumCli, AFlippedBitInTheCommandsExitsTwoNamingTheBatchAndWritesN
     // frame 1's FILL_RECT (after its FRAME_BEGIN): the red of its colour
     bad[batches[1].at + pr::kBatchRecordSize + pr::kFrameBeginRecordSize + 17] ^= 0x08;
     const std::string stream = write_bytes("flip.fb89", bad), png = scratch("flip.png");
-    ASSERT_EQ(fb89("replay " + write_bytes("good.fb89", good)).exit_code, 0);
+    ASSERT_EQ(run_with_timeout("replay " + write_bytes("good.fb89", good)).exit_code, 0);
 
-    const CliRun r = fb89("replay " + stream + " --png " + png);
+    const CliRun r = run_with_timeout("replay " + stream + " --png " + png);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_TRUE(contains(r.err, fmt::format("fb89: error: {}: batch 1 fails its checksum at byte "
                                             "{} (commands 3-5): stored 0x",
@@ -93,11 +88,11 @@ TEST(StreamChecksumCli, AFlippedBitInTheCommandsExitsTwoNamingTheBatchAndWritesN
     EXPECT_TRUE(contains(r.out, "frames: 1 closed (0 incomplete);")) << r.out;
 
     // dump and diff refuse it too, naming the batch; info says which batch
-    const CliRun dump = fb89("dump " + stream);
+    const CliRun dump = run_with_timeout("dump " + stream);
     EXPECT_EQ(dump.exit_code, 2);
     EXPECT_TRUE(contains(dump.err, "batch 1 fails its checksum")) << dump.err;
     EXPECT_FALSE(contains(dump.out, "      3 @")) << "no command of the batch is printed";
-    const CliRun diff = fb89("diff " + write_bytes("good.fb89", good) + " " + stream);
+    const CliRun diff = run_with_timeout("diff " + write_bytes("good.fb89", good) + " " + stream);
     EXPECT_EQ(diff.exit_code, 2) << diff.err;
     EXPECT_TRUE(contains(diff.err, "batch 1 fails its checksum")) << diff.err;
 }
@@ -110,7 +105,8 @@ TEST(StreamChecksumCli, SalvageKeepsTheFramesBeforeTheDamagedBatchSaysWhatItDrop
     const std::string stream = write_bytes("salvage.fb89", bad);
     const std::string png = scratch("kept.png"), stats = scratch("kept.json");
 
-    const CliRun r = fb89("replay --salvage " + stream + " --png " + png + " --stats " + stats);
+    const CliRun r =
+        run_with_timeout("replay --salvage " + stream + " --png " + png + " --stats " + stats);
     EXPECT_EQ(r.exit_code, 2) << "the input was damaged: " << r.err;
     EXPECT_TRUE(
         contains(r.err, "batch 3 fails its checksum at byte " + std::to_string(batches[3].at)))
@@ -137,7 +133,8 @@ TEST(StreamChecksumCli, SalvageKeepsTheFramesBeforeTheDamagedBatchSaysWhatItDrop
     // a stream merely cut short is salvaged as before: a warning, exit 0
     std::vector<uint8_t> cut = good;
     cut.resize(batches[3].at + 30);
-    const CliRun c = fb89("replay --salvage " + write_bytes("cut.fb89", cut) + " --png " + png);
+    const CliRun c =
+        run_with_timeout("replay --salvage " + write_bytes("cut.fb89", cut) + " --png " + png);
     EXPECT_EQ(c.exit_code, 0) << c.err;
     EXPECT_TRUE(contains(c.err, "fb89: warning: ")) << c.err;
     EXPECT_TRUE(contains(c.err, "truncated batch 3")) << c.err;
@@ -146,10 +143,10 @@ TEST(StreamChecksumCli, SalvageKeepsTheFramesBeforeTheDamagedBatchSaysWhatItDrop
 TEST(StreamChecksumCli, InfoReportsTheChecksumsAllGoodOrTheFirstDamagedBatch) {
     const std::vector<uint8_t> good = pr::encode_stream(four_frames(), {{"scene", "built"}});
     const std::vector<BatchAt> batches = batches_of(good);
-    CliRun r = fb89("info " + write_bytes("good.fb89", good));
+    CliRun r = run_with_timeout("info " + write_bytes("good.fb89", good));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(contains(r.out, "checksums      6 batches, all good")) << r.out;
-    r = fb89("info --json " + write_bytes("good.fb89", good));
+    r = run_with_timeout("info --json " + write_bytes("good.fb89", good));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["version"], 4);
@@ -160,14 +157,14 @@ TEST(StreamChecksumCli, InfoReportsTheChecksumsAllGoodOrTheFirstDamagedBatch) {
     std::vector<uint8_t> bad = good;
     bad[batches[2].at + 12] ^= 0x40;  // frame 2's first BATCH record: its batch number
     const std::string stream = write_bytes("bad.fb89", bad);
-    r = fb89("info " + stream);
+    r = run_with_timeout("info " + stream);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.out, fmt::format("checksums      batch 2 at byte {} is damaged, after 2 "
                                             "good ones (commands from 6 not read)",
                                             batches[2].at)))
         << r.out;
     EXPECT_TRUE(contains(r.err, "batch 2 fails its checksum")) << r.err;
-    r = fb89("info --json " + stream);
+    r = run_with_timeout("info --json " + stream);
     EXPECT_EQ(r.exit_code, 2);
     j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["checksums"]["all_good"], false);
@@ -177,8 +174,8 @@ TEST(StreamChecksumCli, InfoReportsTheChecksumsAllGoodOrTheFirstDamagedBatch) {
     EXPECT_EQ(j["frames"].size(), 2u) << "frames 0 and 1, whole";
 
     // a stream of an older version has none
-    r = fb89("info " + write_bytes("v1.fb89",
-                                   pr::encode_stream(four_frames(), {}, true, pr::Checksums::Off)));
+    r = run_with_timeout("info " + write_bytes("v1.fb89", pr::encode_stream(four_frames(), {}, true,
+                                                                            pr::Checksums::Off)));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(contains(r.out, "checksums      none (format version 1; version 4 has them)"))
         << r.out;
@@ -191,8 +188,8 @@ TEST(StreamChecksumCli, InfoReportsTheChecksumsAllGoodOrTheFirstDamagedBatch) {
 // tests/protocol.)
 TEST(StreamChecksumCli, FlippedBytesAcrossARecordedStreamAreRefusedByReplay) {
     const std::string recorded = scratch("tiny.fb89");
-    CliRun r = fb89("render " + std::string(FB89_SCENES_DIR) + "/A.json --size 24x18 -q --stream " +
-                    recorded);
+    CliRun r = run_with_timeout("render " + std::string(FB89_SCENES_DIR) +
+                                "/A.json --size 24x18 -q --stream " + recorded);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::vector<uint8_t> good;
     {
@@ -213,7 +210,7 @@ TEST(StreamChecksumCli, FlippedBytesAcrossARecordedStreamAreRefusedByReplay) {
         std::vector<uint8_t> bad = good;
         bad[i] ^= static_cast<uint8_t>(1u << (i % 8));
         const std::string stream = write_bytes("flipped.fb89", bad);
-        r = fb89("replay -q " + stream);
+        r = run_with_timeout("replay -q " + stream);
         ASSERT_EQ(r.exit_code, 2) << "byte " << i << ": " << r.err;
         EXPECT_TRUE(contains(r.err, "fb89: error: " + stream + ": ")) << r.err;
         if (i >= header) {
@@ -227,9 +224,9 @@ TEST(StreamChecksumCli, TrimWritesChecksumsOfItsOwnWhateverTheInputsVersion) {
         const std::string in = write_bytes(
             "in.fb89", pr::encode_stream(four_frames(), {{"scene", "built"}}, true, checksums));
         const std::string out = scratch("trimmed.fb89");
-        CliRun r = fb89("trim " + in + " --frames 1-2 -o " + out);
+        CliRun r = run_with_timeout("trim " + in + " --frames 1-2 -o " + out);
         ASSERT_EQ(r.exit_code, 0) << r.err;
-        r = fb89("info --json " + out);
+        r = run_with_timeout("info --json " + out);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const auto j = nlohmann::json::parse(r.out);
         EXPECT_EQ(j["version"], 4);
@@ -240,8 +237,8 @@ TEST(StreamChecksumCli, TrimWritesChecksumsOfItsOwnWhateverTheInputsVersion) {
     // a damaged input is refused, naming the batch
     std::vector<uint8_t> bad = pr::encode_stream(four_frames(), {{"scene", "built"}});
     bad[bad.size() / 2] ^= 0x02;
-    const CliRun r =
-        fb89("trim " + write_bytes("bad.fb89", bad) + " --calls 0- -o " + scratch("t.fb89"));
+    const CliRun r = run_with_timeout("trim " + write_bytes("bad.fb89", bad) + " --calls 0- -o " +
+                                      scratch("t.fb89"));
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.err, "fails its checksum")) << r.err;
     EXPECT_FALSE(fs::exists(scratch("t.fb89")));
@@ -257,8 +254,11 @@ TEST(StreamChecksumCli, StreamsOfVersions1To3StillReplayAsBefore) {
         ASSERT_EQ(pr::get_u16(&v13[4]), depth ? pr::kDepthVersion : pr::kUntimedVersion);
         const std::string stats13 = scratch("v13.json"), stats4 = scratch("v4.json");
         ASSERT_EQ(
-            fb89("replay -q " + write_bytes("v13.fb89", v13) + " --stats " + stats13).exit_code, 0);
-        ASSERT_EQ(fb89("replay -q " + write_bytes("v4.fb89", v4) + " --stats " + stats4).exit_code,
+            run_with_timeout("replay -q " + write_bytes("v13.fb89", v13) + " --stats " + stats13)
+                .exit_code,
+            0);
+        ASSERT_EQ(run_with_timeout("replay -q " + write_bytes("v4.fb89", v4) + " --stats " + stats4)
+                      .exit_code,
                   0);
         const auto a = nlohmann::json::parse(slurp(stats13)),
                    b = nlohmann::json::parse(slurp(stats4));

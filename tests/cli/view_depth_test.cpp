@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 using protocol::Opcode;
 
 // The demo scene at 320x240 by `method`, into a stream in this test's folder.
-fs::path record_stream(const std::string& method) {
+fs::path record_method_stream(const std::string& method) {
     const fs::path stream = test_dir() / (method + ".fb89");
     const CliRun r = run_fb89("render demo --size 320x240 --method " + method + " --stream " +
                               stream.string() + " --quiet");
@@ -137,7 +137,7 @@ void expect_overlay(const controller::PngImage& shot, const Replayed& r) {
 
 TEST(ViewDepth, TheInspectorNamesTheDepthSpanThatDrewAPixelNotAFartherOneAfterIt) {
     if (!on_path("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
-    const fs::path stream = record_stream("zspans");
+    const fs::path stream = record_method_stream("zspans");
     const Replayed r(stream);
     const std::size_t spans = check_writers(r, Opcode::DepthSpan);
     EXPECT_GT(spans, 320u * 240u / 4) << "the demo's walls and floor are DEPTH_SPANs";
@@ -161,7 +161,7 @@ TEST(ViewDepth, TheInspectorNamesTheDepthSpanThatDrewAPixelNotAFartherOneAfterIt
 
 TEST(ViewDepth, TheInspectorNamesTheFaceThatDrewAPixelByItsColourAndPoints) {
     if (!on_path("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
-    const fs::path stream = record_stream("faces");
+    const fs::path stream = record_method_stream("faces");
     const Replayed r(stream);
     EXPECT_GT(check_writers(r, Opcode::Face), 320u * 240u / 4);
     const controller::Framebuffer& fb = r.ctl.framebuffer();

@@ -23,13 +23,13 @@ namespace fs = std::filesystem;
 constexpr protocol::Rgb kStatusInk{230, 230, 230}, kPanelInk{255, 230, 140};
 
 // The viewer under Xvfb, with SDL told to use it.
-std::string under_xvfb() {
+std::string under_plain_xvfb() {
     return xvfb_run() + "env SDL_VIDEODRIVER=x11 ";
 }
 
 // Renders scene A at `size` with send times (so the viewer shows the pipeline line) into
 // `name` in this test's folder.
-fs::path record_stream(const std::string& size, const std::string& name = "s.fb89") {
+fs::path record_text_stream(const std::string& size, const std::string& name = "s.fb89") {
     const fs::path stream = test_dir() / name;
     fs::create_directories(stream.parent_path());
     const CliRun r = run_fb89(std::string("render ") + FB89_SCENES_DIR + "/A.json --size " + size +
@@ -38,19 +38,19 @@ fs::path record_stream(const std::string& size, const std::string& name = "s.fb8
     return stream;
 }
 
-struct Shots {
+struct TextShots {
     controller::PngImage window, image;
 };
 
 // Plays `stream` to its end at `scale` (with `more` options) and saves both screenshots.
-Shots play(const fs::path& stream, double scale, const std::string& more = "") {
+TextShots play(const fs::path& stream, double scale, const std::string& more = "") {
     const fs::path window = test_dir() / "window.png", image = test_dir() / "image.png";
     fs::remove(window);
     fs::remove(image);
     const CliRun r = run_fb89("view " + stream.string() + " --scale " + std::to_string(scale) +
                                   " --exit-at-end --speed 1000000 --screenshot " + image.string() +
                                   " --window-screenshot " + window.string() + " " + more,
-                              "timeout 120 " + under_xvfb());
+                              "timeout 120 " + under_plain_xvfb());
     EXPECT_EQ(r.exit_code, 0) << r.err;
     if (!fs::exists(window) || !fs::exists(image)) return {};
     return {controller::read_png(window), controller::read_png(image)};
@@ -62,7 +62,7 @@ int text_scale(const controller::PngImage& window) {
 }
 
 // The part of the window under the image: where the status bar is.
-PixelArea below_image(const Shots& s) {
+PixelArea below_image(const TextShots& s) {
     return {0, s.image.height, s.window.width, s.window.height - s.image.height};
 }
 
@@ -72,7 +72,7 @@ PixelArea whole(const controller::PngImage& img) {
 
 // The window's top-left image-sized part is the image shot, pixel for pixel: nothing of the
 // text covers it.
-void expect_image_uncovered(const Shots& s) {
+void expect_image_uncovered(const TextShots& s) {
     ASSERT_GE(s.window.width, s.image.width);
     ASSERT_GE(s.window.height, s.image.height);
     std::size_t differ = 0;
@@ -95,7 +95,7 @@ void expect_inside_with_margin(const controller::PngImage& window, protocol::Rgb
     EXPECT_LT(extent->y + extent->height, window.height) << "text reaches the bottom edge";
 }
 
-std::string trimmed(const std::string& row) {
+std::string left_trimmed(const std::string& row) {
     return row.substr(std::min(row.find_first_not_of(' '), row.size()));
 }
 
@@ -103,7 +103,7 @@ class ViewTextAtScale : public ::testing::TestWithParam<double> {};
 
 TEST_P(ViewTextAtScale, EveryStatusFieldIsWholeInsideTheWindowAndOffTheImage) {
     if (!on_path("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
-    const Shots s = play(record_stream("480x360"), GetParam());
+    const TextShots s = play(record_text_stream("480x360"), GetParam());
     ASSERT_GT(s.window.width, 0u);
     EXPECT_EQ(s.image.width, static_cast<uint32_t>(480 * GetParam()));
     expect_image_uncovered(s);
@@ -125,14 +125,14 @@ TEST_P(ViewTextAtScale, EveryStatusFieldIsWholeInsideTheWindowAndOffTheImage) {
 
 TEST_P(ViewTextAtScale, TheKeyPanelAskedForFitsTheWindowAboveTheStatusBar) {
     if (!on_path("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
-    const Shots s = play(record_stream("480x360"), GetParam(), "--show-keys");
+    const TextShots s = play(record_text_stream("480x360"), GetParam(), "--show-keys");
     ASSERT_GT(s.window.width, 0u);
     expect_inside_with_margin(s.window, kPanelInk);
     const std::vector<std::string> rows =
         read_bitmap_text(s.window, whole(s.window), kPanelInk, text_scale(s.window));
     ASSERT_FALSE(rows.empty()) << "the key panel does not read as the viewer's font";
-    EXPECT_EQ(trimmed(rows.front()), "fb89 view - keys");
-    EXPECT_EQ(trimmed(rows.back()), "q, Esc   quit");
+    EXPECT_EQ(left_trimmed(rows.front()), "fb89 view - keys");
+    EXPECT_EQ(left_trimmed(rows.back()), "q, Esc   quit");
     const std::string keys = ink_of(rows);
     EXPECT_NE(keys.find("hhide/showthesekeys"), std::string::npos) << keys;
     const std::string status =
@@ -145,12 +145,12 @@ INSTANTIATE_TEST_SUITE_P(Scales, ViewTextAtScale, ::testing::Values(0.5, 1.0, 2.
 // A frame far smaller than the key panel, shrunk further: the window leaves it room.
 TEST(ViewText, TheKeyPanelFitsTheWindowOfATinyFrame) {
     if (!on_path("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
-    const Shots s = play(record_stream("64x48"), 0.5, "--show-keys");
+    const TextShots s = play(record_text_stream("64x48"), 0.5, "--show-keys");
     ASSERT_GT(s.window.width, 0u);
     expect_inside_with_margin(s.window, kPanelInk);
     const std::vector<std::string> rows = read_bitmap_text(s.window, whole(s.window), kPanelInk, 1);
     ASSERT_FALSE(rows.empty());
-    EXPECT_EQ(trimmed(rows.back()), "q, Esc   quit");
+    EXPECT_EQ(left_trimmed(rows.back()), "q, Esc   quit");
     const std::vector<std::string> status =
         read_bitmap_text(s.window, below_image(s), kStatusInk, 1);
     EXPECT_NE(ink_of(status).find("bufferhighwater"), std::string::npos) << ink_of(status);
@@ -162,14 +162,14 @@ class DamagedStreamAtScale : public ::testing::TestWithParam<double> {};
 
 TEST_P(DamagedStreamAtScale, TheErrorLineIsWholeInsideTheWindow) {
     if (!on_path("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed";
-    const fs::path full = record_stream("480x360");
+    const fs::path full = record_text_stream("480x360");
     const fs::path cut = test_dir() / "a_folder_with_a_rather_long_name_for_the_damaged_stream" /
                          "damaged_stream_cut_short.fb89";
     fs::create_directories(cut.parent_path());
     const std::string bytes = slurp(full);
     std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
     const CliRun told =
-        run_fb89("view " + cut.string() + " --exit-at-end", "timeout 120 " + under_xvfb());
+        run_fb89("view " + cut.string() + " --exit-at-end", "timeout 120 " + under_plain_xvfb());
     ASSERT_EQ(told.exit_code, 2) << told.err;
     ASSERT_EQ(told.err.rfind("fb89 view: ", 0), 0u) << told.err;
     const std::string error = told.err.substr(11, told.err.find('\n') - 11);
@@ -188,7 +188,7 @@ TEST_P(DamagedStreamAtScale, TheErrorLineIsWholeInsideTheWindow) {
         << ")\" ] && break; sleep 0.1; done\n"
         << "kill -TERM $pid; wait $pid; echo $? > " << rc.string() << "\n";
     const std::string run =
-        "timeout 120 " + under_xvfb() + "sh " + (test_dir() / "run.sh").string();
+        "timeout 120 " + under_plain_xvfb() + "sh " + (test_dir() / "run.sh").string();
     ASSERT_EQ(std::system(run.c_str()), 0);
     EXPECT_EQ(slurp(rc), "0\n") << "asked to quit (SIGTERM), the viewer exits 0";
     ASSERT_TRUE(fs::exists(window));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tests/cli/cli_runner.h"
+#include "tests/scenes_dir.h"
 
 namespace {
 
@@ -16,7 +17,7 @@ using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
 
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 const std::string kSweep = "sweep threshold " + kScenes + "/A.json " + kScenes +
                            "/B.json --size 128x98 --steps 3 " + "--host sun3-60 -q --csv ";
 

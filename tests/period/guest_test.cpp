@@ -20,11 +20,12 @@
 #include "host/scene/scene_loader.h"
 #include "protocol/memory_buffer.h"
 #include "protocol/stream_reader.h"
+#include "tests/scenes_dir.h"
 
 namespace fb89::period {
 namespace {
 
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 
 protocol::MemoryBuffer native_commands(const std::string& file, host::Method method, int w, int h) {
     host::Scene scene = host::load_scene(kScenes + "/" + file);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli/cli_runner.h"
+#include "tests/scenes_dir.h"
 
 namespace {
 
@@ -13,7 +14,7 @@ using fb89::testing::run_fb89;
 using fb89::testing::slurp;
 using fb89::testing::test_dir;
 
-const std::string kScenes = FB89_SCENES_DIR;
+using fb89::testing::kScenes;
 
 TEST(PeriodRender, ASun360HostPrintsItsPhasesAndTheSplit) {
     const std::string stats = (test_dir() / "s.json").string();

@@ -20,7 +20,7 @@ constexpr Opcode kFill = Opcode::FillRect;
 constexpr Opcode kSpan = Opcode::DrawSpan;
 
 // The message of the CallSetError parsing `text` throws ("" if it parses).
-std::string error_of(const std::string& text) {
+std::string call_set_error_of(const std::string& text) {
     try {
         CallSet::parse(text);
     } catch (const CallSetError& e) {
@@ -138,29 +138,32 @@ TEST(CallSet, FileItemReadsLinesAndSkipsComments) {
 TEST(CallSet, FileErrorsNameTheFileLineAndColumn) {
     const auto path = fb89::testing::scratch_path("call_set_bad.txt");
     std::ofstream(path) << "1\n2-x\n";
-    const std::string e = error_of("@" + path.string());
+    const std::string e = call_set_error_of("@" + path.string());
     EXPECT_NE(e.find(path.string() + ":2:3:"), std::string::npos) << e;
     std::filesystem::remove(path);
-    const std::string missing = error_of("@/nonexistent/calls.txt");
+    const std::string missing = call_set_error_of("@/nonexistent/calls.txt");
     EXPECT_NE(missing.find("cannot read call-set file '/nonexistent/calls.txt'"), std::string::npos)
         << missing;
 }
 
 TEST(CallSet, ErrorsNameTheTextAndPosition) {
-    EXPECT_EQ(error_of("0-1x"), "call set '0-1x': at character 4: expected ',' or '/', found 'x'");
-    EXPECT_NE(error_of("10-5").find("at character 4: range 10-5 ends before it starts"),
+    EXPECT_EQ(call_set_error_of("0-1x"),
+              "call set '0-1x': at character 4: expected ',' or '/', found 'x'");
+    EXPECT_NE(call_set_error_of("10-5").find("at character 4: range 10-5 ends before it starts"),
               std::string::npos)
-        << error_of("10-5");
-    EXPECT_NE(error_of("0-9/0").find("at character 5: step 0"), std::string::npos);
-    EXPECT_NE(error_of("0-9/2/3").find("a second step"), std::string::npos);
-    EXPECT_NE(error_of("/spans").find("unknown filter '/spans'"), std::string::npos)
-        << error_of("/spans");
-    EXPECT_NE(error_of("frame/span").find("'frame' takes no '/' suffix"), std::string::npos);
-    EXPECT_NE(error_of("").find("empty call set"), std::string::npos);
-    EXPECT_NE(error_of("1,,2").find("at character 3: empty item"), std::string::npos);
-    EXPECT_NE(error_of("1,").find("empty item"), std::string::npos);
-    EXPECT_NE(error_of("-5").find("at character 1: expected a number"), std::string::npos);
-    EXPECT_NE(error_of("99999999999999999999").find("number too large"), std::string::npos);
+        << call_set_error_of("10-5");
+    EXPECT_NE(call_set_error_of("0-9/0").find("at character 5: step 0"), std::string::npos);
+    EXPECT_NE(call_set_error_of("0-9/2/3").find("a second step"), std::string::npos);
+    EXPECT_NE(call_set_error_of("/spans").find("unknown filter '/spans'"), std::string::npos)
+        << call_set_error_of("/spans");
+    EXPECT_NE(call_set_error_of("frame/span").find("'frame' takes no '/' suffix"),
+              std::string::npos);
+    EXPECT_NE(call_set_error_of("").find("empty call set"), std::string::npos);
+    EXPECT_NE(call_set_error_of("1,,2").find("at character 3: empty item"), std::string::npos);
+    EXPECT_NE(call_set_error_of("1,").find("empty item"), std::string::npos);
+    EXPECT_NE(call_set_error_of("-5").find("at character 1: expected a number"), std::string::npos);
+    EXPECT_NE(call_set_error_of("99999999999999999999").find("number too large"),
+              std::string::npos);
 }
 
 TEST(CallSet, ErrorPositionIsOneBased) {

@@ -24,6 +24,7 @@
 #include <thread>
 #include <vector>
 
+#include "tests/cli/cli_runner.h"
 #include "tests/scratch.h"
 #include "tests/special_files.h"
 
@@ -38,6 +39,9 @@ using fb89::testing::identity_of;
 
 namespace {
 
+using fb89::testing::put;
+using fb89::testing::slurp;
+
 // A fresh folder of this test's own.
 fs::path folder() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -46,17 +50,6 @@ fs::path folder() {
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void put(const fs::path& p, const std::string& bytes) {
-    std::ofstream(p, std::ios::binary) << bytes;
 }
 
 // The names in `dir` other than `keep`: temporaries left behind, if any.
@@ -76,11 +69,11 @@ int in_child(const std::function<int()>& body) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 100 + WTERMSIG(status);
 }
 
-const std::string kOld = "the old file\n";
+const std::string kOldFile = "the old file\n";
 
 TEST(OutputFile, SuccessReplacesTheOldFileAndLeavesNoTemporary) {
     const fs::path dir = folder(), out = dir / "out.txt";
-    put(out, kOld);
+    put(out, kOldFile);
     write_output(out, std::string(100000, 'n'));
     EXPECT_EQ(slurp(out), std::string(100000, 'n'));
     EXPECT_TRUE(others(dir, "out.txt").empty());
@@ -96,32 +89,32 @@ TEST(OutputFile, TheTemporaryIsHiddenBesideTheTarget) {
 
 TEST(OutputFile, AWriterThatThrowsLeavesTheOldFileByteIdentical) {
     const fs::path dir = folder(), out = dir / "out.txt";
-    put(out, kOld);
+    put(out, kOldFile);
     EXPECT_THROW(write_output(out,
                                        [](std::FILE* f) {
                                            std::fputs("half of a new file", f);
                                            throw std::runtime_error("the writer gave up");
                                        }),
                  std::runtime_error);
-    EXPECT_EQ(slurp(out), kOld);
+    EXPECT_EQ(slurp(out), kOldFile);
     EXPECT_TRUE(others(dir, "out.txt").empty());
 }
 
 TEST(OutputFile, AnUncommittedFileLeavesTheOldFile) {
     const fs::path dir = folder(), out = dir / "out.txt";
-    put(out, kOld);
+    put(out, kOldFile);
     {
         OutputFile file(out);
         std::fputs("never committed", file.stream());
     }
-    EXPECT_EQ(slurp(out), kOld);
+    EXPECT_EQ(slurp(out), kOldFile);
     EXPECT_TRUE(others(dir, "out.txt").empty());
 }
 
 // With SIGXFSZ ignored (as fb89's main does) a file size limit is EFBIG, reported by name.
 TEST(OutputFile, AFileSizeLimitIsFileTooLargeAndLeavesTheOldFile) {
     const fs::path dir = folder(), out = dir / "out.txt";
-    put(out, kOld);
+    put(out, kOldFile);
     const int status = in_child([&] {
         std::signal(SIGXFSZ, SIG_IGN);
         const rlimit limit{4096, 4096};
@@ -134,14 +127,14 @@ TEST(OutputFile, AFileSizeLimitIsFileTooLargeAndLeavesTheOldFile) {
         return 2;  // no error
     });
     EXPECT_EQ(status, 0) << "1: another message, 2: no error, 3: setrlimit failed";
-    EXPECT_EQ(slurp(out), kOld);
+    EXPECT_EQ(slurp(out), kOldFile);
     EXPECT_TRUE(others(dir, "out.txt").empty());
 }
 
 // Root writes through permissions, so the child drops to nobody first.
 TEST(OutputFile, AnUnwritableFolderIsAnErrorNamingTheFileAndLeavesTheOldFile) {
     const fs::path dir = folder(), out = dir / "out.txt";
-    put(out, kOld);
+    put(out, kOldFile);
     fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
                              fs::perms::group_exec | fs::perms::others_read |
                              fs::perms::others_exec);
@@ -160,7 +153,7 @@ TEST(OutputFile, AnUnwritableFolderIsAnErrorNamingTheFileAndLeavesTheOldFile) {
     });
     fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add);
     EXPECT_EQ(status, 0) << "1: another message, 2: no error, 3: could not drop root";
-    EXPECT_EQ(slurp(out), kOld);
+    EXPECT_EQ(slurp(out), kOldFile);
     EXPECT_TRUE(others(dir, "out.txt").empty());
 }
 
@@ -184,7 +177,7 @@ TEST(OutputFile, ADirectoryInTheWayIsAnErrorAndStays) {
 
 TEST(OutputFile, KeepsTheOldFilesPermissions) {
     const fs::path dir = folder(), out = dir / "out.txt";
-    put(out, kOld);
+    put(out, kOldFile);
     ::chmod(out.c_str(), 0640);
     write_output(out, "new");
     struct stat st {};
@@ -204,7 +197,7 @@ TEST(OutputFile, ANewFileGetsTheUmasksPermissionsNotMkstemps) {
 
 TEST(OutputFile, ASymbolicLinkIsFollowedAndKept) {
     const fs::path dir = folder(), real = dir / "real.txt", link = dir / "link.txt";
-    put(real, kOld);
+    put(real, kOldFile);
     fs::create_symlink(real, link);
     write_output(link, "new");
     EXPECT_TRUE(fs::is_symlink(link));
@@ -213,7 +206,7 @@ TEST(OutputFile, ASymbolicLinkIsFollowedAndKept) {
 
 TEST(OutputKinds, EachTargetIsWrittenAsWhatItIs) {
     const fs::path dir = folder();
-    put(dir / "file", kOld);
+    put(dir / "file", kOldFile);
     ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
     fs::create_symlink(dir / "fifo", dir / "link_to_fifo");
     fs::create_symlink("/proc/self/fd/1", dir / "stdout");
@@ -305,16 +298,16 @@ TEST(OutputKinds, ANameForADescriptorWritesThroughItAndStaysALink) {
 
 TEST(OutputBatches, FilesWaitHiddenUntilPublishedAndAnUnpublishedBatchLeavesTheOld) {
     const fs::path dir = folder(), out = dir / "out.txt", fresh = dir / "fresh.txt";
-    put(out, kOld);
+    put(out, kOldFile);
     {
         OutputBatch batch;
         write_output(out, "new");
         write_output(fresh, "fresh");
-        EXPECT_EQ(slurp(out), kOld) << "not in place before publish()";
+        EXPECT_EQ(slurp(out), kOldFile) << "not in place before publish()";
         EXPECT_FALSE(fs::exists(fresh));
         EXPECT_EQ(batch.waiting(), 2u);
     }
-    EXPECT_EQ(slurp(out), kOld);
+    EXPECT_EQ(slurp(out), kOldFile);
     EXPECT_FALSE(fs::exists(fresh));
     EXPECT_TRUE(others(dir, "out.txt").empty()) << "no temporary left";
     {

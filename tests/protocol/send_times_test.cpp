@@ -11,15 +11,14 @@
 #include "protocol/stream_reader.h"
 #include "protocol/stream_writer.h"
 #include "sample_streams.h"
+#include "tests/text_contains.h"
 
 namespace fb89::protocol {
 namespace {
 
 using Bytes = std::vector<uint8_t>;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using fb89::testing::contains;
 
 // two_frames() timed: frame 0's fill sent at 1000 ns, its span and FRAME_END at 2500 ns,
 // the host done at 3000 ns; frame 1 without a HOST_END, its span at 40 ns.

@@ -16,17 +16,15 @@
 #include "protocol/xxhash64.h"
 #include "sample_streams.h"
 #include "tests/scratch.h"
+#include "tests/text_contains.h"
 
 namespace fb89::protocol {
 namespace {
 
 using Bytes = std::vector<uint8_t>;
+using fb89::testing::contains;
 using testing::read_all;
 using testing::ReadResult;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // A batch as the stream holds it: its BATCH record's offset, where it ends, its record.
 struct Batch {

@@ -18,17 +18,15 @@
 #include "protocol/stream_writer.h"
 #include "sample_streams.h"
 #include "tests/scratch.h"
+#include "tests/text_contains.h"
 
 namespace fb89::protocol {
 namespace {
 
 using Bytes = std::vector<uint8_t>;
+using fb89::testing::contains;
 using testing::read_all;
 using testing::ReadResult;
-
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // A version-1 stream: the records back to back, as this file's offsets count them.
 Bytes encode_v1(const std::vector<Command>& commands, const Properties& properties = {},
@@ -253,7 +251,7 @@ TEST(StreamReader, RandomCorruptionGivesCommandsOrStreamErrorsOnly) {
     }
 }
 
-std::filesystem::path temp_path(const std::string& name) {
+std::filesystem::path reader_temp_path(const std::string& name) {
     return fb89::testing::scratch_path("reader_test_" + name);
 }
 
@@ -274,7 +272,7 @@ std::vector<Command> long_stream() {
 TEST(StreamReader, ReadsAFileIncrementallyLikeABuffer) {
     for (const Checksums checksums : {Checksums::Off, Checksums::On}) {
         SCOPED_TRACE(checksums == Checksums::On ? "version 4" : "version 1");
-        const auto path = temp_path("long.fb89");
+        const auto path = reader_temp_path("long.fb89");
         const std::vector<Command> commands = long_stream();
         const Bytes bytes = encode_stream(commands, testing::sample_properties(), true, checksums);
         {
@@ -325,7 +323,7 @@ TEST(StreamReader, MissingFileThrowsNamingThePath) {
 }
 
 TEST(StreamReader, DeliversEachFrameFromAPipeBeforeTheNextIsWritten) {
-    const auto path = temp_path("pipe");
+    const auto path = reader_temp_path("pipe");
     ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
     std::promise<void> first_frame_read;
     std::future<void> go = first_frame_read.get_future();
