@@ -10,11 +10,11 @@
 namespace fb89::controller {
 namespace {
 
-constexpr std::size_t kHuge = BoardMemoryAllocator<uint32_t>::kHugePage;
+constexpr std::size_t kHugePageBytes = BoardMemoryAllocator<uint32_t>::kHugePage;
 
 TEST(BoardMemory, AFrameSizedDepthBufferStartsOnAHugePageBoundary) {
     BoardVector<uint32_t> depth(std::size_t{1024} * 780, 0xffffffffu);  // 3.2 MB
-    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(depth.data()) % kHuge, 0u);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(depth.data()) % kHugePageBytes, 0u);
     depth.back() = 7;
     EXPECT_EQ(depth.front(), 0xffffffffu);
     EXPECT_EQ(depth.back(), 7u);
@@ -23,7 +23,7 @@ TEST(BoardMemory, AFrameSizedDepthBufferStartsOnAHugePageBoundary) {
 TEST(BoardMemory, BuffersBelowAHugePageAndAcrossItKeepTheirWords) {
     BoardVector<uint32_t> v;
     // grows from 4 bytes through the 2 MiB boundary, each allocation freed by its own kind
-    for (uint32_t i = 0; i < kHuge / sizeof(uint32_t) + 1000; ++i)
+    for (uint32_t i = 0; i < kHugePageBytes / sizeof(uint32_t) + 1000; ++i)
         v.push_back(i * 2654435761u);
     for (uint32_t i = 0; i < v.size(); i += 997)
         ASSERT_EQ(v[i], i * 2654435761u) << "word " << i;
@@ -34,7 +34,7 @@ TEST(BoardMemory, BuffersBelowAHugePageAndAcrossItKeepTheirWords) {
     BoardVector<uint32_t> small(16, 5u);
     EXPECT_EQ(small[15], 5u);
     small = v;  // a small buffer replaced by a large one
-    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(small.data()) % kHuge, 0u);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(small.data()) % kHugePageBytes, 0u);
     EXPECT_EQ(small, v);
 }
 

@@ -34,7 +34,7 @@ constexpr Rgb kRed{255, 0, 0};
 // (C_cmd 25, FILL's set-up 8, 2 cycles a word, LINE's set-up 12, 2 a pixel, 160 ns a cycle).
 // The default profile's memory-cycle figures are cost_model_test.cpp's; here its own rule
 // for commands outside the frame is checked, and the batch paths run under it too.
-CostProfile first_model() {
+CostProfile mame_model() {
     return load_profile("tms34010-mame");
 }
 
@@ -52,7 +52,7 @@ void expect_only_rect(const Framebuffer& fb, const PixelRect& r, Rgb inside, Rgb
 }
 
 TEST(Controller, FrameBeginClearsAndIsChargedAsFullScreenFill) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 1024, 780, kGrey});
     expect_only_rect(c.framebuffer(), PixelRect{}, kRed, kGrey);
     const OpcodeCounters& fb = totals(c, Opcode::FrameBegin);
@@ -63,7 +63,7 @@ TEST(Controller, FrameBeginClearsAndIsChargedAsFullScreenFill) {
 }
 
 TEST(Controller, FillAndSpanCountCyclesPixelsAndBytes) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 64, 32, kGrey});
     c.fill_rect(FillRect{5, 6, 1, 1, kRed});
     c.draw_span(DrawSpan{10, 0, 59, kRed});  // 60 pixels, all inside
@@ -81,7 +81,7 @@ TEST(Controller, FillAndSpanCountCyclesPixelsAndBytes) {
 }
 
 TEST(Controller, ClippedFillIsCountedChargedForWhatIsLeftAndStaysInBounds) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 16, 8, kGrey});
     c.fill_rect(FillRect{-4, -2, 8, 4, kRed});   // 4x2 left inside
     c.fill_rect(FillRect{14, 7, 10, 10, kRed});  // 2x1 left, bottom-right corner
@@ -99,7 +99,7 @@ TEST(Controller, ClippedFillIsCountedChargedForWhatIsLeftAndStaysInBounds) {
 }
 
 TEST(Controller, WhollyOutsideCommandsCostCmdAndBusAndWriteNothing) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 16, 8, kGrey});
     const uint64_t before = c.framebuffer().checksum();
     c.fill_rect(FillRect{16, 0, 4, 4, kRed});
@@ -137,7 +137,7 @@ TEST(Controller, WithAListingAnOutsideCommandStillPaysItsSetUpAndHostWords) {
 }
 
 TEST(Controller, ClippedSpanCostsSetUpPlusClippedPixels) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 16, 8, kGrey});
     c.draw_span(DrawSpan{3, -5, 3, kRed});
     const OpcodeCounters& span = totals(c, Opcode::DrawSpan);
@@ -148,7 +148,7 @@ TEST(Controller, ClippedSpanCostsSetUpPlusClippedPixels) {
 }
 
 TEST(Controller, CommandsBeforeAnyFrameAreUnframedOutsideAndDrawNothing) {
-    Controller c(first_model());
+    Controller c(mame_model());
     const uint64_t before = c.framebuffer().checksum();
     c.fill_rect(FillRect{0, 0, 4, 4, kRed});
     c.draw_span(DrawSpan{0, 0, 3, kRed});
@@ -164,7 +164,7 @@ TEST(Controller, CommandsBeforeAnyFrameAreUnframedOutsideAndDrawNothing) {
 }
 
 TEST(Controller, CommandsBetweenFramesDoNotChangeTheClosedFrame) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 8, 8, kGrey});
     c.frame_end(FrameEnd{});
     c.fill_rect(FillRect{0, 0, 8, 8, kRed});
@@ -173,7 +173,7 @@ TEST(Controller, CommandsBetweenFramesDoNotChangeTheClosedFrame) {
 }
 
 TEST(Controller, FrameEndRecordsFrameResult) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.marker(Marker{"before"});
     c.frame_begin(FrameBegin{7, 32, 16, kGrey});
     c.fill_rect(FillRect{1, 1, 2, 2, kRed});
@@ -192,7 +192,7 @@ TEST(Controller, FrameEndRecordsFrameResult) {
 }
 
 TEST(Controller, FrameBeginInsideOpenFrameClosesItAsIncomplete) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 8, 8, kGrey});
     c.fill_rect(FillRect{0, 0, 8, 8, kRed});
     c.frame_begin(FrameBegin{1, 8, 8, kGrey});
@@ -206,7 +206,7 @@ TEST(Controller, FrameBeginInsideOpenFrameClosesItAsIncomplete) {
 }
 
 TEST(Controller, OversizedFrameBeginIsRefusedNamingTheCommand) {
-    Controller c(first_model());
+    Controller c(mame_model());
     try {
         c.frame_begin(FrameBegin{0, 16385, 8, kGrey});
         FAIL() << "no error";
@@ -217,7 +217,7 @@ TEST(Controller, OversizedFrameBeginIsRefusedNamingTheCommand) {
 }
 
 TEST(Controller, MarkerCostsNothingAndWritesNothing) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 8, 8, kGrey});
     c.marker(Marker{"phase"});
     const OpcodeCounters& m = totals(c, Opcode::Marker);
@@ -231,7 +231,7 @@ TEST(Controller, MarkerCostsNothingAndWritesNothing) {
 // 2.5 us, 5.6 us; FRAME_END: bus 1.25 us, 25 cycles = 4 us. Arrivals 2.25, 4.75, 6.0;
 // executions 2.25-8.81, 8.81-14.41, 14.41-18.41.
 TEST(Controller, ControllerBoundFrameTimingMatchesHandComputation) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{0, 4, 2, kGrey});
     c.fill_rect(FillRect{0, 0, 1, 1, kRed});
     c.frame_end(FrameEnd{});
@@ -244,7 +244,7 @@ TEST(Controller, ControllerBoundFrameTimingMatchesHandComputation) {
 // A 1 MB/s bus: FRAME_BEGIN 11 us, FILL_RECT 13 us, FRAME_END 3 us on the bus; execution
 // 5.6, 5.6 x 3 and 4 us. Arrivals 11, 24, 37, 50, 53; the last ends at 55.6 + 4 = 59.6.
 TEST(Controller, BusBoundFrameTimingMatchesHandComputation) {
-    CostProfile p = first_model();
+    CostProfile p = mame_model();
     p.b_bus_bytes_per_s = 1e6;
     Controller c(p);
     c.frame_begin(FrameBegin{0, 2, 1, kGrey});  // 25 + 8 + 2 = 35 cycles
@@ -350,7 +350,7 @@ std::vector<CostProfile> batch_profiles() {
     slow_bus.clear_as = ClearAs::Fill;
     slow_bus.bpp = 4;
     derive_figures(slow_bus);
-    return {default_profile(), first_model(), load_profile("ideal"), slow_bus};
+    return {default_profile(), mame_model(), load_profile("ideal"), slow_bus};
 }
 
 TEST(Controller, BatchesGiveWhatExecutingEachCommandGives) {
@@ -417,7 +417,7 @@ TEST(Controller, SinkCallsGiveWhatExecuteGivesWithAndWithoutAnObserver) {
 
 TEST(Controller, BatchesShowAnObserverEveryCommandInOrder) {
     const std::vector<protocol::Command> commands = mixed_commands();
-    Controller c(first_model());
+    Controller c(mame_model());
     std::vector<protocol::Command> seen;
     c.set_observer([&](uint64_t number, const protocol::Command& cmd) {
         EXPECT_EQ(number, seen.size());
@@ -428,7 +428,7 @@ TEST(Controller, BatchesShowAnObserverEveryCommandInOrder) {
 }
 
 TEST(Controller, StatsJsonAndSummaryReportEveryOpcode) {
-    Controller c(first_model());
+    Controller c(mame_model());
     c.frame_begin(FrameBegin{3, 1024, 780, kGrey});
     c.fill_rect(FillRect{0, 0, 1, 1, kRed});
     c.frame_end(FrameEnd{});

@@ -21,19 +21,20 @@ using protocol::FrameEnd;
 using protocol::Rgb;
 using protocol::SnappedPoint;
 
-constexpr int64_t kPx = protocol::kSubpixel;
+constexpr int64_t kDepthPx = protocol::kSubpixel;
 
 // A rectangle of pixels [x0, x1) x [y0, y1) as a face of four points, positively wound
 // (protocol/coverage.h: right along the top, down the right side).
 Face rect_face(int64_t x0, int64_t y0, int64_t x1, int64_t y1, uint32_t z, Rgb c) {
-    return Face{c,
-                0,
-                0,
-                z,
-                0,
-                0,
-                {SnappedPoint{x0 * kPx, y0 * kPx}, SnappedPoint{x1 * kPx, y0 * kPx},
-                 SnappedPoint{x1 * kPx, y1 * kPx}, SnappedPoint{x0 * kPx, y1 * kPx}}};
+    return Face{
+        c,
+        0,
+        0,
+        z,
+        0,
+        0,
+        {SnappedPoint{x0 * kDepthPx, y0 * kDepthPx}, SnappedPoint{x1 * kDepthPx, y0 * kDepthPx},
+         SnappedPoint{x1 * kDepthPx, y1 * kDepthPx}, SnappedPoint{x0 * kDepthPx, y1 * kDepthPx}}};
 }
 
 CostProfile with_depth_bits(const char* name, uint32_t bits) {
@@ -131,7 +132,13 @@ TEST(ControllerDepth, ADegenerateFaceDrawsNothing) {
     ctl.frame_begin({0, 16, 16, {}});
     ctl.depth_clear({});
     // three points on a line, and a face wound the other way
-    ctl.face(Face{Rgb{1, 1, 1}, 0, 0, 0, 0, 0, {{0, 0}, {4 * kPx, 4 * kPx}, {8 * kPx, 8 * kPx}}});
+    ctl.face(Face{Rgb{1, 1, 1},
+                  0,
+                  0,
+                  0,
+                  0,
+                  0,
+                  {{0, 0}, {4 * kDepthPx, 4 * kDepthPx}, {8 * kDepthPx, 8 * kDepthPx}}});
     Face reversed = rect_face(2, 2, 10, 10, 0, Rgb{2, 2, 2});
     std::reverse(reversed.points.begin(), reversed.points.end());
     ctl.face(reversed);

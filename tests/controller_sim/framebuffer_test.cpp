@@ -18,11 +18,11 @@ using protocol::DrawSpan;
 using protocol::FillRect;
 using protocol::Rgb;
 
-constexpr Rgb kRed{255, 0, 0};
+constexpr Rgb kFbRed{255, 0, 0};
 constexpr Rgb kBlue{0, 0, 255};
 
 // Every pixel of fb equals `inside` within r and `outside` elsewhere.
-void expect_only_rect(const Framebuffer& fb, const PixelRect& r, Rgb inside, Rgb outside) {
+void expect_rect_in_fb(const Framebuffer& fb, const PixelRect& r, Rgb inside, Rgb outside) {
     for (uint32_t y = 0; y < fb.height(); ++y)
         for (uint32_t x = 0; x < fb.width(); ++x) {
             const bool in = x >= r.x && x < r.x + r.w && y >= r.y && y < r.y + r.h;
@@ -50,17 +50,17 @@ TEST(Framebuffer, RefusesSidesAbove16384) {
 TEST(Framebuffer, FillRectWritesExactlyTheRectangle) {
     Framebuffer fb(8, 6);
     fb.clear(kBlue);
-    fb.fill_rect(PixelRect{2, 1, 3, 2}, kRed);
-    expect_only_rect(fb, PixelRect{2, 1, 3, 2}, kRed, kBlue);
+    fb.fill_rect(PixelRect{2, 1, 3, 2}, kFbRed);
+    expect_rect_in_fb(fb, PixelRect{2, 1, 3, 2}, kFbRed, kBlue);
 }
 
 TEST(Framebuffer, SpanWritesExactlyItsPixels) {
     Framebuffer fb(40, 3);
-    fb.draw_span(2, 39, 1, kRed);  // the very last pixel
-    expect_only_rect(fb, PixelRect{39, 2, 1, 1}, kRed, Rgb{});
+    fb.draw_span(2, 39, 1, kFbRed);  // the very last pixel
+    expect_rect_in_fb(fb, PixelRect{39, 2, 1, 1}, kFbRed, Rgb{});
     fb.clear(Rgb{});
-    fb.draw_span(1, 3, 33, kRed);  // long enough for the doubling copy
-    expect_only_rect(fb, PixelRect{3, 1, 33, 1}, kRed, Rgb{});
+    fb.draw_span(1, 3, 33, kFbRed);  // long enough for the doubling copy
+    expect_rect_in_fb(fb, PixelRect{3, 1, 33, 1}, kFbRed, Rgb{});
 }
 
 TEST(Framebuffer, FillPixelsStopsAtTheLastPixelForEveryLength) {
@@ -76,53 +76,53 @@ TEST(Framebuffer, FillPixelsStopsAtTheLastPixelForEveryLength) {
 }
 
 TEST(Framebuffer, ClipFillRectCutsAtEveryEdge) {
-    auto c = clip_fill_rect(FillRect{-3, -2, 5, 4, kRed}, 10, 8);
+    auto c = clip_fill_rect(FillRect{-3, -2, 5, 4, kFbRed}, 10, 8);
     ASSERT_TRUE(c);
     EXPECT_EQ(c->rect, (PixelRect{0, 0, 2, 2}));
     EXPECT_TRUE(c->clipped);
-    c = clip_fill_rect(FillRect{8, 6, 5, 5, kRed}, 10, 8);
+    c = clip_fill_rect(FillRect{8, 6, 5, 5, kFbRed}, 10, 8);
     ASSERT_TRUE(c);
     EXPECT_EQ(c->rect, (PixelRect{8, 6, 2, 2}));
     EXPECT_TRUE(c->clipped);
-    c = clip_fill_rect(FillRect{0, 0, 10, 8, kRed}, 10, 8);
+    c = clip_fill_rect(FillRect{0, 0, 10, 8, kFbRed}, 10, 8);
     ASSERT_TRUE(c);
     EXPECT_FALSE(c->clipped);
 }
 
 TEST(Framebuffer, ClipFillRectRejectsWhollyOutsideAndEmpty) {
-    EXPECT_FALSE(clip_fill_rect(FillRect{10, 0, 5, 5, kRed}, 10, 8));
-    EXPECT_FALSE(clip_fill_rect(FillRect{-5, 0, 5, 5, kRed}, 10, 8));
-    EXPECT_FALSE(clip_fill_rect(FillRect{0, 8, 1, 1, kRed}, 10, 8));
-    EXPECT_FALSE(clip_fill_rect(FillRect{0, 0, 0, 5, kRed}, 10, 8));
-    EXPECT_FALSE(clip_fill_rect(FillRect{0, 0, 5, 0, kRed}, 10, 8));
-    EXPECT_FALSE(clip_fill_rect(FillRect{0, 0, 5, 5, kRed}, 0, 0));
+    EXPECT_FALSE(clip_fill_rect(FillRect{10, 0, 5, 5, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_fill_rect(FillRect{-5, 0, 5, 5, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_fill_rect(FillRect{0, 8, 1, 1, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_fill_rect(FillRect{0, 0, 0, 5, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_fill_rect(FillRect{0, 0, 5, 0, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_fill_rect(FillRect{0, 0, 5, 5, kFbRed}, 0, 0));
 }
 
 TEST(Framebuffer, ClipFillRectHandlesExtremeCoordinatesWithoutOverflow) {
     constexpr int32_t kMin = std::numeric_limits<int32_t>::min();
     constexpr int32_t kMax = std::numeric_limits<int32_t>::max();
     constexpr uint32_t kHuge = std::numeric_limits<uint32_t>::max();
-    const auto c = clip_fill_rect(FillRect{kMin, kMin, kHuge, kHuge, kRed}, 10, 8);
+    const auto c = clip_fill_rect(FillRect{kMin, kMin, kHuge, kHuge, kFbRed}, 10, 8);
     ASSERT_TRUE(c);
     EXPECT_EQ(c->rect, (PixelRect{0, 0, 10, 8}));
-    EXPECT_FALSE(clip_fill_rect(FillRect{kMax, kMax, kHuge, kHuge, kRed}, 10, 8));
+    EXPECT_FALSE(clip_fill_rect(FillRect{kMax, kMax, kHuge, kHuge, kFbRed}, 10, 8));
 }
 
 TEST(Framebuffer, ClipSpanCutsEndsAndRejectsOutsideOrReversed) {
-    auto c = clip_span(DrawSpan{3, -5, 3, kRed}, 10, 8);
+    auto c = clip_span(DrawSpan{3, -5, 3, kFbRed}, 10, 8);
     ASSERT_TRUE(c);
     EXPECT_EQ(c->rect, (PixelRect{0, 3, 4, 1}));
     EXPECT_TRUE(c->clipped);
-    c = clip_span(DrawSpan{7, 0, 9, kRed}, 10, 8);
+    c = clip_span(DrawSpan{7, 0, 9, kFbRed}, 10, 8);
     ASSERT_TRUE(c);
     EXPECT_FALSE(c->clipped);
-    EXPECT_FALSE(clip_span(DrawSpan{-1, 0, 9, kRed}, 10, 8));
-    EXPECT_FALSE(clip_span(DrawSpan{8, 0, 9, kRed}, 10, 8));
-    EXPECT_FALSE(clip_span(DrawSpan{0, 10, 20, kRed}, 10, 8));
-    EXPECT_FALSE(clip_span(DrawSpan{0, 5, 4, kRed}, 10, 8));  // x1 < x0
-    c = clip_span(
-        DrawSpan{0, std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max(), kRed},
-        10, 8);
+    EXPECT_FALSE(clip_span(DrawSpan{-1, 0, 9, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_span(DrawSpan{8, 0, 9, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_span(DrawSpan{0, 10, 20, kFbRed}, 10, 8));
+    EXPECT_FALSE(clip_span(DrawSpan{0, 5, 4, kFbRed}, 10, 8));  // x1 < x0
+    c = clip_span(DrawSpan{0, std::numeric_limits<int32_t>::min(),
+                           std::numeric_limits<int32_t>::max(), kFbRed},
+                  10, 8);
     ASSERT_TRUE(c);
     EXPECT_EQ(c->rect, (PixelRect{0, 0, 10, 1}));
 }

@@ -15,7 +15,7 @@
 namespace fb89::controller {
 namespace {
 
-const Listing& tms34010() {
+const Listing& tms34010_listing() {
     return builtin_listing("tms34010");
 }
 
@@ -40,7 +40,7 @@ std::string count_error(const std::string& text) {
 // taken 2, MOVE *A0+,A5 (16-bit read: 1 + one 2-state cycle), SLL 1, ADD 1, MOVE *A5,A5,1
 // (32-bit read: 1 + two cycles), JUMP 2 (p. 14).
 TEST(GspListing, TheLoopIsCountedInstructionByInstruction) {
-    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    const auto paths = count_paths(tms34010_listing(), MemoryTiming{2, 2});
     const CountedPath& loop = paths.at("COMMON");
     EXPECT_EQ(cycles_of(loop), (std::vector<uint32_t>{1, 2, 1, 2, 3, 1, 1, 5, 2}));
     EXPECT_EQ(loop.cycles, 18u);
@@ -52,7 +52,7 @@ TEST(GspListing, TheLoopIsCountedInstructionByInstruction) {
 }
 
 TEST(GspListing, EachHandlerEndsWithItsJumpBackAndNamesItsGraphicsInstruction) {
-    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    const auto paths = count_paths(tms34010_listing(), MemoryTiming{2, 2});
     for (const char* name : {"FRAME_BEGIN", "FRAME_BEGIN:fill", "FRAME_BEGIN:large", "FILL_RECT",
                              "DRAW_SPAN:line", "DRAW_SPAN:fill", "FRAME_END"})
         EXPECT_EQ(paths.at(name).lines.back().text, "JRUC   next") << name;
@@ -80,7 +80,7 @@ TEST(GspListing, EachHandlerEndsWithItsJumpBackAndNamesItsGraphicsInstruction) {
 // PIXT's read 4 (the memory-to-register cycle) after the last of that write's queue, the
 // second row, DYDX = rows - 1 : 1, FILL L, the display, pitch and pixel size back.
 TEST(GspListing, TheSerialRegisterClearIsCountedInstructionByInstruction) {
-    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    const auto paths = count_paths(tms34010_listing(), MemoryTiming{2, 2});
     EXPECT_EQ(cycles_of(paths.at("FRAME_BEGIN")),
               (std::vector<uint32_t>{3, 1,     5 + 2, 3, 1, 1, 1, 1, 1, 1,     3, 1, 2, 1, 2,
                                      1, 1,     1,     3, 1, 2, 1, 1, 1, 6 + 2, 3, 1, 3, 3, 1,
@@ -97,14 +97,15 @@ TEST(GspListing, TheSerialRegisterClearIsCountedInstructionByInstruction) {
 // (5 each), JRNZ not taken 1, ADDXY twice, MMFM of 7 and 2 (3 + 4n), the stack pointer's
 // read with a displacement 5, RETS 7: 137 states, TI's own mix of about 115 to 140.
 TEST(GspListing, TigasCallAroundAPrimitiveIsCountedFromItsInstructionMix) {
-    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    const auto paths = count_paths(tms34010_listing(), MemoryTiming{2, 2});
     EXPECT_EQ(
         cycles_of(paths.at("TIGA_CALL")),
         (std::vector<uint32_t>{6, 10, 30, 5, 5, 1, 1, 5, 5, 1, 1, 5, 1, 5, 1, 1, 31, 11, 5, 7}));
     EXPECT_EQ(paths.at("TIGA_CALL").cycles, 137u);
     // at the band's dear end (a wait state, a MOVE's issue 2): 194
-    EXPECT_EQ(count_paths(tms34010(), MemoryTiming{3, 2}, TimingEnd::High).at("TIGA_CALL").cycles,
-              194u);
+    EXPECT_EQ(
+        count_paths(tms34010_listing(), MemoryTiming{3, 2}, TimingEnd::High).at("TIGA_CALL").cycles,
+        194u);
 }
 
 // TI's assembler refuses a memory MOVE between an A-file pointer and a B-file register
@@ -139,7 +140,7 @@ TEST(GspListing, APointerAndARegisterInOppositeFilesAreRefusedAsTisAssemblerRefu
 // queued (p. 10), and the read waits for its 2 states. FRAME_END's write to HSTCTL overlaps
 // the jump back.
 TEST(GspListing, AQueuedWriteOverlapsRegisterInstructionsAndDelaysTheNextAccess) {
-    const auto paths = count_paths(tms34010(), MemoryTiming{2, 2});
+    const auto paths = count_paths(tms34010_listing(), MemoryTiming{2, 2});
     const auto begin = cycles_of(paths.at("FRAME_BEGIN"));
     ASSERT_GE(begin.size(), 3u);
     EXPECT_EQ(begin[1], 1u);       // MOVE A5,@FRAME_NO,0: issued, its cycle queued
@@ -148,14 +149,14 @@ TEST(GspListing, AQueuedWriteOverlapsRegisterInstructionsAndDelaysTheNextAccess)
 }
 
 TEST(GspListing, WaitStatesLengthenMemoryReadsButNotAnIoWrite) {
-    const auto slow = count_paths(tms34010(), MemoryTiming{3, 2});
+    const auto slow = count_paths(tms34010_listing(), MemoryTiming{3, 2});
     EXPECT_EQ(slow.at("COMMON").cycles, 18u + 1u + 2u);  // one word read and two
     EXPECT_EQ(slow.at("FRAME_END").cycles, 5u);
 }
 
 TEST(GspListing, TheBandsEndsMoveEveryEstimatedTimingAndNothingElse) {
-    const auto low = count_paths(tms34010(), MemoryTiming{2, 2}, TimingEnd::Low);
-    const auto high = count_paths(tms34010(), MemoryTiming{2, 2}, TimingEnd::High);
+    const auto low = count_paths(tms34010_listing(), MemoryTiming{2, 2}, TimingEnd::Low);
+    const auto high = count_paths(tms34010_listing(), MemoryTiming{2, 2}, TimingEnd::High);
     EXPECT_EQ(low.at("COMMON").cycles, 18u);
     EXPECT_EQ(high.at("COMMON").cycles, 18u + 2u);         // two memory MOVEs, a state more each
     EXPECT_EQ(low.at("DRAW_SPAN:line").cycles, 32u - 2u);  // LINE's own set-up 2
@@ -190,7 +191,7 @@ TEST(GspListing, TheProfilesFiguresAreTheListingsSums) {
 // SLL 1, ADD 1, MOVE *A5,A5,1 3, JUMP 2.
 TEST(GspListing, TheTms34020PricesTheSameListingByItsOwnTables) {
     const MemoryTiming c20{2, 2, 1, Chip::Tms34020};
-    const auto paths = count_paths(tms34010(), c20);
+    const auto paths = count_paths(tms34010_listing(), c20);
     EXPECT_EQ(cycles_of(paths.at("COMMON")), (std::vector<uint32_t>{1, 2, 1, 2, 3, 1, 1, 3, 2}));
     EXPECT_EQ(paths.at("COMMON").lines[4].source.substr(0, 6), "[UG20]");
     // two 32-bit reads and a 16-bit one, 3 each; six register moves; FILL XY's 8 [EMU]; JRUC 2
@@ -203,10 +204,10 @@ TEST(GspListing, TheTms34020PricesTheSameListingByItsOwnTables) {
               (std::vector<uint32_t>{3, 1, 1, 1, 1, 1, 3, 1, 1, 1, 3}));
     EXPECT_EQ(paths.at("ZPIXEL16:farther").cycles, 3u + 1 + 1 + 1 + 2 + 1 + 1 + 1 + 3);
     // a wait state lengthens each memory cycle by a state: two reads on the loop
-    const auto slow = count_paths(tms34010(), MemoryTiming{3, 2, 2, Chip::Tms34020});
+    const auto slow = count_paths(tms34010_listing(), MemoryTiming{3, 2, 2, Chip::Tms34020});
     EXPECT_EQ(slow.at("COMMON").cycles, paths.at("COMMON").cycles + 2u);
     // at the band's dear end a 32-bit field through a register crosses a long word (case 3)
-    const auto high = count_paths(tms34010(), c20, TimingEnd::High);
+    const auto high = count_paths(tms34010_listing(), c20, TimingEnd::High);
     EXPECT_EQ(high.at("COMMON").cycles, paths.at("COMMON").cycles + 1u);
     EXPECT_EQ(high.at("FILL_RECT").cycles, paths.at("FILL_RECT").cycles + 2u);
 }
@@ -233,7 +234,7 @@ TEST(GspListing, TheTms34020ProfileIsPricedByItsChip) {
     EXPECT_EQ(c20.gsp_chip, Chip::Tms34020);
     EXPECT_EQ(memory_timing(c20).chip, Chip::Tms34020);
     EXPECT_EQ(memory_timing(c20).pixel_write_states, 1u);  // byte strobes, 8 bpp: case 1
-    EXPECT_EQ(c20.c_cmd, count_paths(tms34010(), memory_timing(c20)).at("COMMON").cycles);
+    EXPECT_EQ(c20.c_cmd, count_paths(tms34010_listing(), memory_timing(c20)).at("COMMON").cycles);
     EXPECT_EQ(load_profile("tms34010-50mhz").gsp_chip, Chip::Tms34010);
     EXPECT_EQ(chip_named("tms34020"), Chip::Tms34020);
     EXPECT_EQ(chip_named("tms34030"), std::nullopt);
@@ -244,17 +245,18 @@ TEST(GspListing, EachCommandsRepeatedWorkFitsTheInstructionCache) {
     // 256 bytes, 128 words (SPVS002C p. 2): the tiling commands' whole executive, and what a
     // depth command repeats a span or a row at a time, run from the cache at minimum cycles
     // (a FACE's set-up, once a face, does not: docs/COST_MODEL.md, "Depth commands")
-    const auto paths = count_paths(tms34010(), MemoryTiming{});
+    const auto paths = count_paths(tms34010_listing(), MemoryTiming{});
     ASSERT_EQ(cached_work().size(), 3u);
     for (const CachedWork& w : cached_work())
         EXPECT_LE(working_set_words(paths, w.paths), 128u) << w.what;
     // the tiling executive: every instruction before the depth commands'
     EXPECT_GE(working_set_words(paths, cached_work()[0].paths), 60u);
-    EXPECT_GE(listing_words(tms34010()), 60u);  // every instruction counted, not just a path
+    EXPECT_GE(listing_words(tms34010_listing()),
+              60u);  // every instruction counted, not just a path
 }
 
 TEST(GspListing, TheAnnotatedListingMarksEachCountedInstruction) {
-    const std::string text = annotated_listing(tms34010(), MemoryTiming{2, 2});
+    const std::string text = annotated_listing(tms34010_listing(), MemoryTiming{2, 2});
     EXPECT_NE(text.find("   3  fetch:    MOVE   *A0+,A5,0"), std::string::npos) << text;
     EXPECT_NE(text.find("COMMON            18 cycles"), std::string::npos) << text;
     EXPECT_NE(text.find("      table:"), std::string::npos);  // data: no cycles

@@ -101,21 +101,23 @@ TEST(Recorder, OverlayOfAnotherSizeIsIgnored) {
 
 // --- the depth commands ------------------------------------------------------------------
 
-constexpr uint32_t kNear = protocol::kDepthOne / 4, kMid = protocol::kDepthOne / 2,
-                   kFar = protocol::kDepthOne / 4 * 3;
-constexpr int64_t kPx = protocol::kSubpixel;
+constexpr uint32_t kRecNear = protocol::kDepthOne / 4, kRecMid = protocol::kDepthOne / 2,
+                   kRecFar = protocol::kDepthOne / 4 * 3;
+constexpr int64_t kRecPx = protocol::kSubpixel;
 
 // The rectangle of pixels [x0, x1) x [y0, y1) as a FACE at depth z, positively wound.
-protocol::Face rect_face(int64_t x0, int64_t y0, int64_t x1, int64_t y1, uint32_t z, Rgb c) {
-    return protocol::Face{
-        c,
-        0,
-        0,
-        z,
-        0,
-        0,
-        {protocol::SnappedPoint{x0 * kPx, y0 * kPx}, protocol::SnappedPoint{x1 * kPx, y0 * kPx},
-         protocol::SnappedPoint{x1 * kPx, y1 * kPx}, protocol::SnappedPoint{x0 * kPx, y1 * kPx}}};
+protocol::Face recorded_rect_face(int64_t x0, int64_t y0, int64_t x1, int64_t y1, uint32_t z,
+                                  Rgb c) {
+    return protocol::Face{c,
+                          0,
+                          0,
+                          z,
+                          0,
+                          0,
+                          {protocol::SnappedPoint{x0 * kRecPx, y0 * kRecPx},
+                           protocol::SnappedPoint{x1 * kRecPx, y0 * kRecPx},
+                           protocol::SnappedPoint{x1 * kRecPx, y1 * kRecPx},
+                           protocol::SnappedPoint{x0 * kRecPx, y1 * kRecPx}}};
 }
 
 // Every pixel's writer drew the colour the pixel has (each command has its own colour).
@@ -143,12 +145,12 @@ void expect_writers_drew_the_pixels(const Rig& rig) {
 // A zspans-like frame: spans of three surfaces at three depths, sent far to near and back.
 TEST(RecorderDepth, DepthSpanPixelsBelongToTheSpanThatDrewThemNotToAFartherOneAfter) {
     Rig rig;
-    rig.run({protocol::FrameBegin{0, 8, 3, Rgb{9, 9, 9}},           // 0
-             protocol::DepthClear{},                                // 1
-             protocol::DepthSpan{1, 0, 3, kMid, 0, Rgb{1, 0, 0}},   // 2: x 0-3
-             protocol::DepthSpan{1, 2, 7, kNear, 0, Rgb{2, 0, 0}},  // 3: nearer, x 2-7
-             protocol::DepthSpan{1, 0, 7, kFar, 0, Rgb{3, 0, 0}},   // 4: farther than all
-             protocol::DepthSpan{0, 5, 6, kFar, 0, Rgb{4, 0, 0}},   // 5: row 0, over nothing
+    rig.run({protocol::FrameBegin{0, 8, 3, Rgb{9, 9, 9}},              // 0
+             protocol::DepthClear{},                                   // 1
+             protocol::DepthSpan{1, 0, 3, kRecMid, 0, Rgb{1, 0, 0}},   // 2: x 0-3
+             protocol::DepthSpan{1, 2, 7, kRecNear, 0, Rgb{2, 0, 0}},  // 3: nearer, x 2-7
+             protocol::DepthSpan{1, 0, 7, kRecFar, 0, Rgb{3, 0, 0}},   // 4: farther than all
+             protocol::DepthSpan{0, 5, 6, kRecFar, 0, Rgb{4, 0, 0}},   // 5: row 0, over nothing
              protocol::FrameEnd{}});
     const Recorder& r = rig.recorder;
     EXPECT_EQ(r.writer(0, 1)->number, 2u);
@@ -169,11 +171,11 @@ TEST(RecorderDepth, DepthSpanPixelsBelongToTheSpanThatDrewThemNotToAFartherOneAf
 TEST(RecorderDepth, ADepthSpanClaimsOnlyThePixelsItsTestDrewInEveryRunOfThem) {
     Rig rig;
     rig.run({protocol::FrameBegin{0, 8, 1, Rgb{}}, protocol::DepthClear{},
-             protocol::DepthSpan{0, 0, 7, kMid, 0, Rgb{1, 1, 1}},   // 2: the whole row
-             protocol::DepthSpan{0, 1, 1, kNear, 0, Rgb{2, 2, 2}},  // 3: pixel 1, nearest
-             protocol::DepthSpan{0, 4, 5, kNear, 0, Rgb{3, 3, 3}},  // 4: pixels 4, 5
+             protocol::DepthSpan{0, 0, 7, kRecMid, 0, Rgb{1, 1, 1}},   // 2: the whole row
+             protocol::DepthSpan{0, 1, 1, kRecNear, 0, Rgb{2, 2, 2}},  // 3: pixel 1, nearest
+             protocol::DepthSpan{0, 4, 5, kRecNear, 0, Rgb{3, 3, 3}},  // 4: pixels 4, 5
              // 5: between the two depths: drawn at 0, 2-3 and 6-7 only
-             protocol::DepthSpan{0, 0, 7, (kNear + kMid) / 2, 0, Rgb{4, 4, 4}}});
+             protocol::DepthSpan{0, 0, 7, (kRecNear + kRecMid) / 2, 0, Rgb{4, 4, 4}}});
     const uint64_t expected[8] = {5, 3, 5, 5, 4, 4, 5, 5};
     for (uint32_t x = 0; x < 8; ++x)
         EXPECT_EQ(rig.recorder.writer(x, 0)->number, expected[x]) << x;
@@ -187,10 +189,11 @@ TEST(RecorderDepth, ADepthSpanClaimsOnlyThePixelsItsTestDrewInEveryRunOfThem) {
 
 TEST(RecorderDepth, FacePixelsBelongToTheFaceThatDrewThemAndAFartherFaceTakesTheRest) {
     Rig rig;
-    rig.run({protocol::FrameBegin{0, 8, 6, Rgb{9, 9, 9}}, protocol::DepthClear{},
-             rect_face(0, 0, 4, 4, kNear, Rgb{1, 0, 0}),  // 2
-             rect_face(2, 2, 8, 6, kFar, Rgb{2, 0, 0}),   // 3: behind #2 where they overlap
-             protocol::FrameEnd{}});
+    rig.run(
+        {protocol::FrameBegin{0, 8, 6, Rgb{9, 9, 9}}, protocol::DepthClear{},
+         recorded_rect_face(0, 0, 4, 4, kRecNear, Rgb{1, 0, 0}),  // 2
+         recorded_rect_face(2, 2, 8, 6, kRecFar, Rgb{2, 0, 0}),   // 3: behind #2 where they overlap
+         protocol::FrameEnd{}});
     const Recorder& r = rig.recorder;
     EXPECT_EQ(r.writer(3, 3)->number, 2u);
     EXPECT_EQ(r.writer(3, 3)->opcode(), Opcode::Face);
@@ -206,15 +209,15 @@ TEST(RecorderDepth, TheDrawnPixelsAreKeptOnlyWhenAskedAndOnlyForTheLastCommand) 
     Controller ctl(load_profile("ideal"));
     ctl.execute(protocol::FrameBegin{0, 4, 1, Rgb{}});
     ctl.execute(protocol::DepthClear{});
-    ctl.execute(protocol::DepthSpan{0, 0, 3, kMid, 0, Rgb{1, 1, 1}});
+    ctl.execute(protocol::DepthSpan{0, 0, 3, kRecMid, 0, Rgb{1, 1, 1}});
     EXPECT_TRUE(ctl.depth_drawn().empty()) << "kept without being asked";
     ctl.keep_depth_drawn(true);
-    ctl.execute(protocol::DepthSpan{0, 1, 2, kNear, 0, Rgb{2, 2, 2}});
+    ctl.execute(protocol::DepthSpan{0, 1, 2, kRecNear, 0, Rgb{2, 2, 2}});
     ASSERT_EQ(ctl.depth_drawn().size(), 1u);
     EXPECT_EQ(ctl.depth_drawn()[0], (PixelRect{1, 0, 2, 1}));
-    ctl.execute(protocol::DepthSpan{0, 0, 3, kFar, 0, Rgb{3, 3, 3}});  // draws nothing
+    ctl.execute(protocol::DepthSpan{0, 0, 3, kRecFar, 0, Rgb{3, 3, 3}});  // draws nothing
     EXPECT_TRUE(ctl.depth_drawn().empty());
-    ctl.execute(protocol::DepthSpan{0, 0, 0, kNear, 0, Rgb{4, 4, 4}});
+    ctl.execute(protocol::DepthSpan{0, 0, 0, kRecNear, 0, Rgb{4, 4, 4}});
     EXPECT_EQ(ctl.depth_drawn().size(), 1u);
     ctl.execute(protocol::Marker{"m"});  // another command: none
     EXPECT_TRUE(ctl.depth_drawn().empty());
@@ -223,8 +226,8 @@ TEST(RecorderDepth, TheDrawnPixelsAreKeptOnlyWhenAskedAndOnlyForTheLastCommand) 
 TEST(RecorderDepth, TheOverlayTintsDepthSpanAndFaceEachInItsOwnColour) {
     Rig rig;
     rig.run({protocol::FrameBegin{0, 3, 1, Rgb{30, 60, 90}}, protocol::DepthClear{},
-             protocol::DepthSpan{0, 0, 0, kMid, 0, Rgb{0, 0, 0}},
-             rect_face(1, 0, 2, 1, kMid, Rgb{0, 0, 0})});
+             protocol::DepthSpan{0, 0, 0, kRecMid, 0, Rgb{0, 0, 0}},
+             recorded_rect_face(1, 0, 2, 1, kRecMid, Rgb{0, 0, 0})});
     std::vector<uint8_t> tinted;
     compose_image(rig.controller.framebuffer(), &rig.recorder, tinted);
     const Rgb expected[3] = {tint(Rgb{}, Opcode::DepthSpan), tint(Rgb{}, Opcode::Face),
@@ -243,12 +246,12 @@ TEST(RecorderDepth, TheOverlayTintsDepthSpanAndFaceEachInItsOwnColour) {
 TEST(RecorderDepth, TheInspectorNamesAFaceByItsColourPointsBoundsAndPixelsDrawn) {
     Rig rig;
     rig.run({protocol::FrameBegin{0, 8, 6, Rgb{}}, protocol::DepthClear{},
-             rect_face(1, 2, 5, 4, kMid, Rgb{0xbd, 0xbd, 0xb1}),
-             protocol::DepthSpan{5, 1, 6, kMid, 0, Rgb{1, 2, 3}}});
+             recorded_rect_face(1, 2, 5, 4, kRecMid, Rgb{0xbd, 0xbd, 0xb1}),
+             protocol::DepthSpan{5, 1, 6, kRecMid, 0, Rgb{1, 2, 3}}});
     EXPECT_EQ(describe(*rig.recorder.writer(2, 3)),
               "#2 FACE #bdbdb1, 4 points in (1,2)-(5,4), drew 8 pixels");
     EXPECT_EQ(describe(*rig.recorder.writer(2, 5)),
-              "#3 DEPTH_SPAN y=5 x0=1 x1=6 z=" + std::to_string(kMid) +
+              "#3 DEPTH_SPAN y=5 x0=1 x1=6 z=" + std::to_string(kRecMid) +
                   " dz=0 color=#010203, drew 6 pixels");
     EXPECT_EQ(describe(*rig.recorder.writer(0, 0)),
               "#0 " + protocol::to_string(Command{protocol::FrameBegin{0, 8, 6, Rgb{}}}));

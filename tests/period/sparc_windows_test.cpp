@@ -23,7 +23,7 @@ struct Windows {
     uint64_t instructions = 0, saves = 0, restores = 0, overflows = 0, underflows = 0;
 };
 
-uint64_t count(const PhaseCounts& p, const std::string& key) {
+uint64_t class_count(const PhaseCounts& p, const std::string& key) {
     const auto it = p.classes.find(key);
     return it == p.classes.end() ? 0 : it->second;
 }
@@ -44,8 +44,8 @@ Windows recurse(int depth, int windows) {
     const PhaseCounts* timed = run.counts.phase(static_cast<int>(Phase::HiddenSurface));
     EXPECT_NE(timed, nullptr);
     if (!timed) return {};
-    return {timed->instructions, count(*timed, "save"), count(*timed, "restore"),
-            count(*timed, "@window_overflow"), count(*timed, "@window_underflow")};
+    return {timed->instructions, class_count(*timed, "save"), class_count(*timed, "restore"),
+            class_count(*timed, "@window_overflow"), class_count(*timed, "@window_underflow")};
 }
 
 TEST(PeriodSparcWindows, EachLevelOfARecursionPastTheRegisterFileSpillsAndFillsOneWindow) {
@@ -82,10 +82,10 @@ TEST(PeriodSparcWindows, AWindowCountFollowedBesideQemusCountsAsQemuSetToItDoes)
     const PhaseCounts* timed = run.counts.phase(static_cast<int>(Phase::HiddenSurface));
     ASSERT_NE(timed, nullptr);
     const Windows seven = recurse(50, 7), eight = recurse(50, 8);
-    EXPECT_EQ(count(*timed, "@window_overflow"), seven.overflows);
-    EXPECT_EQ(count(*timed, "@window_underflow"), seven.underflows);
-    EXPECT_EQ(count(*timed, "@window_overflow_8w"), eight.overflows);
-    EXPECT_EQ(count(*timed, "@window_underflow_8w"), eight.underflows);
+    EXPECT_EQ(class_count(*timed, "@window_overflow"), seven.overflows);
+    EXPECT_EQ(class_count(*timed, "@window_underflow"), seven.underflows);
+    EXPECT_EQ(class_count(*timed, "@window_overflow_8w"), eight.overflows);
+    EXPECT_EQ(class_count(*timed, "@window_underflow_8w"), eight.underflows);
 }
 
 TEST(PeriodSparcWindows, MoreWindowsTakeOneTrapFewerEachWay) {

@@ -9,9 +9,8 @@
 
 #include "host/model/analytic_model.h"
 
+namespace fb89::host::model {
 namespace {
-
-using namespace fb89::host::model;
 
 constexpr uint64_t pow2(int k) {
     return uint64_t{1} << k;
@@ -292,3 +291,4 @@ TEST(AnalyticModel, RecurrencesRejectNonPowers) {
 }
 
 }  // namespace
+}  // namespace fb89::host::model

@@ -14,7 +14,7 @@ namespace {
 
 using Polygon = std::vector<glm::dvec3>;
 
-void add_face(Scene& s, Polygon v) {
+void add_hemicube_face(Scene& s, Polygon v) {
     Face f;
     f.vertices = std::move(v);
     f.id = static_cast<uint32_t>(s.faces.size());
@@ -25,20 +25,20 @@ void add_face(Scene& s, Polygon v) {
 // The unit cube [0, 1]³ with faces turned inwards.
 Scene closed_cube() {
     Scene s;
-    add_face(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});  // z = 0
-    add_face(s, {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});  // z = 1
-    add_face(s, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}});  // y = 0
-    add_face(s, {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}});  // y = 1
-    add_face(s, {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}});  // x = 0
-    add_face(s, {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}});  // x = 1
+    add_hemicube_face(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});  // z = 0
+    add_hemicube_face(s, {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});  // z = 1
+    add_hemicube_face(s, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}});  // y = 0
+    add_hemicube_face(s, {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}});  // y = 1
+    add_hemicube_face(s, {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}});  // x = 0
+    add_hemicube_face(s, {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}});  // x = 1
     return s;
 }
 
 // Floor and ceiling unit squares one apart, one patch each, facing each other.
-Scene square_pair() {
+Scene hemicube_square_pair() {
     Scene s;
-    add_face(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
-    add_face(s, {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});
+    add_hemicube_face(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    add_hemicube_face(s, {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});
     return s;
 }
 
@@ -71,7 +71,7 @@ TEST(Hemicube, EachEntryOfAClosedCubeIsNearLambertsValueFromTheCentre) {
 }
 
 TEST(Hemicube, UnitSquareOneAboveConvergesOnLamberts0239456) {
-    const Mesh mesh = mesh_scene(square_pair(), {.patch_size = 1});
+    const Mesh mesh = mesh_scene(hemicube_square_pair(), {.patch_size = 1});
     ASSERT_EQ(mesh.patches.size(), 2u);
     const double lambert = 0.239456;
     double previous = 1;
@@ -86,10 +86,10 @@ TEST(Hemicube, UnitSquareOneAboveConvergesOnLamberts0239456) {
 }
 
 TEST(Hemicube, AnOccluderAndABackFaceBlockButOnlyTheFrontIsCredited) {
-    Scene s = square_pair();
+    Scene s = hemicube_square_pair();
     // a small square halfway up, facing the floor, and one facing away, 0.1 above it
-    add_face(s, {{0.4, 0.4, 0.5}, {0.4, 0.6, 0.5}, {0.6, 0.6, 0.5}, {0.6, 0.4, 0.5}});
-    add_face(s, {{0.4, 0.4, 0.6}, {0.6, 0.4, 0.6}, {0.6, 0.6, 0.6}, {0.4, 0.6, 0.6}});
+    add_hemicube_face(s, {{0.4, 0.4, 0.5}, {0.4, 0.6, 0.5}, {0.6, 0.6, 0.5}, {0.6, 0.4, 0.5}});
+    add_hemicube_face(s, {{0.4, 0.4, 0.6}, {0.6, 0.4, 0.6}, {0.6, 0.6, 0.6}, {0.4, 0.6, 0.6}});
     const Mesh mesh = mesh_scene(s, {.patch_size = 1});
     ASSERT_EQ(mesh.patches.size(), 4u);
     const std::vector<double> f = hemicube_form_factors(mesh, 256);
@@ -119,7 +119,7 @@ TEST(Hemicube, CellsTestedGrowAsResolutionSquared) {
 }
 
 TEST(Hemicube, ResolutionMustBeEven) {
-    const Mesh mesh = mesh_scene(square_pair(), {.patch_size = 1});
+    const Mesh mesh = mesh_scene(hemicube_square_pair(), {.patch_size = 1});
     EXPECT_THROW(hemicube_form_factors(mesh, 7), std::invalid_argument);
     EXPECT_THROW(hemicube_form_factors(mesh, 0), std::invalid_argument);
 }

@@ -48,8 +48,8 @@ Scene cube(double rho, double floor_emission, double ceiling_emission, double wa
 }
 
 // A world of input elements (one patch each) and the flux tracer's grid.
-struct World {
-    explicit World(const Scene& s)
+struct HierarchicalWorld {
+    explicit HierarchicalWorld(const Scene& s)
         : mesh(mesh_scene(s, {std::numeric_limits<double>::infinity(), 64})),
           trace(s, true, 0),
           grid(trace) {}
@@ -89,7 +89,7 @@ TEST(Hierarchical, ParallelSquaresGiveHowellC11AtEveryEpsilon) {
     Scene s;
     add_quad(s, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, 0, 1);    // y = 0, facing +y
     add_quad(s, {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, 0.5, 0);  // y = 1, facing -y
-    const World w(s);
+    const HierarchicalWorld w(s);
     ASSERT_EQ(w.mesh.elements.size(), 2u);
     // the windings face each other
     ASSERT_GT(glm::dot(w.mesh.elements[0].normal, dvec3(0, 1, 0)), 0);
@@ -113,7 +113,7 @@ TEST(Hierarchical, LeafAtTheCentreApproachesThePointFormFactor) {
     Scene s;
     add_quad(s, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, 0, 1);
     add_quad(s, {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, 1, 0);
-    const World w(s);
+    const HierarchicalWorld w(s);
     const HierarchicalResult r = w.solve(fine(1e-3, 1.0 / 1024));
     double best = 1e9, at = 0;
     for (size_t k = 0; k < r.leaves.patches.size(); ++k) {
@@ -132,7 +132,7 @@ TEST(Hierarchical, PerpendicularSquaresSharingAnEdgeGiveHowellC14) {
     Scene s;
     add_quad(s, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, 0, 1);    // floor y = 0, up
     add_quad(s, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, 0.5, 0);  // wall z = 0, +z
-    const World w(s);
+    const HierarchicalWorld w(s);
     for (double eps : {1.0, 1e-3}) {
         const HierarchicalResult r = w.solve(fine(eps, 1.0 / 1024));
         EXPECT_NEAR(mean_on(r, 1), 0.5 * kAdjacent, 1e-6) << "epsilon " << eps;
@@ -147,7 +147,7 @@ TEST(Hierarchical, PerpendicularSquaresSharingAnEdgeGiveHowellC14) {
 // gathering through its ancestors' links (a parent's mean factor, not its own) is off by the
 // spread of the factor across the parent — bounded, and the price of a coarse link.
 TEST(Hierarchical, FurnaceCubeGivesTwo) {
-    const World w(cube(0.5, 1, 1, 1));
+    const HierarchicalWorld w(cube(0.5, 1, 1, 1));
     const HierarchicalResult roots = w.solve(fine(1e6, 1.0 / 64));
     for (const glm::dvec3& b : roots.solution.radiosity)
         EXPECT_NEAR(b.x, 2.0, 1e-6);
@@ -161,7 +161,7 @@ TEST(Hierarchical, FurnaceCubeGivesTwo) {
 
 // The ceiling-lit cube at ε large is the six-patch system with Howell's factors exactly.
 TEST(Hierarchical, CeilingLitCubeAtTheRootsIsTheSixPatchSolution) {
-    const World w(cube(0.5, 0, 1, 0));
+    const HierarchicalWorld w(cube(0.5, 0, 1, 0));
     const HierarchicalResult r = w.solve(fine(1e6, 1.0));
     ASSERT_EQ(r.counts.links, 30u);  // every root from every other
     const int opposite[6] = {1, 0, 4, 5, 2, 3};
@@ -178,7 +178,7 @@ TEST(Hierarchical, CeilingLitCubeAtTheRootsIsTheSixPatchSolution) {
 // Σ A E = Σ A (B − E)(1 − ρ)/ρ, to within the solver's tolerance and the coarse links' use of
 // a source's mean radiosity.
 TEST(Hierarchical, EnergyIsConservedInAClosedCube) {
-    const World w(cube(0.6, 0, 1, 0));
+    const HierarchicalWorld w(cube(0.6, 0, 1, 0));
     // coarse links use a source's mean radiosity, so the balance is looser at a large ε
     for (const auto& [eps, bound] : {std::pair{0.1, 0.06}, {0.01, 0.01}, {0.002, 0.01}}) {
         const HierarchicalResult r = w.solve(fine(eps, 1.0 / 1024));
@@ -203,7 +203,7 @@ TEST(Hierarchical, ConvergesToTheExactSolutionOnItsLeafMesh) {
              {0.375, 0.99, 0.625}, 0, 10);
     add_quad(s, {0.25, 0.5, 0.25}, {0.25, 0.5, 0.75}, {0.75, 0.5, 0.75}, {0.75, 0.5, 0.25}, 0.5, 0);
     add_quad(s, {0.25, 0.5, 0.25}, {0.75, 0.5, 0.25}, {0.75, 0.5, 0.75}, {0.25, 0.5, 0.75}, 0.5, 0);
-    const World w(s);
+    const HierarchicalWorld w(s);
     const HierarchicalResult r = w.solve(fine(0, 1.0 / 64));
     ASSERT_TRUE(r.solution.converged);
     const Mesh& leaves = r.leaves;
@@ -228,7 +228,7 @@ TEST(Hierarchical, LinkVisibilityIsTheShareOfClearRays) {
     add_quad(s, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, 0, 1);
     add_quad(s, {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}, 1, 0);
     add_quad(s, {-1, 0.5, -1}, {-1, 0.5, 2}, {0.5, 0.5, 2}, {0.5, 0.5, -1}, 0, 0);  // half
-    const World w(s);
+    const HierarchicalWorld w(s);
     HierarchicalOptions o = fine(1e6, 1);
     o.link_rays = 256;
     const HierarchicalResult r = w.solve(o);
@@ -279,7 +279,7 @@ TEST(Hierarchical, ShaftCullingSparesRaysAndChangesNothingElse) {
     Scene blocked = open;  // and a plate half across the gap
     add_quad(blocked, {-1, 0.5, -1}, {-1, 0.5, 2}, {0.5, 0.5, 2}, {0.5, 0.5, -1}, 0.3, 0);
     for (const Scene* s : {&open, &blocked}) {
-        const World w(*s);
+        const HierarchicalWorld w(*s);
         HierarchicalOptions o = fine(1e-3, 1.0 / 64);
         o.link_rays = 4;
         const HierarchicalResult plain = w.solve(o);
@@ -313,7 +313,7 @@ TEST(Hierarchical, BudgetStopsRefinementThatCannotStopEarly) {
     Scene s;
     add_quad(s, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, 0.5, 1);
     add_quad(s, {0, 0.01, 0}, {1, 0.01, 0}, {1, 0.01, 1}, {0, 0.01, 1}, 0.9, 0);
-    const World w(s);
+    const HierarchicalWorld w(s);
     HierarchicalOptions o = fine(1e-9, 1e-12);
     o.max_nodes = 1000;
     const HierarchicalResult r = w.solve(o);
@@ -335,7 +335,7 @@ TEST(Hierarchical, CoplanarAndTouchingFacesStayFinite) {
     add_quad(s, {0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}, 0.5,
              1);  // the same square, +y, emitting
     add_quad(s, {1, 0, 1}, {1, 1, 1}, {2, 1, 1}, {2, 0, 1}, 0.5, 0);  // -z, touching a corner
-    const World w(s);
+    const HierarchicalWorld w(s);
     const HierarchicalResult r = w.solve(fine(1e-3, 1e-3));
     EXPECT_NEAR(mean_on(r, 0), 0.0, 1e-12);  // back to back with the emitter
     EXPECT_GT(mean_on(r, 2), 0.0);
@@ -345,7 +345,7 @@ TEST(Hierarchical, CoplanarAndTouchingFacesStayFinite) {
 }
 
 TEST(Hierarchical, OptionsOutOfRangeAreRefused) {
-    const World w(cube(0.5, 0, 1, 0));
+    const HierarchicalWorld w(cube(0.5, 0, 1, 0));
     HierarchicalOptions o;
     o.link_rays = 0;
     EXPECT_THROW(w.solve(o), std::invalid_argument);

@@ -30,7 +30,7 @@ Scene world() {
     return s;
 }
 
-Mesh mesh_of(const Scene& s) {
+Mesh patch_mesh_of(const Scene& s) {
     MeshOptions o;
     o.patch_size = 0.5;
     return mesh_scene(s, o);
@@ -38,7 +38,7 @@ Mesh mesh_of(const Scene& s) {
 
 TEST(PatchScene, OneFacePerPatchWithTheWorldsCameraAndSize) {
     Scene w = world();
-    Mesh m = mesh_of(w);
+    Mesh m = patch_mesh_of(w);
     ASSERT_EQ(m.patches.size(), 17u);
     std::vector<glm::dvec3> B(m.patches.size(), glm::dvec3(0.25));
     Scene s = patch_scene(w, m, B);
@@ -58,7 +58,7 @@ TEST(PatchScene, OneFacePerPatchWithTheWorldsCameraAndSize) {
 
 TEST(PatchScene, BrightestLitLevelMapsToOne) {
     Scene w = world();
-    Mesh m = mesh_of(w);
+    Mesh m = patch_mesh_of(w);
     std::vector<glm::dvec3> B;
     for (size_t p = 0; p < m.patches.size(); ++p)
         B.push_back(m.elements[m.patches[p].element].emission.x > 0
@@ -82,7 +82,7 @@ TEST(PatchScene, SmallHotSpotDoesNotSetTheExposure) {
     spot.vertices = {{1.5, 0.5, 1.5}, {1.6, 0.5, 1.5}, {1.6, 0.5, 1.6}, {1.5, 0.5, 1.6}};
     spot.id = 2;
     w.faces.push_back(spot);
-    Mesh m = mesh_of(w);
+    Mesh m = patch_mesh_of(w);
     ASSERT_EQ(m.patches.size(), 18u);
     std::vector<glm::dvec3> B(m.patches.size(), glm::dvec3(0.5));
     B[16] = glm::dvec3(4);   // the lamp
@@ -95,7 +95,7 @@ TEST(PatchScene, SmallHotSpotDoesNotSetTheExposure) {
 
 TEST(PatchScene, ProjectsUnshaded) {
     Scene w = world();
-    Mesh m = mesh_of(w);
+    Mesh m = patch_mesh_of(w);
     std::vector<glm::dvec3> B(m.patches.size(), glm::dvec3(0.2, 0.4, 0.8));
     Scene s = patch_scene(w, m, B, 1.0);
     Counters counters;
@@ -110,7 +110,7 @@ TEST(PatchScene, ProjectsUnshaded) {
 
 TEST(PatchScene, BlackSolutionStaysBlack) {
     Scene w = world();
-    Mesh m = mesh_of(w);
+    Mesh m = patch_mesh_of(w);
     std::vector<glm::dvec3> B(m.patches.size(), glm::dvec3(0));
     EXPECT_EQ(automatic_exposure(m, B), 1.0);
     Scene s = patch_scene(w, m, B);
@@ -137,7 +137,7 @@ TEST(PatchScene, TJunctionCornersAreAddedToTheCoarseEdge) {
 
 TEST(PatchScene, FacesMeetingCornerToCornerAreLeftAsTheyAre) {
     Scene w = world();
-    Mesh m = mesh_of(w);
+    Mesh m = patch_mesh_of(w);
     std::vector<glm::dvec3> B(m.patches.size(), glm::dvec3(0.25));
     for (const Face& f : patch_scene(w, m, B).faces)
         EXPECT_EQ(f.vertices.size(), 4u);

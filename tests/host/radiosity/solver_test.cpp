@@ -38,14 +38,14 @@ Mesh furnace_cube(double rho, double emission) {
 }
 
 // Closed forms for unit squares (Howell C-11 and C-14).
-constexpr double kOpposite = 0.199825, kAdjacent = 0.200044;
+constexpr double kOppositeFactor = 0.199825, kAdjacentFactor = 0.200044;
 
 std::vector<double> furnace_form_factors() {
     const int opposite[6] = {1, 0, 4, 5, 2, 3};
     std::vector<double> F(36, 0.0);
     for (int i = 0; i < 6; ++i)
         for (int j = 0; j < 6; ++j)
-            if (j != i) F[i * 6 + j] = j == opposite[i] ? kOpposite : kAdjacent;
+            if (j != i) F[i * 6 + j] = j == opposite[i] ? kOppositeFactor : kAdjacentFactor;
     return F;
 }
 

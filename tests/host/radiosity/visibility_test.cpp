@@ -11,7 +11,7 @@ namespace {
 
 using glm::dvec3;
 
-void add_quad(Scene& s, dvec3 a, dvec3 b, dvec3 c, dvec3 d) {
+void add_visibility_quad(Scene& s, dvec3 a, dvec3 b, dvec3 c, dvec3 d) {
     Face f;
     f.vertices = {a, b, c, d};
     f.id = s.face_count++;
@@ -19,7 +19,7 @@ void add_quad(Scene& s, dvec3 a, dvec3 b, dvec3 c, dvec3 d) {
 }
 
 // Six quads around [lo, hi], normals inward (a room) or outward (a box).
-void add_box(Scene& s, dvec3 lo, dvec3 hi, bool inward) {
+void add_visibility_box(Scene& s, dvec3 lo, dvec3 hi, bool inward) {
     for (int axis = 0; axis < 3; ++axis) {
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;  // e_u x e_v = e_axis
         for (int side = 0; side < 2; ++side) {
@@ -28,15 +28,15 @@ void add_box(Scene& s, dvec3 lo, dvec3 hi, bool inward) {
             du[u] = hi[u] - lo[u];
             dv[v] = hi[v] - lo[v];
             if ((side == 0) == inward)  // normal +e_axis
-                add_quad(s, p, p + du, p + du + dv, p + dv);
+                add_visibility_quad(s, p, p + du, p + du + dv, p + dv);
             else
-                add_quad(s, p, p + dv, p + du + dv, p + du);
+                add_visibility_quad(s, p, p + dv, p + du + dv, p + du);
         }
     }
 }
 
-struct World {
-    World(const Scene& s, double patch_size)
+struct VisibilityWorld {
+    VisibilityWorld(const Scene& s, double patch_size)
         : mesh(mesh_scene(s, {patch_size, 64})), trace(s, true, 0), grid(trace) {}
     RadiosityWorld world() const { return {trace, grid}; }
     uint32_t patch_at(const dvec3& point) const {  // the patch whose centre is nearest
@@ -53,7 +53,7 @@ struct World {
 };
 
 // δ by testing every piece, no grid: what flux tracing must find.
-Delta brute_force(const World& w, uint32_t p, uint32_t q) {
+Delta brute_force(const VisibilityWorld& w, uint32_t p, uint32_t q) {
     if (p > q) std::swap(p, q);
     const Patch& a = w.mesh.patches[p];
     const Patch& b = w.mesh.patches[q];
@@ -71,15 +71,15 @@ Delta brute_force(const World& w, uint32_t p, uint32_t q) {
 
 Scene room_with_box(dvec3 lo, dvec3 hi) {
     Scene s;
-    add_box(s, {0, 0, 0}, {4, 4, 4}, true);
-    add_box(s, lo, hi, false);
+    add_visibility_box(s, {0, 0, 0}, {4, 4, 4}, true);
+    add_visibility_box(s, lo, hi, false);
     return s;
 }
 
 TEST(Visibility, PairsFaceWhenEachCentreIsInFrontOfTheOther) {
     Scene s;
-    add_box(s, {0, 0, 0}, {4, 4, 4}, true);
-    World w(s, 1);
+    add_visibility_box(s, {0, 0, 0}, {4, 4, 4}, true);
+    VisibilityWorld w(s, 1);
     const uint32_t floor = w.patch_at({1.5, 0, 1.5}), ceiling = w.patch_at({1.5, 4, 2.5});
     const uint32_t floor_next = w.patch_at({2.5, 0, 1.5}), wall = w.patch_at({0, 0.5, 0.5});
     EXPECT_TRUE(facing(w.mesh, floor, ceiling));
@@ -90,11 +90,13 @@ TEST(Visibility, PairsFaceWhenEachCentreIsInFrontOfTheOther) {
 
 TEST(Visibility, CoplanarAndBackToBackPatchesNeverFace) {
     Scene s;
-    add_quad(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});  // two floor tiles, normal +y
-    add_quad(s, {2, 0, 0}, {2, 0, 2}, {4, 0, 2}, {4, 0, 0});
-    add_quad(s, {0, 1, 0}, {2, 1, 0}, {2, 1, 2}, {0, 1, 2});  // above, normal −y...
-    add_quad(s, {0, 2, 0}, {0, 2, 2}, {2, 2, 2}, {2, 2, 0});  // ...and its back, normal +y
-    World w(s, 1);
+    add_visibility_quad(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 2},
+                        {2, 0, 0});  // two floor tiles, normal +y
+    add_visibility_quad(s, {2, 0, 0}, {2, 0, 2}, {4, 0, 2}, {4, 0, 0});
+    add_visibility_quad(s, {0, 1, 0}, {2, 1, 0}, {2, 1, 2}, {0, 1, 2});  // above, normal −y...
+    add_visibility_quad(s, {0, 2, 0}, {0, 2, 2}, {2, 2, 2},
+                        {2, 2, 0});  // ...and its back, normal +y
+    VisibilityWorld w(s, 1);
     for (uint32_t p = 0; p < 4; ++p)
         for (uint32_t q = 4; q < 8; ++q)
             EXPECT_FALSE(facing(w.mesh, p, q)) << "coplanar tiles " << p << " " << q;
@@ -104,7 +106,7 @@ TEST(Visibility, CoplanarAndBackToBackPatchesNeverFace) {
 }
 
 TEST(FluxTracing, CastsOneRayPerFacingPair) {
-    World w(room_with_box({1.5, 1.5, 1.5}, {2.5, 2.5, 2.5}), 0.5);
+    VisibilityWorld w(room_with_box({1.5, 1.5, 1.5}, {2.5, 2.5, 2.5}), 0.5);
     VisibilityCounts counts;
     const Visibility delta = flux_tracing(w.mesh, w.world(), counts);
     uint64_t pairs = 0;
@@ -120,7 +122,7 @@ TEST(FluxTracing, CastsOneRayPerFacingPair) {
 }
 
 TEST(FluxTracing, ABlockerBetweenTheCentresHidesThePairAndNothingElseDoes) {
-    World w(room_with_box({1.2, 1.5, 1.2}, {2.8, 2.5, 2.8}), 1);
+    VisibilityWorld w(room_with_box({1.2, 1.5, 1.2}, {2.8, 2.5, 2.8}), 1);
     VisibilityCounts counts;
     const Visibility delta = flux_tracing(w.mesh, w.world(), counts);
     const uint32_t floor = w.patch_at({1.5, 0, 1.5}), ceiling = w.patch_at({1.5, 4, 1.5});
@@ -133,9 +135,10 @@ TEST(FluxTracing, ABlockerBetweenTheCentresHidesThePairAndNothingElseDoes) {
 
 TEST(FluxTracing, BackFacesBlock) {
     Scene s;
-    add_box(s, {0, 0, 0}, {4, 4, 4}, true);
-    add_quad(s, {1, 2, 1}, {3, 2, 1}, {3, 2, 3}, {1, 2, 3});  // normal −y: seen from below...
-    World w(s, 1);
+    add_visibility_box(s, {0, 0, 0}, {4, 4, 4}, true);
+    add_visibility_quad(s, {1, 2, 1}, {3, 2, 1}, {3, 2, 3},
+                        {1, 2, 3});  // normal −y: seen from below...
+    VisibilityWorld w(s, 1);
     VisibilityCounts counts;
     const Visibility delta = flux_tracing(w.mesh, w.world(), counts);
     const uint32_t floor = w.patch_at({1.5, 0, 1.5}), ceiling = w.patch_at({1.5, 4, 1.5});
@@ -148,12 +151,13 @@ TEST(FluxTracing, FindsWhatTestingEveryPieceFinds) {
     scenes.push_back(room_with_box({1.5, 1.5, 1.5}, {2.5, 2.5, 2.5}));
     scenes.push_back(room_with_box({1, 0, 1}, {2, 1, 2}));  // standing on the floor
     Scene wall;
-    add_box(wall, {0, 0, 0}, {4, 4, 4}, true);
-    add_quad(wall, {2, 0, 0}, {2, 2, 0}, {2, 2, 4}, {2, 0, 4});  // half height, edge to edge
+    add_visibility_box(wall, {0, 0, 0}, {4, 4, 4}, true);
+    add_visibility_quad(wall, {2, 0, 0}, {2, 2, 0}, {2, 2, 4},
+                        {2, 0, 4});  // half height, edge to edge
     scenes.push_back(wall);
     for (const Scene& s : scenes)
         for (double size : {1.0, 0.45}) {
-            World w(s, size);
+            VisibilityWorld w(s, size);
             VisibilityCounts counts;
             const Visibility delta = flux_tracing(w.mesh, w.world(), counts);
             uint64_t hidden = 0;
@@ -171,10 +175,10 @@ TEST(FluxTracing, AdjacentPatchesAcrossACornerSeeEachOther) {
     // r → 0: floor and wall patches at their corner, and a box standing on the floor whose
     // faces meet it along their lower edges
     Scene s;
-    add_quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0});  // floor, normal +y
-    add_quad(s, {0, 0, 0}, {0, 4, 0}, {0, 4, 4}, {0, 0, 4});  // wall, normal +x
-    add_box(s, {1, 0, 1}, {2, 1, 2}, false);
-    World w(s, 0.25);
+    add_visibility_quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0});  // floor, normal +y
+    add_visibility_quad(s, {0, 0, 0}, {0, 4, 0}, {0, 4, 4}, {0, 0, 4});  // wall, normal +x
+    add_visibility_box(s, {1, 0, 1}, {2, 1, 2}, false);
+    VisibilityWorld w(s, 0.25);
     VisibilityCounts counts;
     const Visibility delta = flux_tracing(w.mesh, w.world(), counts);
     const uint32_t beside_box = w.patch_at({2.125, 0, 1.625});
@@ -190,10 +194,10 @@ TEST(FluxTracing, GrazingRaysAgreeWithTestingEveryPiece) {
     // a panel whose patches see the floor at cos ≈ 1e-3 over a low wall: some rays pass
     // just over its top edge, some hit it just below
     Scene s;
-    add_quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0});                  // floor, normal +y
-    add_quad(s, {0, 0.01, 8}, {4, 0.01, 8}, {4, 0.014, 12}, {0, 0.014, 12});  // about −y
-    add_quad(s, {0, 0, 6}, {4, 0, 6}, {4, 0.006, 6}, {0, 0.006, 6});          // low wall, +z
-    World w(s, 1);
+    add_visibility_quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 4}, {4, 0, 0});  // floor, normal +y
+    add_visibility_quad(s, {0, 0.01, 8}, {4, 0.01, 8}, {4, 0.014, 12}, {0, 0.014, 12});  // about −y
+    add_visibility_quad(s, {0, 0, 6}, {4, 0, 6}, {4, 0.006, 6}, {0, 0.006, 6});  // low wall, +z
+    VisibilityWorld w(s, 1);
     VisibilityCounts counts;
     const Visibility delta = flux_tracing(w.mesh, w.world(), counts);
     uint64_t hidden = 0, visible = 0;

@@ -14,12 +14,12 @@
 namespace fb89::host {
 namespace {
 
-constexpr int kWidth = 40;
+constexpr int kRowWidth = 40;
 
 // One row of buffers, padded as the Z-buffer pads its band.
 struct Row {
-    std::vector<double> depth = std::vector<double>(kWidth + kDepthRowPad);
-    std::vector<uint32_t> face = std::vector<uint32_t>(kWidth + kDepthRowPad);
+    std::vector<double> depth = std::vector<double>(kRowWidth + kDepthRowPad);
+    std::vector<uint32_t> face = std::vector<uint32_t>(kRowWidth + kDepthRowPad);
     bool operator==(const Row& o) const {
         // bitwise, so that -0.0 and 0.0 or NaNs would not hide a difference
         return face == o.face &&
@@ -28,7 +28,7 @@ struct Row {
 };
 
 // A row half empty, half holding faces at depths in [0, 1).
-Row random_row(std::mt19937& rng) {
+Row random_depth_row(std::mt19937& rng) {
     std::uniform_real_distribution<double> z(0.0, 1.0);
     Row row;
     for (size_t x = 0; x < row.depth.size(); ++x) {
@@ -56,10 +56,10 @@ TEST(DepthRows, VectorKernelsMatchTheScalarKernelOnEveryRunLengthAndOffset) {
     std::uniform_real_distribution<double> slope(-0.05, 0.05), offset(0.0, 1.0);
     for (Kernel kernel : vector_kernels()) {
         for (int xb = 0; xb < 9; ++xb) {
-            for (int xe = xb + 1; xe <= kWidth; ++xe) {
+            for (int xe = xb + 1; xe <= kRowWidth; ++xe) {
                 const DepthPlane plane{slope(rng), slope(rng), offset(rng)};
                 const int y = static_cast<int>(rng() % 700);
-                Row expected = random_row(rng), got = expected;
+                Row expected = random_depth_row(rng), got = expected;
                 const uint64_t won_expected = DepthRowScalar::test(
                     plane, y, xb, xe, 77, expected.depth.data(), expected.face.data());
                 const uint64_t won =

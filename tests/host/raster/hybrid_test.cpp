@@ -35,7 +35,8 @@ std::vector<protocol::Command> commands_of(Renderer& r, const ScreenScene& s,
     return buffer.commands();
 }
 
-std::vector<uint32_t> ids_of(const std::vector<protocol::Command>& commands, const ScreenScene& s) {
+std::vector<uint32_t> ids_from_commands(const std::vector<protocol::Command>& commands,
+                                        const ScreenScene& s) {
     return testing::ids_from_commands(commands, s.width, s.height);
 }
 
@@ -75,7 +76,7 @@ TEST(Hybrid, InfiniteThresholdIsPureWarnock) {
 TEST(Hybrid, EveryThresholdGivesTheZBuffersIds) {
     ScreenScene s = scene_screen("D.json", ColorMode::FaceId);
     ZBuffer zbuffer;
-    const auto want = ids_of(commands_of(zbuffer, s), s);
+    const auto want = ids_from_commands(commands_of(zbuffer, s), s);
     for (double t : {1e-4, 1e-3, 0.01, 0.04, 0.2, 1.0}) {
         for (DepthEstimate d : {DepthEstimate::Window, DepthEstimate::Scene}) {
             HybridOptions o;
@@ -83,7 +84,7 @@ TEST(Hybrid, EveryThresholdGivesTheZBuffersIds) {
             o.depth = d;
             Hybrid hybrid(o);
             Counters c;
-            EXPECT_EQ(ids_of(commands_of(hybrid, s, &c), s), want) << "threshold " << t;
+            EXPECT_EQ(ids_from_commands(commands_of(hybrid, s, &c), s), want) << "threshold " << t;
             EXPECT_EQ(c.get("hybrid_pixels_zbuffer") + c.get("hybrid_pixels_warnock"),
                       static_cast<uint64_t>(s.width) * s.height);
         }
@@ -108,12 +109,12 @@ TEST(Hybrid, HandsOverMoreOfTheScreenAsTheThresholdFalls) {
 TEST(Hybrid, ApproximateFillsMissAtMostEpsilonOfTheirWindows) {
     ScreenScene s = scene_screen("C.json", ColorMode::FaceId);
     ZBuffer zbuffer;
-    const auto want = ids_of(commands_of(zbuffer, s), s);
+    const auto want = ids_from_commands(commands_of(zbuffer, s), s);
     Warnock exact_k({WindowTest::Area, {16, 0.0}});
-    EXPECT_EQ(ids_of(commands_of(exact_k, s), s), want) << "epsilon 0 must stay exact";
+    EXPECT_EQ(ids_from_commands(commands_of(exact_k, s), s), want) << "epsilon 0 must stay exact";
     Warnock approx({WindowTest::Area, {16, 0.05}});
     Counters c;
-    const auto got = ids_of(commands_of(approx, s, &c), s);
+    const auto got = ids_from_commands(commands_of(approx, s, &c), s);
     uint64_t wrong = 0;
     for (size_t i = 0; i < got.size(); ++i)
         wrong += got[i] != want[i];

@@ -57,13 +57,13 @@ Scene screen_json(int width, int height, const std::string& objects) {
                             "test.json", ".");
 }
 
-struct Rendered {
+struct ScanRendered {
     protocol::MemoryBuffer commands;
     HostStats stats;
 };
 
-Rendered render_with(Renderer& renderer, const ScreenScene& s) {
-    Rendered r;
+ScanRendered render_with(Renderer& renderer, const ScreenScene& s) {
+    ScanRendered r;
     renderer.setup(s);
     renderer.render(s, r.commands, r.stats);
     return r;
@@ -96,8 +96,8 @@ std::string first_difference(const ScreenScene& s, const std::vector<uint32_t>& 
 // Renders with both methods; expects equal face-id buffers and equal span lists.
 HostStats expect_same_as_zbuffer(const ScreenScene& s, ScanLine& scanline) {
     ZBuffer zbuffer;
-    Rendered want = render_with(zbuffer, s);
-    Rendered got = render_with(scanline, s);
+    ScanRendered want = render_with(zbuffer, s);
+    ScanRendered got = render_with(scanline, s);
     EXPECT_EQ(first_difference(s, painted_ids(s, got.commands), painted_ids(s, want.commands)), "");
     EXPECT_TRUE(got.commands.commands() == want.commands.commands()) << "span lists differ";
     EXPECT_EQ(got.stats.counters.get("spans"), want.stats.counters.get("spans"));
@@ -153,7 +153,7 @@ TEST(ScanLine, MatchesTheZBufferWithEdgesThroughPixelCentresAndHorizontalEdges) 
     ScreenScene one = screen_scene(screen_json(36, 24, R"({"polygon": [[4.5, 3.5, 0.0],
         [20.5, 3.5, 0.4], [20.5, 12.5, 0.4], [4.5, 12.5, 0.0]]})"));
     ScanLine scanline;
-    Rendered r = render_with(scanline, one);
+    ScanRendered r = render_with(scanline, one);
     ASSERT_EQ(r.commands.size(), 9u);  // rows 3..11
     const auto& top = std::get<protocol::DrawSpan>(r.commands.commands().front());
     EXPECT_EQ(top.y, 3);

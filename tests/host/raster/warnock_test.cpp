@@ -50,7 +50,7 @@ std::vector<uint32_t> id_buffer(Renderer& renderer, const ScreenScene& s,
 }
 
 // Runs both window tests and checks them against the Z-buffer; returns the area counts.
-Counters expect_same_as_zbuffer(const Scene& scene) {
+Counters expect_warnock_same_as_zbuffer(const Scene& scene) {
     ScreenScene s = ids_scene(scene);
     ZBuffer zbuffer;
     std::vector<uint32_t> want = id_buffer(zbuffer, s);
@@ -67,7 +67,7 @@ Counters expect_same_as_zbuffer(const Scene& scene) {
 }
 
 TEST(Warnock, AScreenFillingFaceTakesOneSampleAndOneFill) {
-    Counters c = expect_same_as_zbuffer(
+    Counters c = expect_warnock_same_as_zbuffer(
         scene_of(64, 48, {{{{-1, -1, 0.5}, {70, -1, 0.5}, {70, 50, 0.5}, {-1, 50, 0.5}}, {}}}));
     EXPECT_EQ(c.get("window_samples"), 1u);
     EXPECT_EQ(c.get("fills"), 1u);
@@ -75,7 +75,7 @@ TEST(Warnock, AScreenFillingFaceTakesOneSampleAndOneFill) {
 }
 
 TEST(Warnock, AnEmptyScreenTakesOneSampleAndSendsNothing) {
-    Counters c = expect_same_as_zbuffer(scene_of(64, 48, {}));
+    Counters c = expect_warnock_same_as_zbuffer(scene_of(64, 48, {}));
     EXPECT_EQ(c.get("window_samples"), 1u);
     EXPECT_EQ(c.get("empty_windows"), 1u);
     EXPECT_EQ(c.get("fills"), 0u);
@@ -84,7 +84,7 @@ TEST(Warnock, AnEmptyScreenTakesOneSampleAndSendsNothing) {
 TEST(Warnock, OneSquareInOneQuadrantSamplesFiveWindows) {
     // a face exactly covering the top-left quadrant: screen (fails), then 4 quadrants:
     // one surrounded, three empty
-    Counters c = expect_same_as_zbuffer(
+    Counters c = expect_warnock_same_as_zbuffer(
         scene_of(64, 64, {{{{0, 0, 0.5}, {32, 0, 0.5}, {32, 32, 0.5}, {0, 32, 0.5}}, {}}}));
     EXPECT_EQ(c.get("window_samples"), 5u);
     EXPECT_EQ(c.get("empty_windows"), 3u);
@@ -93,13 +93,14 @@ TEST(Warnock, OneSquareInOneQuadrantSamplesFiveWindows) {
 }
 
 TEST(Warnock, MatchesTheZBufferOnInterpenetratingRandomTriangles) {
-    expect_same_as_zbuffer(scene_of(160, 120, generate_random_triangles(160, 120, 400, 120, 5)));
+    expect_warnock_same_as_zbuffer(
+        scene_of(160, 120, generate_random_triangles(160, 120, 400, 120, 5)));
 }
 
 TEST(Warnock, EndsOnInterpenetratingFaces) {
     // two large quads that cut through each other along a sloped line: no surrounder is in
     // front anywhere near the cut, so windows there go down to single pixels
-    Counters c = expect_same_as_zbuffer(
+    Counters c = expect_warnock_same_as_zbuffer(
         scene_of(128, 96,
                  {{{{4, 4, 0.1}, {124, 4, 0.9}, {124, 92, 0.9}, {4, 92, 0.1}}, {}},
                   {{{4, 4, 0.9}, {124, 4, 0.1}, {124, 92, 0.1}, {4, 92, 0.9}}, {}}}));
@@ -109,7 +110,7 @@ TEST(Warnock, EndsOnInterpenetratingFaces) {
 TEST(Warnock, EndsOnCyclicOverlap) {
     // three bars, each over the next and under the one before: no face is in front of the
     // others where all three meet
-    Counters c = expect_same_as_zbuffer(
+    Counters c = expect_warnock_same_as_zbuffer(
         scene_of(96, 96,
                  {{{{10, 20, 0.2}, {86, 20, 0.4}, {86, 32, 0.4}, {10, 32, 0.2}}, {}},
                   {{{70, 10, 0.2}, {82, 10, 0.2}, {82, 86, 0.4}, {70, 86, 0.4}}, {}},
@@ -124,7 +125,7 @@ TEST(Warnock, EndsOnSubPixelFaces) {
         double x = 3.3 + (i % 20) * 2.7, y = 2.1 + (i / 20) * 3.9;
         tiny.push_back({{{x, y, 0.5}, {x + 0.4, y + 0.1, 0.4}, {x + 0.2, y + 0.45, 0.6}}, {}});
     }
-    Counters c = expect_same_as_zbuffer(scene_of(64, 48, std::move(tiny)));
+    Counters c = expect_warnock_same_as_zbuffer(scene_of(64, 48, std::move(tiny)));
     EXPECT_GT(c.get("pixel_windows"), 0u);
 }
 
@@ -136,7 +137,7 @@ TEST(Warnock, EndsOnNearlyEdgeOnFaces) {
         polys.push_back(
             {{{x, 1, 0.1}, {x + 0.05, 1, 0.8}, {x + 0.3, 47, 0.8}, {x + 0.25, 47, 0.1}}, {}});
     }
-    expect_same_as_zbuffer(scene_of(64, 48, std::move(polys)));
+    expect_warnock_same_as_zbuffer(scene_of(64, 48, std::move(polys)));
 }
 
 TEST(Warnock, EndsWithHundredsOfFacesInOneWindow) {
@@ -144,12 +145,12 @@ TEST(Warnock, EndsWithHundredsOfFacesInOneWindow) {
     GeneratedPolygons pile;
     for (auto& t : generate_random_triangles(6, 6, 600, 4, 3))
         pile.push_back(std::move(t));
-    Counters c = expect_same_as_zbuffer(scene_of(64, 48, std::move(pile)));
+    Counters c = expect_warnock_same_as_zbuffer(scene_of(64, 48, std::move(pile)));
     EXPECT_GT(c.get("face_computations"), 600u);
 }
 
 TEST(Warnock, CoplanarFacesTieToTheLowerId) {
-    expect_same_as_zbuffer(
+    expect_warnock_same_as_zbuffer(
         scene_of(48, 48,
                  {{{{4, 4, 0.5}, {30, 4, 0.5}, {30, 30, 0.5}, {4, 30, 0.5}}, {}},
                   {{{10, 10, 0.5}, {44, 10, 0.5}, {44, 44, 0.5}, {10, 44, 0.5}}, {}},
@@ -157,8 +158,8 @@ TEST(Warnock, CoplanarFacesTieToTheLowerId) {
 }
 
 TEST(Warnock, OddSizedScreensSplitWithoutEmptyWindows) {
-    Counters c =
-        expect_same_as_zbuffer(scene_of(37, 11, generate_random_triangles(37, 11, 40, 20, 9)));
+    Counters c = expect_warnock_same_as_zbuffer(
+        scene_of(37, 11, generate_random_triangles(37, 11, 40, 20, 9)));
     EXPECT_GT(c.get("window_samples"), 0u);
 }
 
@@ -167,7 +168,7 @@ TEST(Warnock, PerspectiveScenesMatchTheZBuffer) {
         Scene scene = load_scene(std::string(FB89_SCENES_DIR) + "/" + name);
         scene.width = 256;
         scene.height = 195;
-        expect_same_as_zbuffer(scene);
+        expect_warnock_same_as_zbuffer(scene);
     }
 }
 

@@ -20,7 +20,7 @@
 namespace fb89::host {
 namespace {
 
-ScreenScene screen_scene(const Scene& scene) {
+ScreenScene face_id_screen(const Scene& scene) {
     Counters counters;
     return project_scene(scene, ColorMode::FaceId, counters);
 }
@@ -56,7 +56,7 @@ std::vector<uint32_t> ids_of(const ScreenScene& s, const std::vector<uint32_t>& 
 }
 
 TEST(ZBuffer, MatchesTheReferenceRuleOnInterpenetratingTriangles) {
-    ScreenScene s = screen_scene(random_scene(160, 120, 300, 150, 7));
+    ScreenScene s = face_id_screen(random_scene(160, 120, 300, 150, 7));
     ZBuffer zbuffer;
     zbuffer.keep_face_buffer(true);
     protocol::MemoryBuffer buffer;
@@ -66,7 +66,7 @@ TEST(ZBuffer, MatchesTheReferenceRuleOnInterpenetratingTriangles) {
 }
 
 TEST(ZBuffer, RendersAWindowAndLeavesTheRestAlone) {
-    ScreenScene s = screen_scene(random_scene(160, 120, 200, 200, 11));
+    ScreenScene s = face_id_screen(random_scene(160, 120, 200, 200, 11));
     PixelRect window{37, 21, 101, 90};
     std::vector<uint32_t> all(s.faces.size());
     std::iota(all.begin(), all.end(), 0u);
@@ -108,7 +108,7 @@ Scene awkward_faces(int width, int height) {
 TEST(ZBuffer, EveryKernelMatchesTheReferenceOnAwkwardFaces) {
     for (bool avx2 : {true, false}) {
         for (const auto& [w, h] : {std::pair{100, 80}, std::pair{97, 53}, std::pair{7, 5}}) {
-            ScreenScene s = screen_scene(awkward_faces(w, h));
+            ScreenScene s = face_id_screen(awkward_faces(w, h));
             if (w == 100) {
                 ASSERT_EQ(s.faces.size(), 9u);  // none lost in set-up
             }
@@ -129,7 +129,7 @@ TEST(ZBuffer, EveryKernelMatchesTheReferenceOnAwkwardFaces) {
 
 TEST(ZBuffer, EveryKernelSendsTheSameCommandsAndCounts) {
     for (const auto& [count, area] : {std::pair{3000, 4.0}, std::pair{400, 300.0}}) {
-        ScreenScene s = screen_scene(random_scene(203, 150, count, area, 5));
+        ScreenScene s = face_id_screen(random_scene(203, 150, count, area, 5));
         protocol::MemoryBuffer wide, baseline;
         HostStats wide_stats, baseline_stats;
         ZBuffer a, b;
@@ -153,7 +153,7 @@ std::vector<uint32_t> inside(const std::vector<uint32_t>& ids, int width, const 
 }
 
 TEST(ZBuffer, WindowsAfterWindowsAtTheRightBorderAndOfEveryWidth) {
-    ScreenScene s = screen_scene(random_scene(61, 47, 150, 120, 3));
+    ScreenScene s = face_id_screen(random_scene(61, 47, 150, 120, 3));
     std::vector<uint32_t> all(s.faces.size());
     std::iota(all.begin(), all.end(), 0u);
     ZBuffer zbuffer;  // one for every window, as the hybrid uses it
@@ -178,7 +178,7 @@ TEST(ZBuffer, EqualDepthGoesToTheLowerId) {
                     {"polygon": [[10, 10, 0.5], [28, 10, 0.5], [28, 28, 0.5], [10, 28, 0.5]]},
                     {"polygon": [[0, 0, 0.5], [32, 0, 0.5], [32, 32, 0.5], [0, 32, 0.5]]}]})",
         "tie.json", ".");
-    ScreenScene s = screen_scene(scene);
+    ScreenScene s = face_id_screen(scene);
     ZBuffer zbuffer;
     zbuffer.keep_face_buffer(true);
     protocol::MemoryBuffer buffer;
@@ -200,7 +200,7 @@ TEST(ZBuffer, CountsDepthTestsPixelsAndSpansExactly) {
         "objects": [{"polygon": [[2, 2, 0.5], [10, 2, 0.5], [10, 6, 0.5], [2, 6, 0.5]]},
                     {"polygon": [[6, 4, 0.25], [14, 4, 0.25], [14, 8, 0.25], [6, 8, 0.25]]}]})",
         "count.json", ".");
-    ScreenScene s = screen_scene(scene);
+    ScreenScene s = face_id_screen(scene);
     ZBuffer zbuffer;
     protocol::MemoryBuffer buffer;
     HostStats stats;

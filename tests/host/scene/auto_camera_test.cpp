@@ -43,7 +43,7 @@ void expect_every_vertex_on_screen(const Scene& s, double margin) {
         }
 }
 
-fs::path write(const std::string& name, const std::string& text) {
+fs::path write_scratch(const std::string& name, const std::string& text) {
     const fs::path dir = fb89::testing::scratch_path("auto_camera");
     fs::create_directories(dir);
     std::ofstream(dir / name) << text;
@@ -76,9 +76,9 @@ TEST(AutoCamera, TheBundledIcosahedronLoadsFramedWithEveryVertexOnScreen) {
 }
 
 TEST(AutoCamera, LongFlatAndOffCentreModelsFitTallAndWideImages) {
-    const fs::path rod = write("rod.obj",
-                               "v 100 5 5\nv 140 5 5\nv 140 6 5\nv 100 6 5\nf 1 2 3 4\n"
-                               "v 100 5 -2\nv 100 6 -2\nv 100 6 5\nv 100 5 5\nf 5 6 7 8\n");
+    const fs::path rod = write_scratch("rod.obj",
+                                       "v 100 5 5\nv 140 5 5\nv 140 6 5\nv 100 6 5\nf 1 2 3 4\n"
+                                       "v 100 5 -2\nv 100 6 -2\nv 100 6 5\nv 100 5 5\nf 5 6 7 8\n");
     for (const auto& [w, h] : {std::pair{1024, 780}, std::pair{100, 900}, std::pair{900, 50}}) {
         SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
         Scene s = load_scene(rod);

@@ -28,7 +28,7 @@ fs::path write(const std::string& name, const std::string& text) {
 }
 
 // The error message of loading `text` as `name`, or "" when it loads.
-std::string error_of(const std::string& name, const std::string& text) {
+std::string obj_error_of(const std::string& name, const std::string& text) {
     try {
         load_obj(write(name, text));
     } catch (const SceneError& e) {
@@ -62,33 +62,34 @@ TEST(ObjLoader, BinaryGarbageIsAnErrorNamingTheFileAndTheLineThatIsNotText) {
         x = x * 1664525u + 1013904223u;
         bytes += static_cast<char>(x >> 24);
     }
-    const std::string e = error_of("garbage.obj", bytes);
+    const std::string e = obj_error_of("garbage.obj", bytes);
     expect_has(e, "garbage.obj: line ");
     expect_has(e, "not text (byte 0x");
     // a PNG's signature: line 1 is "\x89PNG\r", line 2 begins with the byte 0x1a
-    const std::string png = error_of("png.obj", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));
+    const std::string png =
+        obj_error_of("png.obj", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16));
     expect_has(png, "png.obj: line 2: not text (byte 0x1a in column 1)");
     expect_has(png, "line 1, '\\x89PNG', is no OBJ statement either");
 }
 
 TEST(ObjLoader, TextWithNoFacesIsAnErrorNamingTheFirstLineThatIsNotObj) {
-    EXPECT_EQ(error_of("readme.obj", "hello world\nthis is not a model\n# a comment\n"),
+    EXPECT_EQ(obj_error_of("readme.obj", "hello world\nthis is not a model\n# a comment\n"),
               write("readme.obj", "").string() +
                   ": no faces (an OBJ model needs at least one \"f\" line; read 0 vertices, 0 "
                   "faces from 3 lines; line 1, 'hello world', is not an OBJ statement)");
-    const std::string json = error_of("scene.obj", "{\"camera\": {}, \"objects\": []}\n");
+    const std::string json = obj_error_of("scene.obj", "{\"camera\": {}, \"objects\": []}\n");
     expect_has(json, "scene.obj: no faces");
     expect_has(json, "line 1, '{\"camera\": {}, \"objects\": []}', is not an OBJ statement");
 }
 
 TEST(ObjLoader, AModelWithNoFacesIsAnError) {
-    expect_has(error_of("empty.obj", ""),
+    expect_has(obj_error_of("empty.obj", ""),
                "empty.obj: no faces (an OBJ model needs at least one \"f\" line; read 0 "
                "vertices, 0 faces from 0 lines: the file is empty)");
-    expect_has(error_of("comments.obj", "# only\n\n# comments\n"),
+    expect_has(obj_error_of("comments.obj", "# only\n\n# comments\n"),
                "comments.obj: no faces (an OBJ model needs at least one \"f\" line; read 0 "
                "vertices, 0 faces from 3 lines)");
-    expect_has(error_of("points.obj", kTriangle + "l 1 2\np 3\n"),
+    expect_has(obj_error_of("points.obj", kTriangle + "l 1 2\np 3\n"),
                "points.obj: no faces (an OBJ model needs at least one \"f\" line; read 3 "
                "vertices, 0 faces from 5 lines; 1 line and 1 point element(s), which fb89 "
                "does not draw)");
@@ -119,7 +120,7 @@ TEST(ObjLoader, EveryBadFaceOrVertexNamesItsLine) {
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.text);
-        expect_has(error_of("bad.obj", c.text), c.says);
+        expect_has(obj_error_of("bad.obj", c.text), c.says);
     }
 }
 

@@ -26,7 +26,7 @@ std::string room_scene(const std::string& camera) {
       ]})";
 }
 
-std::vector<int> coverage_counts(const ScreenScene& s) {
+std::vector<int> pixel_coverage_counts(const ScreenScene& s) {
     std::vector<int> count(static_cast<size_t>(s.width) * s.height, 0);
     for (const auto& f : s.faces) {
         for (int y = f.bounds.y0; y < f.bounds.y1; ++y) {
@@ -44,7 +44,7 @@ void expect_every_pixel_once(const std::string& camera) {
     ScreenScene s = project_scene(parse_scene_json(room_scene(camera), "room.json", "."),
                                   ColorMode::FaceId, counters);
     EXPECT_GT(counters.get("faces_clipped"), 0u) << "the view should cut through faces";
-    std::vector<int> count = coverage_counts(s);
+    std::vector<int> count = pixel_coverage_counts(s);
     size_t wrong = 0;
     for (int v : count)
         wrong += v != 1;

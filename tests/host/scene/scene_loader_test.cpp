@@ -13,15 +13,15 @@
 namespace fb89::host {
 namespace {
 
-const char* kCamera =
+const char* kLoaderCamera =
     R"("camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fovy": 45, "near": 0.1, "far": 100})";
 
-Scene parse(const std::string& body) {
-    return parse_scene_json("{" + std::string(kCamera) + ", " + body + "}", "s.json", ".");
+Scene parse_body(const std::string& body) {
+    return parse_scene_json("{" + std::string(kLoaderCamera) + ", " + body + "}", "s.json", ".");
 }
 
 // The error message of loading `body`, or "" when it loads.
-std::string error_of(const std::string& json) {
+std::string load_error_of(const std::string& json) {
     try {
         parse_scene_json(json, "bad.json", ".");
     } catch (const SceneError& e) {
@@ -32,7 +32,7 @@ std::string error_of(const std::string& json) {
 
 TEST(SceneLoader, ReadsCameraImageLightAndDefaults) {
     Scene s =
-        parse(R"("light": {"direction": [0, -2, 0], "ambient": 0.3}, "background": [0, 0.5, 1],
+        parse_body(R"("light": {"direction": [0, -2, 0], "ambient": 0.3}, "background": [0, 0.5, 1],
                        "objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "material": {"color": [1, 0, 0]}}])");
     EXPECT_EQ(s.width, 1024);
     EXPECT_EQ(s.height, 780);
@@ -46,12 +46,13 @@ TEST(SceneLoader, ReadsCameraImageLightAndDefaults) {
 
 TEST(SceneLoader, AllowsComments) {
     Scene s = parse_scene_json(
-        std::string("// a scene\n{") + kCamera + ", /* none */ \"objects\": []}", "c.json", ".");
+        std::string("// a scene\n{") + kLoaderCamera + ", /* none */ \"objects\": []}", "c.json",
+        ".");
     EXPECT_TRUE(s.faces.empty());
 }
 
 TEST(SceneLoader, NumbersFacesInLoadOrderAndPiecesKeepTheirId) {
-    Scene s = parse(R"("objects": [
+    Scene s = parse_body(R"("objects": [
         {"generator": "box", "min": [0, 0, 0], "max": [1, 1, 1]},
         {"polygon": [[0, 0, 0], [2, 0, 0], [1, 0.2, 0], [2, 2, 0], [0, 2, 0]]}])");
     EXPECT_EQ(s.face_count, 7u);
@@ -66,14 +67,15 @@ TEST(SceneLoader, NumbersFacesInLoadOrderAndPiecesKeepTheirId) {
 }
 
 TEST(SceneLoader, TriangulatesAndReportsNonPlanarPolygons) {
-    Scene s = parse(R"("objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [1, 1, 0.3], [0, 1, 0]]}])");
+    Scene s =
+        parse_body(R"("objects": [{"polygon": [[0, 0, 0], [1, 0, 0], [1, 1, 0.3], [0, 1, 0]]}])");
     EXPECT_EQ(s.triangulated, 1u);
     EXPECT_EQ(s.faces.size(), 2u);
     EXPECT_NE(s.notes.at(0).find("not planar"), std::string::npos);
 }
 
 TEST(SceneLoader, DropsAndReportsZeroAreaFacesLeavingTheirIdsUnused) {
-    Scene s = parse(R"("objects": [{"polygon": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]},
+    Scene s = parse_body(R"("objects": [{"polygon": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]},
                                    {"polygon": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}])");
     EXPECT_EQ(s.dropped, 1u);
     ASSERT_EQ(s.faces.size(), 1u);
@@ -85,7 +87,7 @@ TEST(SceneLoader, DropsAndReportsZeroAreaFacesLeavingTheirIdsUnused) {
 }
 
 TEST(SceneLoader, AppliesScaleThenRotateThenTranslate) {
-    Scene s = parse(R"("objects": [{"polygon": [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
+    Scene s = parse_body(R"("objects": [{"polygon": [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
         "transform": {"scale": 2, "rotate": {"axis": [0, 0, 1], "degrees": 90}, "translate": [10, 0, 0]}}])");
     const auto& v = s.faces.at(0).vertices.at(0);  // (1,0,0) -> (2,0,0) -> (0,2,0) -> (10,2,0)
     EXPECT_NEAR(v.x, 10, 1e-12);
@@ -93,7 +95,7 @@ TEST(SceneLoader, AppliesScaleThenRotateThenTranslate) {
 }
 
 TEST(SceneLoader, MirrorFacesSelectFacesOfAnObject) {
-    Scene s = parse(R"("objects": [{"generator": "box", "min": [0, 0, 0], "max": [1, 1, 1],
+    Scene s = parse_body(R"("objects": [{"generator": "box", "min": [0, 0, 0], "max": [1, 1, 1],
         "material": {"mirror": 0.9, "mirror_faces": [2]}}])");
     for (const auto& f : s.faces)
         EXPECT_DOUBLE_EQ(f.material.mirror, f.id == 2 ? 0.9 : 0.0);
@@ -122,7 +124,7 @@ struct BadCase {
 class SceneLoaderErrors : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(SceneLoaderErrors, NameTheFieldAndWhatWasExpected) {
-    std::string message = error_of(GetParam().json);
+    std::string message = load_error_of(GetParam().json);
     EXPECT_NE(message.find(GetParam().expected), std::string::npos)
         << "message: " << message << "\nexpected to contain: " << GetParam().expected;
     EXPECT_EQ(message.rfind("bad.json", 0), 0u) << "message must start with the file: " << message;
@@ -205,12 +207,13 @@ TEST(SceneLoader, LoadsObjMeshesRelativeToTheSceneFile) {
     std::ofstream(dir / "meshes" / "quad.obj")
         << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 9\n";
     std::ofstream(dir / "ok.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
-    std::ofstream(dir / "scene.json") << "{" << kCamera << R"(, "objects": [{"obj": "ok.obj"}]})";
+    std::ofstream(dir / "scene.json")
+        << "{" << kLoaderCamera << R"(, "objects": [{"obj": "ok.obj"}]})";
     Scene s = load_scene(dir / "scene.json");
     ASSERT_EQ(s.faces.size(), 1u);
     EXPECT_EQ(s.faces[0].vertices.size(), 4u);  // kept whole, not triangulated
     std::ofstream(dir / "bad.json")
-        << "{" << kCamera << R"(, "objects": [{"obj": "meshes/quad.obj"}]})";
+        << "{" << kLoaderCamera << R"(, "objects": [{"obj": "meshes/quad.obj"}]})";
     try {
         load_scene(dir / "bad.json");
         FAIL() << "an OBJ face referring to a missing vertex must be an error";

@@ -20,19 +20,20 @@
 namespace fb89::host {
 namespace {
 
-using Key = std::tuple<double, double, double>;
+using VertexKey = std::tuple<double, double, double>;
 
-Key key_of(const glm::dvec3& v) {
+VertexKey vertex_key(const glm::dvec3& v) {
     return {v.x + 0.0, v.y + 0.0, v.z + 0.0};  // + 0.0 folds -0 into 0
 }
 
 // Directed edges used once with no reverse: the surface's boundary.
-std::vector<std::pair<Key, Key>> boundary_edges(const GeneratedPolygons& faces) {
-    std::map<std::pair<Key, Key>, int> edges;
+std::vector<std::pair<VertexKey, VertexKey>> boundary_edges(const GeneratedPolygons& faces) {
+    std::map<std::pair<VertexKey, VertexKey>, int> edges;
     for (const auto& f : faces)
         for (size_t i = 0; i < f.vertices.size(); ++i)
-            ++edges[{key_of(f.vertices[i]), key_of(f.vertices[(i + 1) % f.vertices.size()])}];
-    std::vector<std::pair<Key, Key>> out;
+            ++edges[{vertex_key(f.vertices[i]),
+                     vertex_key(f.vertices[(i + 1) % f.vertices.size()])}];
+    std::vector<std::pair<VertexKey, VertexKey>> out;
     for (const auto& [edge, uses] : edges) {
         EXPECT_EQ(uses, 1) << "an edge used twice the same way: faces wound inconsistently";
         if (!edges.contains({edge.second, edge.first})) out.push_back(edge);
@@ -97,12 +98,12 @@ TEST(Shell, ApexCapFacesBackAndCellsFaceOutOfTheTube) {
 TEST(Shell, IsOneWoundSurfaceOpenOnlyAtTheAperture) {
     ShellOptions o = small_shell();
     GeneratedPolygons faces = generate_shell(o);
-    std::vector<std::pair<Key, Key>> open = boundary_edges(faces);
+    std::vector<std::pair<VertexKey, VertexKey>> open = boundary_edges(faces);
     EXPECT_EQ(open.size(), static_cast<size_t>(o.sides));
     // the aperture: vertex d of each last cell's second triangle (a, c, d)
-    std::set<Key> aperture;
+    std::set<VertexKey> aperture;
     for (size_t k = faces.size() - 2 * static_cast<size_t>(o.sides); k < faces.size(); k += 2)
-        aperture.insert(key_of(faces[k + 1].vertices[2]));
+        aperture.insert(vertex_key(faces[k + 1].vertices[2]));
     EXPECT_EQ(aperture.size(), static_cast<size_t>(o.sides));
     for (const auto& [a, b] : open) {
         EXPECT_TRUE(aperture.contains(a));
@@ -147,17 +148,17 @@ TEST(Shell, SameParametersGiveTheSameFaces) {
         EXPECT_EQ(a[k].vertices, b[k].vertices) << "face " << k;
 }
 
-const char* kCamera =
+const char* kShellCamera =
     R"("camera": {"eye": [0, 3, 9], "look_at": [0, 0, 0], "fovy": 45, "near": 0.1, "far": 100})";
 
-Scene parse(const std::string& objects) {
-    return parse_scene_json("{" + std::string(kCamera) + R"(, "objects": [)" + objects + "]}",
+Scene parse_shell(const std::string& objects) {
+    return parse_scene_json("{" + std::string(kShellCamera) + R"(, "objects": [)" + objects + "]}",
                             "shell.json", ".");
 }
 
-std::string error_of(const std::string& objects) {
+std::string shell_error_of(const std::string& objects) {
     try {
-        parse(objects);
+        parse_shell(objects);
     } catch (const SceneError& e) {
         return e.what();
     }
@@ -165,7 +166,7 @@ std::string error_of(const std::string& objects) {
 }
 
 TEST(ShellJson, LoadsAsPlanarConvexFacesWithNothingTriangulatedOrDropped) {
-    Scene s = parse(R"({"generator": "shell", "turns": 5, "segments_per_turn": 20, "sides": 9,
+    Scene s = parse_shell(R"({"generator": "shell", "turns": 5, "segments_per_turn": 20, "sides": 9,
                         "growth": 1.8, "size": 0.3, "tube": 0.45, "translation": 2,
                         "aspect": 1.3, "material": {"color": [0.9, 0.7, 0.5]},
                         "transform": {"rotate": {"axis": [1, 0, 0], "degrees": 80}}},
@@ -184,7 +185,7 @@ struct BadShell {
 class ShellJsonErrors : public ::testing::TestWithParam<BadShell> {};
 
 TEST_P(ShellJsonErrors, NameTheFieldAndWhatWasExpected) {
-    std::string message = error_of(GetParam().object);
+    std::string message = shell_error_of(GetParam().object);
     EXPECT_NE(message.find(GetParam().expected), std::string::npos)
         << "message: " << message << "\nexpected to contain: " << GetParam().expected;
 }

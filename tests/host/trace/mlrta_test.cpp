@@ -29,7 +29,7 @@ double uniform(uint64_t& state) {
 }
 
 // `count` random triangles of size about `size` in the cube [-2, 2]^3, seen from (0, 0, 5).
-Scene random_triangles(int width, int height, int count, double size, uint64_t seed) {
+Scene random_screen_triangles(int width, int height, int count, double size, uint64_t seed) {
     Scene s = world_scene(width, height);
     for (int i = 0; i < count; ++i) {
         const glm::dvec3 c(uniform(seed) * 4 - 2, uniform(seed) * 4 - 2, uniform(seed) * 4 - 2);
@@ -43,7 +43,7 @@ Scene random_triangles(int width, int height, int count, double size, uint64_t s
 }
 
 TEST(KdTree, ClosestHitEqualsEveryPieceTriedInTurn) {
-    const Scene s = random_triangles(8, 8, 400, 0.8, 1989);
+    const Scene s = random_screen_triangles(8, 8, 400, 0.8, 1989);
     TraceScene trace(s, true, 0);
     RayTracer tracer(trace, nullptr, Accel::Kd);
     EXPECT_GT(tracer.kd_tree().depth(), 4);
@@ -153,7 +153,7 @@ TEST(Mlrta, AnEmptySceneIsDecidedByBeamsWithoutARay) {
 // smallest size, and the walk's extra work (the beams' nodes and the rays' restarts from
 // cells put off) stays within a bound of the kd-tree walked ray by ray from its root.
 TEST(Mlrta, OnIncoherentRaysItsLossIsBoundedAndItsFrameExact) {
-    const Scene s = random_triangles(128, 128, 3000, 0.15, 42);
+    const Scene s = random_screen_triangles(128, 128, 3000, 0.15, 42);
     expect_the_ray_tracers_frame(s, "incoherent");
     const auto kd = render_trace(s, trace_options("raytrace"));
     MethodOptions root_walk = trace_options("raytrace");
