@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
-#include <sys/stat.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -29,10 +29,10 @@
 #include "tests/special_files.h"
 
 namespace fs = std::filesystem;
-using fb89::protocol::OutputFile;
-using fb89::protocol::OutputBatch;
-using fb89::protocol::OutputKind;
 using fb89::protocol::output_kind;
+using fb89::protocol::OutputBatch;
+using fb89::protocol::OutputFile;
+using fb89::protocol::OutputKind;
 using fb89::protocol::Publish;
 using fb89::protocol::write_output;
 using fb89::testing::identity_of;
@@ -91,10 +91,10 @@ TEST(OutputFile, AWriterThatThrowsLeavesTheOldFileByteIdentical) {
     const fs::path dir = folder(), out = dir / "out.txt";
     put(out, kOldFile);
     EXPECT_THROW(write_output(out,
-                                       [](std::FILE* f) {
-                                           std::fputs("half of a new file", f);
-                                           throw std::runtime_error("the writer gave up");
-                                       }),
+                              [](std::FILE* f) {
+                                  std::fputs("half of a new file", f);
+                                  throw std::runtime_error("the writer gave up");
+                              }),
                  std::runtime_error);
     EXPECT_EQ(slurp(out), kOldFile);
     EXPECT_TRUE(others(dir, "out.txt").empty());
