@@ -34,6 +34,14 @@ struct KdTree::Build {
     int max_depth = 0;
     std::vector<double> los, his;           // scratch for one axis
     std::vector<glm::dvec3> poly, clipped;  // scratch for one piece
+    // The two children's pieces and their boxes, one set for each depth, kept from node to
+    // node: a node fills its depth's, and the child reads them as its own, so the build
+    // allocates only while a depth's lists grow (not four lists for every node).
+    struct Halves {
+        std::vector<uint32_t> left, right;
+        std::vector<Box> left_boxes, right_boxes;
+    };
+    std::vector<Halves> halves;  // max_depth + 1 of them, never resized during the build
 
     // The box of the part of piece p inside `cell` grown by the tolerance, itself grown by
     // the tolerance; false when no part is inside. (Havran's "perfect splits": the pieces
@@ -77,8 +85,8 @@ struct KdTree::Build {
 
     // A leaf or an inner node for `items` (with their boxes inside it, clip_box's) inside
     // `box`, at `index` (already in nodes); `bad`: splits taken in a row that cost more.
-    void node(uint32_t index, std::vector<uint32_t>& items, std::vector<Box>& boxes, const Box& box,
-              int depth, int bad) {
+    void node(uint32_t index, const std::vector<uint32_t>& items, const std::vector<Box>& boxes,
+              const Box& box, int depth, int bad) {
         tree.m_depth = std::max(tree.m_depth, depth);
         const double n = static_cast<double>(items.size());
         const double leaf_cost = kTestCost * n;
@@ -143,35 +151,36 @@ struct KdTree::Build {
         Box lb = box, rb = box;
         lb.hi[best_axis] = best_split;
         rb.lo[best_axis] = best_split;
-        std::vector<uint32_t> left, right;
-        std::vector<Box> left_boxes, right_boxes;
+        Halves& h = halves[static_cast<size_t>(depth)];
+        h.left.clear();
+        h.right.clear();
+        h.left_boxes.clear();
+        h.right_boxes.clear();
         Box clipped_box;
         for (size_t k = 0; k < items.size(); ++k) {
             if (boxes[k].lo[best_axis] < best_split && clip_box(items[k], lb, clipped_box)) {
-                left.push_back(items[k]);
-                left_boxes.push_back(clipped_box);
+                h.left.push_back(items[k]);
+                h.left_boxes.push_back(clipped_box);
             }
             if (boxes[k].hi[best_axis] > best_split && clip_box(items[k], rb, clipped_box)) {
-                right.push_back(items[k]);
-                right_boxes.push_back(clipped_box);
+                h.right.push_back(items[k]);
+                h.right_boxes.push_back(clipped_box);
             }
         }
-        items = {};
-        boxes = {};
         const uint32_t lower_index = static_cast<uint32_t>(tree.m_nodes.size());
         tree.m_nodes.emplace_back();
-        node(lower_index, left, left_boxes, lb, depth + 1, bad);
+        node(lower_index, h.left, h.left_boxes, lb, depth + 1, bad);
         const uint32_t upper_index = static_cast<uint32_t>(tree.m_nodes.size());
         tree.m_nodes[index].index = upper_index;  // `here` may have moved
         tree.m_nodes.emplace_back();
-        node(upper_index, right, right_boxes, rb, depth + 1, bad);
+        node(upper_index, h.right, h.right_boxes, rb, depth + 1, bad);
     }
 };
 
 KdTree::KdTree(const TraceScene& scene) {
     const PieceBox all = box_around_pieces(scene);
     m_bounds = {all.lo, all.hi};
-    Build build{*this, scene, scene.tolerance(), 0, {}, {}, {}, {}};
+    Build build{*this, scene, scene.tolerance(), 0, {}, {}, {}, {}, {}};
     std::vector<uint32_t> items;
     std::vector<Box> boxes;
     for (uint32_t p = 0; p < scene.faces().size(); ++p) {
@@ -181,6 +190,7 @@ KdTree::KdTree(const TraceScene& scene) {
     }
     const double n = static_cast<double>(std::max<size_t>(items.size(), 1));
     build.max_depth = std::min(kMaxDepth, static_cast<int>(12 + 1.3 * std::log2(n)));
+    build.halves.resize(static_cast<size_t>(build.max_depth) + 1);
     m_nodes.emplace_back();
     build.node(0, items, boxes, m_bounds, 0, 0);
 }
