@@ -38,10 +38,7 @@ add_subdirectory(protocol)
 add_subdirectory(host)
 add_subdirectory(period/guest)
 add_subdirectory(period/kernels)
-# Build time (every guest is built by each build tree, with a cross compiler slower than the
-# native one): fmt (header-only here, its implementation in every file), JSON and the most
-# used standard headers precompiled once for each library.
-foreach(target fb89_protocol fb89_host fb89_guest)
-  target_precompile_headers(${target} PRIVATE <fmt/format.h> <nlohmann/json.hpp> <string>
-                            <vector> <map> <algorithm> <memory>)
-endforeach()
+# No precompiled header: most of the host library's files read neither fmt nor JSON, and a
+# header of both (fmt header-only here) cost each of them more to load than it saved the
+# others (m68k: 245 CPU-seconds with one for each library, 190 without; sparc 284 -> 217,
+# x86 277 -> 230; docs/BENCHMARKS.md, "Build and test time").
