@@ -14,18 +14,20 @@
 
 namespace fb89::fuzz {
 
-// /tmp/fb89-fuzz-<pid>/, created on first use and removed when the process exits.
+// /tmp/fb89-fuzz-<pid>/, created on first use and removed when the process exits. The
+// removal is registered once the path is made, so it runs before the path is destroyed
+// (exit runs handlers and static destructors in the reverse order of their registration).
 inline const std::filesystem::path& scratch_dir() {
     static const std::filesystem::path dir = [] {
         std::filesystem::path d =
             std::filesystem::temp_directory_path() / ("fb89-fuzz-" + std::to_string(::getpid()));
         std::filesystem::create_directories(d);
-        std::atexit([] {
-            std::error_code ec;
-            std::filesystem::remove_all(scratch_dir(), ec);
-        });
         return d;
     }();
+    [[maybe_unused]] static const int removed_at_exit = std::atexit([] {
+        std::error_code ec;
+        std::filesystem::remove_all(dir, ec);
+    });
     return dir;
 }
 
