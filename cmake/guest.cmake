@@ -2,7 +2,7 @@
 # of period/guest, cross-compiled for one period host's instruction set
 # (period/<isa>/toolchain.cmake, FB89_GUEST_ISA naming the folder).
 # Nothing of SDL, libpng or the controller. The header-only libraries come from the same
-# Debian packages as the native build's (glm, nlohmann-json, fmt in header-only mode, CLI11,
+# Debian packages as the native build's (glm, nlohmann-json, fmt, CLI11,
 # tinyobjloader's single header), staged in a folder of their own so that the cross
 # compiler sees them and nothing else of the native /usr/include.
 set(FB89_GUEST_STAGE ${CMAKE_BINARY_DIR}/guest-include)
@@ -21,7 +21,10 @@ function(fb89_guest_header_library name)
 endfunction()
 fb89_guest_header_library(glm::glm)
 fb89_guest_header_library(nlohmann_json::nlohmann_json)
-fb89_guest_header_library(fmt::fmt FMT_HEADER_ONLY)
+# fmt compiled once (period/guest/fmt_compiled.cpp), not header-only in every file
+add_library(fb89_guest_fmt STATIC ${PROJECT_SOURCE_DIR}/period/guest/fmt_compiled.cpp)
+target_include_directories(fb89_guest_fmt SYSTEM PUBLIC ${FB89_GUEST_STAGE})
+add_library(fmt::fmt ALIAS fb89_guest_fmt)
 fb89_guest_header_library(CLI11::CLI11)
 # as the native package builds it (its CMake config exports the definition)
 fb89_guest_header_library(tinyobjloader::tinyobjloader TINYOBJLOADER_USE_DOUBLE)
@@ -38,7 +41,14 @@ add_subdirectory(protocol)
 add_subdirectory(host)
 add_subdirectory(period/guest)
 add_subdirectory(period/kernels)
-# No precompiled header: most of the host library's files read neither fmt nor JSON, and a
-# header of both (fmt header-only here) cost each of them more to load than it saved the
-# others (m68k: 245 CPU-seconds with one for each library, 190 without; sparc 284 -> 217,
-# x86 277 -> 230; docs/BENCHMARKS.md, "Build and test time").
+# Build time (every guest is built by each build tree, file by file, with a cross compiler
+# slower than the native one): the standard and GLM headers most of the host library's files
+# read, precompiled once for each library. Not fmt (compiled once, above) nor JSON, which few
+# files read: in a precompiled header they cost every other file more to load than they
+# saved. CPU-seconds of the m68k guest's build with -j2: 245 with fmt header-only and a
+# header of fmt, JSON and the standard library; 190 with none; 155 as here
+# (docs/BENCHMARKS.md, "Build and test time").
+foreach(target fb89_protocol fb89_host)
+  target_precompile_headers(${target} PRIVATE <vector> <algorithm> <cstdint> <cmath> <string>
+                            <array> <stdexcept> <optional> <glm/geometric.hpp> <glm/vec3.hpp>)
+endforeach()
