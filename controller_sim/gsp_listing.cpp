@@ -4,6 +4,8 @@
 // form of its operands from the data sheet's tables; a form the tables do not give is an
 // error, so nothing is priced by a default. Each path is then walked with the write queue.
 #include "controller_sim/gsp_listing.h"
+
+#include "controller_sim/gsp_assembler.h"
 #include "controller_sim/gsp_listing_text.h"
 
 #include <algorithm>
@@ -631,21 +633,36 @@ std::string annotated_listing(const Listing& listing, const MemoryTiming& memory
         "I/O {})\n",
         listing.name, memory.chip == Chip::Tms34020 ? "TMS34020" : "TMS34010", memory.cycle_states,
         memory.io_cycle_states);
-    std::string_view text = listing.text;
-    int number = 0;
-    while (!text.empty()) {
-        const std::size_t eol = text.find('\n');
-        const std::string_view line = text.substr(0, eol);
-        text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
-        ++number;
-        auto it = priced.find(number);
-        out += it == priced.end() ? fmt::format("{:>4}  {}\n", "", line)
-                                  : fmt::format("{:>4}  {}\n", it->second->cycles, line);
+    // each line with its address and words as TI's assembler writes them (gsp_assembler.h)
+    const gsp::Program program = gsp::assemble(std::string(listing.name) + ".asm", listing.text);
+    uint32_t code_words = 0, data_words = 0;
+    for (const gsp::AssembledLine& l : program.lines) {
+        (l.code ? code_words : data_words) += static_cast<uint32_t>(l.words.size());
+        auto it = priced.find(l.line);
+        const std::string cycles = it == priced.end() ? "" : std::to_string(it->second->cycles);
+        std::string words;
+        for (std::size_t i = 0; i < std::min<std::size_t>(l.words.size(), 3); ++i)
+            words += fmt::format("{:04X} ", l.words[i]);
+        out += l.words.empty()
+                   ? fmt::format("{:>4}  {:8} {:15} {}\n", cycles, "", "", l.text)
+                   : fmt::format("{:>4}  {:08X} {:15} {}\n", cycles, l.address, words, l.text);
+        for (std::size_t i = 3; i < l.words.size(); i += 3) {
+            words.clear();
+            for (std::size_t j = i; j < std::min(l.words.size(), i + 3); ++j)
+                words += fmt::format("{:04X} ", l.words[j]);
+            out += fmt::format("{:>4}  {:08X} {}\n", "", l.address + 16 * i, words);
+        }
     }
     for (const auto& [name, path] : paths)
         out += fmt::format(
             "; {:<15} {:>4} cycles{}\n", name, path.cycles,
             path.graphics.empty() ? "" : fmt::format(" with {}'s own set-up", path.graphics));
+    out += fmt::format(
+        "; {}.asm: {} bytes of instructions and {} of data, {} in all; the instruction cache "
+        "holds {} bytes, so the executive {} it\n",
+        listing.name, 2 * code_words, 2 * data_words, 2 * (code_words + data_words),
+        kInstructionCacheBytes,
+        2 * code_words <= kInstructionCacheBytes ? "fits in" : "does not fit");
     return out;
 }
 

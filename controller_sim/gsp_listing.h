@@ -77,6 +77,9 @@ const Listing& builtin_listing(std::string_view name);
 std::map<std::string, CountedPath> count_paths(const Listing& listing, const MemoryTiming& memory,
                                                TimingEnd end = TimingEnd::Estimate);
 
+// The TMS34010's instruction cache (SPVS002C p. 2): 256 bytes, four segments of 64.
+inline constexpr uint32_t kInstructionCacheBytes = 256;
+
 // The listing's length in 16-bit words, instructions only (what the 256-byte instruction
 // cache must hold for the minimum cycles to apply, SPVS002C p. 2).
 uint32_t listing_words(const Listing& listing);

@@ -257,9 +257,20 @@ TEST(GspListing, EachCommandsRepeatedWorkFitsTheInstructionCache) {
 
 TEST(GspListing, TheAnnotatedListingMarksEachCountedInstruction) {
     const std::string text = annotated_listing(tms34010_listing(), MemoryTiming{2, 2});
-    EXPECT_NE(text.find("   3  fetch:    MOVE   *A0+,A5,0"), std::string::npos) << text;
+    // the line holding `what`: its cycles, address and words (gsp_assembler.h) before it
+    auto line_with = [&](std::string_view what) {
+        const std::size_t at = text.find(what);
+        if (at == std::string::npos) return std::string("(none)");
+        const std::size_t begin = text.rfind('\n', at) + 1;
+        return text.substr(begin, text.find('\n', at) - begin);
+    };
+    EXPECT_EQ(line_with("fetch:    MOVE   *A0+,A5,0").rfind("   3  00000090 9405 ", 0), 0u) << text;
     EXPECT_NE(text.find("COMMON            18 cycles"), std::string::npos) << text;
-    EXPECT_NE(text.find("      table:"), std::string::npos);  // data: no cycles
+    // data: words, no cycles
+    EXPECT_EQ(line_with("table:").rfind("      00001E20 0000 0000 00E0 ", 0), 0u) << text;
+    EXPECT_NE(text.find("the instruction cache holds 256 bytes, so the executive does not fit"),
+              std::string::npos)
+        << text;
 }
 
 TEST(GspListing, RefusesWhatItCannotPriceNamingTheLine) {
