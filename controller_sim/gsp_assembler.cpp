@@ -8,6 +8,9 @@
 // field size in bit 9; checked word for word against GSPA 2.00 (tests/golden/gsp/).
 #include "controller_sim/gsp_assembler.h"
 
+#include "controller_sim/gsp_listing_text.h"
+#include "controller_sim/gsp_opcodes.h"
+
 #include <algorithm>
 #include <cctype>
 #include <optional>
@@ -21,20 +24,8 @@ AssemblyError::AssemblyError(const std::string& file, int line, const std::strin
 
 namespace {
 
-std::string upper_of(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    return out;
-}
-
-std::string_view trimmed(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
-        s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
-        s.remove_suffix(1);
-    return s;
-}
+using listing_text::trim;
+using listing_text::upper;
 
 struct Reg {
     int file = 0;  // 0: A, 1: B
@@ -42,20 +33,11 @@ struct Reg {
     bool sp = false;
 };
 
-// The B file's names as TI's sources .set them.
-constexpr std::string_view kBNames[] = {"SADDR",  "SPTCH", "DADDR", "DPTCH",  "OFFSET",
-                                        "WSTART", "WEND",  "DYDX",  "COLOR0", "COLOR1",
-                                        "COUNT",  "INC1",  "INC2",  "PATTRN"};
-
-// JRcc's condition codes (bits 11-8), with their other names.
+// JRcc's condition code for the mnemonic's tail, or -1.
 int condition_code(std::string_view cc) {
-    static const std::map<std::string, int, std::less<>> codes = {
-        {"UC", 0x0}, {"", 0x0},   {"P", 0x1},  {"LS", 0x2}, {"HI", 0x3}, {"LT", 0x4}, {"GE", 0x5},
-        {"LE", 0x6}, {"GT", 0x7}, {"C", 0x8},  {"LO", 0x8}, {"B", 0x8},  {"NC", 0x9}, {"HS", 0x9},
-        {"NB", 0x9}, {"EQ", 0xA}, {"Z", 0xA},  {"NE", 0xB}, {"NZ", 0xB}, {"V", 0xC},  {"NV", 0xD},
-        {"N", 0xE},  {"MI", 0xE}, {"NN", 0xF}, {"PL", 0xF}};
-    const auto it = codes.find(cc);
-    return it == codes.end() ? -1 : it->second;
+    for (const Condition& c : kConditionCodes)
+        if (c.name == cc) return c.code;
+    return -1;
 }
 
 // An operand's form.
@@ -136,11 +118,11 @@ class Assembler {
     [[noreturn]] void fail(const std::string& what) const { fail(m_line, what); }
 
     std::optional<Reg> reg_named(std::string_view s) const {
-        const std::string u = upper_of(trimmed(s));
+        const std::string u = upper(trim(s));
         if (u == "SP") return Reg{0, 15, true};
         if (const auto it = m_registers.find(u); it != m_registers.end()) return it->second;
-        for (size_t i = 0; i < std::size(kBNames); ++i)
-            if (u == kBNames[i]) return Reg{1, static_cast<int>(i), false};
+        for (size_t i = 0; i < std::size(listing_text::kBFileNames); ++i)
+            if (u == listing_text::kBFileNames[i]) return Reg{1, static_cast<int>(i), false};
         if (u.size() < 2 || u.size() > 3 || (u[0] != 'A' && u[0] != 'B')) return std::nullopt;
         if (!std::all_of(u.begin() + 1, u.end(), [](char c) { return std::isdigit(c) != 0; }))
             return std::nullopt;
@@ -177,12 +159,12 @@ class Assembler {
                 line.label = label;
                 code = code.substr(end);
             }
-            code = trimmed(code);
+            code = trim(code);
             size_t end = 0;
             while (end < code.size() && !std::isspace(static_cast<unsigned char>(code[end])))
                 ++end;
-            line.mnemonic = upper_of(code.substr(0, end));
-            std::string_view ops = trimmed(code.substr(end));
+            line.mnemonic = upper(code.substr(0, end));
+            std::string_view ops = trim(code.substr(end));
             while (!ops.empty()) {
                 size_t comma = 0;  // the first comma outside an XY pair's brackets
                 for (int depth = 0; comma < ops.size(); ++comma) {
@@ -191,10 +173,10 @@ class Assembler {
                     if (ops[comma] == ',' && depth == 0) break;
                 }
                 if (comma == ops.size()) comma = std::string_view::npos;
-                line.operands.emplace_back(trimmed(ops.substr(0, comma)));
+                line.operands.emplace_back(trim(ops.substr(0, comma)));
                 if (line.operands.back().empty()) fail("an empty operand");
                 ops = comma == std::string_view::npos ? std::string_view{} : ops.substr(comma + 1);
-                if (comma != std::string_view::npos && trimmed(ops).empty())
+                if (comma != std::string_view::npos && trim(ops).empty())
                     fail("an operand missing after ','");
             }
             if (line.mnemonic == ".EQU" || line.mnemonic == ".SET") {
@@ -202,10 +184,10 @@ class Assembler {
                 if (line.operands.size() != 1) fail(line.mnemonic + " takes one value");
                 const std::string& name = line.label;
                 if (line.mnemonic == ".EQU" &&
-                    (m_symbols.count(name) || m_registers.count(upper_of(name))))
+                    (m_symbols.count(name) || m_registers.count(upper(name))))
                     fail(line.label + " defined twice");
                 if (const auto r = reg_named(line.operands[0])) {
-                    m_registers[upper_of(name)] = *r;
+                    m_registers[upper(name)] = *r;
                 } else {
                     m_symbols[name] = evaluate(line.operands[0], false);
                 }
@@ -277,7 +259,7 @@ class Assembler {
 
     // Terms joined by + and -, each a number, a symbol, a label or a '-'d term.
     Value evaluate(std::string_view expr, bool labels_known) const {
-        expr = trimmed(expr);
+        expr = trim(expr);
         if (expr.empty()) fail("a value is missing");
         if (expr.starts_with("[")) {  // an XY pair, [y,x]: y in the high half
             const size_t comma = expr.find(',');
@@ -339,7 +321,7 @@ class Assembler {
     }
 
     Operand operand(std::string_view s) const {
-        s = trimmed(s);
+        s = trim(s);
         Operand o;
         if (s.starts_with("@")) {
             o.mode = Mode::Absolute;
@@ -360,7 +342,7 @@ class Assembler {
                 o.mode = Mode::Displaced;
                 o.expr = std::string(r.substr(open + 1, r.size() - open - 2));
                 r = r.substr(0, open);
-            } else if (!pre && upper_of(r).ends_with(".XY")) {
+            } else if (!pre && upper(r).ends_with(".XY")) {
                 o.mode = Mode::IndirectXY;
                 r.remove_suffix(3);
             }
@@ -610,32 +592,14 @@ class Assembler {
         if (m == ".LONG") return data(true);
         if (m == ".EVEN") return {};
 
-        // register to register
-        static const std::map<std::string, uint16_t, std::less<>> rr_ops = {
-            {"ADD", 0x4000},   {"ADDC", 0x4200},  {"SUB", 0x4400},   {"SUBB", 0x4600},
-            {"CMP", 0x4800},   {"AND", 0x5000},   {"ANDN", 0x5200},  {"OR", 0x5400},
-            {"XOR", 0x5600},   {"DIVS", 0x5800},  {"DIVU", 0x5A00},  {"MPYS", 0x5C00},
-            {"MPYU", 0x5E00},  {"LMO", 0x6A00},   {"MODS", 0x6C00},  {"MODU", 0x6E00},
-            {"ADDXY", 0xE000}, {"SUBXY", 0xE200}, {"CMPXY", 0xE400}, {"CPW", 0xE600},
-            {"CVXYL", 0xE800}, {"MOVX", 0xEC00},  {"MOVY", 0xEE00},  {"DRAV", 0xF600}};
-        if (const auto it = rr_ops.find(m); it != rr_ops.end()) return {two_regs(it->second)};
-        // one register
-        static const std::map<std::string, uint16_t, std::less<>> r_ops = {
-            {"REV", 0x0020},   {"EXGPC", 0x0120}, {"GETPC", 0x0140}, {"JUMP", 0x0160},
-            {"GETST", 0x0180}, {"PUTST", 0x01A0}, {"ABS", 0x0380},   {"NEG", 0x03A0},
-            {"NEGB", 0x03C0},  {"NOT", 0x03E0},   {"CALL", 0x0920}};
-        if (const auto it = r_ops.find(m); it != r_ops.end()) {
+        if (const Opcode* o = row_named<Opcode>(kRegisterPairOps, m)) return {two_regs(o->word)};
+        if (const Opcode* o = row_named<Opcode>(kOneRegisterOps, m)) {
             want(1);
-            return {one(it->second, reg(0))};
+            return {one(o->word, reg(0))};
         }
-        // no operand
-        static const std::map<std::string, uint16_t, std::less<>> plain = {
-            {"NOP", 0x0300},   {"CLRC", 0x0320},   {"SETC", 0x0DE0},
-            {"DINT", 0x0360},  {"EINT", 0x0D60},   {"EMU", 0x0100},
-            {"POPST", 0x01C0}, {"PUSHST", 0x01E0}, {"RETI", 0x0940}};
-        if (const auto it = plain.find(m); it != plain.end()) {
+        if (const Opcode* o = row_named<Opcode>(kPlainOps, m)) {
             want(0);
-            return {it->second};
+            return {o->word};
         }
         // constant and register
         if (m == "ADDK" || m == "SUBK" || m == "MOVK") {
@@ -681,33 +645,9 @@ class Assembler {
                 static_cast<uint16_t>(one(0x1C00, reg(1)) | ((~constant_0_31(s.expr) & 31) << 5))};
         }
         if (m == "MOVE") return move();
-        if (m == "MOVI") {
+        if (const ImmediateOpcode* o = row_named<ImmediateOpcode>(kImmediateOps, m)) {
             want(2);
-            return immediate(0x09C0, 0x09E0, false, reg(1));
-        }
-        if (m == "ADDI") {
-            want(2);
-            return immediate(0x0B00, 0x0B20, false, reg(1));
-        }
-        if (m == "CMPI") {
-            want(2);
-            return immediate(0x0B40, 0x0B60, true, reg(1));
-        }
-        if (m == "SUBI") {
-            want(2);
-            return immediate(0x0BE0, 0x0D00, true, reg(1));
-        }
-        if (m == "ANDI") {
-            want(2);
-            return immediate(0, 0x0B80, true, reg(1));
-        }
-        if (m == "ORI") {
-            want(2);
-            return immediate(0, 0x0BA0, false, reg(1));
-        }
-        if (m == "XORI") {
-            want(2);
-            return immediate(0, 0x0BC0, false, reg(1));
+            return immediate(o->short_form, o->long_form, o->complement, reg(1));
         }
         if (m.starts_with("JR")) {
             const int cc = condition_code(std::string_view(m).substr(2));
@@ -776,7 +716,7 @@ class Assembler {
         }
         if (m == "FILL") {
             want(1);
-            const std::string how = upper_of(m_at->operands[0]);
+            const std::string how = upper(m_at->operands[0]);
             if (how == "L") return {0x0FC0};
             if (how == "XY") return {0x0FE0};
             fail("FILL takes L or XY");
@@ -789,7 +729,7 @@ class Assembler {
         }
         if (m == "PIXBLT") {
             want(2);
-            const std::string from = upper_of(m_at->operands[0]), to = upper_of(m_at->operands[1]);
+            const std::string from = upper(m_at->operands[0]), to = upper(m_at->operands[1]);
             static const std::map<std::string, uint16_t> forms = {
                 {"L,L", 0x0F00},   {"L,XY", 0x0F20}, {"XY,L", 0x0F40},
                 {"XY,XY", 0x0F60}, {"B,L", 0x0F80},  {"B,XY", 0x0FA0}};
@@ -816,6 +756,13 @@ Program assemble(std::string_view file, std::string_view source) {
     return Assembler(file, source).run();
 }
 
+std::string hex_words(std::span<const uint16_t> words) {
+    std::string out;
+    for (uint16_t w : words)
+        out += fmt::format("{:04X} ", w);
+    return out;
+}
+
 std::string listing(const Program& program) {
     std::string out;
     for (const AssembledLine& l : program.lines) {
@@ -823,10 +770,10 @@ std::string listing(const Program& program) {
             out += fmt::format("{:5}                    {}\n", l.line, l.text);
             continue;
         }
-        for (size_t i = 0; i < l.words.size(); i += 3) {
-            std::string ws;
-            for (size_t j = i; j < std::min(l.words.size(), i + 3); ++j)
-                ws += fmt::format("{:04X} ", l.words[j]);
+        const std::span<const uint16_t> words(l.words);
+        for (size_t i = 0; i < words.size(); i += 3) {
+            const std::string ws =
+                hex_words(words.subspan(i, std::min<size_t>(3, words.size() - i)));
             if (i == 0)
                 out += fmt::format("{:5} {:08X} {:15}{}\n", l.line, l.address, ws, l.text);
             else
