@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -52,6 +53,9 @@ struct Program {
 // an operand the instruction does not take, an undefined or twice-defined name, a jump out
 // of reach, or registers of both files where the chip takes one.
 Program assemble(std::string_view file, std::string_view source);
+
+// Words as GSPA lists them: four hexadecimal digits and a space each.
+std::string hex_words(std::span<const uint16_t> words);
 
 // The program as GSPA lists it: each line's number, address and words (32-bit data as two
 // words, low first) beside its text; lines with more words than fit go on.

@@ -640,18 +640,15 @@ std::string annotated_listing(const Listing& listing, const MemoryTiming& memory
         (l.code ? code_words : data_words) += static_cast<uint32_t>(l.words.size());
         auto it = priced.find(l.line);
         const std::string cycles = it == priced.end() ? "" : std::to_string(it->second->cycles);
-        std::string words;
-        for (std::size_t i = 0; i < std::min<std::size_t>(l.words.size(), 3); ++i)
-            words += fmt::format("{:04X} ", l.words[i]);
+        const std::span<const uint16_t> all(l.words);
+        const std::string words = gsp::hex_words(all.first(std::min<std::size_t>(all.size(), 3)));
         out += l.words.empty()
                    ? fmt::format("{:>4}  {:8} {:15} {}\n", cycles, "", "", l.text)
                    : fmt::format("{:>4}  {:08X} {:15} {}\n", cycles, l.address, words, l.text);
-        for (std::size_t i = 3; i < l.words.size(); i += 3) {
-            words.clear();
-            for (std::size_t j = i; j < std::min(l.words.size(), i + 3); ++j)
-                words += fmt::format("{:04X} ", l.words[j]);
-            out += fmt::format("{:>4}  {:08X} {}\n", "", l.address + 16 * i, words);
-        }
+        for (std::size_t i = 3; i < all.size(); i += 3)
+            out += fmt::format(
+                "{:>4}  {:08X} {}\n", "", l.address + 16 * i,
+                gsp::hex_words(all.subspan(i, std::min<std::size_t>(3, all.size() - i))));
     }
     for (const auto& [name, path] : paths)
         out += fmt::format(
