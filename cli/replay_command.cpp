@@ -34,6 +34,7 @@
 #include "controller_sim/controller.h"
 #include "controller_sim/png_io.h"
 #include "controller_sim/timed_pipeline.h"
+#include "frontend/gsp_replay.h"
 #include "frontend/pipelines.h"
 #include "frontend/stream_tools.h"
 #include "protocol/output_file.h"
@@ -49,6 +50,11 @@ struct ReplayArgs {
     bool benchmark = false;
     bool salvage = false;
     bool quiet = false;
+    // --gsp: through the emulated GSP executing the executive (or --listing's)
+    bool gsp = false;
+    std::string listing;
+    std::optional<uint64_t> gsp_trace;
+    bool gsp_warm = false;
 };
 
 struct ReplayRun {
@@ -161,7 +167,66 @@ nlohmann::json stats_json(const ReplayArgs& args, const protocol::StreamReader& 
     return j;
 }
 
+// --gsp: the stream through the emulated GSP beside the controller; the GSP's last frame
+// is --png's. Exit 1 when a frame differs from the controller's.
+int run_gsp_replay(const ReplayArgs& args) {
+    if (!args.snapshot.empty() || !args.buffer.empty() || !args.timeline.empty() ||
+        !args.stats.empty() || args.salvage || args.benchmark)
+        throw UsageError(
+            "--gsp replays whole frames through the emulated GSP and writes --png only; not "
+            "with --snapshot, --buffer, --timeline, --stats, --salvage or --benchmark");
+    const controller::CostProfile profile = controller::load_profile(args.profile);
+    GspReplayOptions options;
+    if (!args.listing.empty()) {
+        options.listing_file = args.listing;
+        options.listing_text = read_text_file(args.listing);
+    }
+    options.board.trace = args.gsp_trace;
+    options.board.cache = !args.gsp_warm;
+    protocol::StreamReader reader(args.stream);
+    GspReplayResult r;
+    try {
+        r = gsp_replay(reader, profile, options);
+    } catch (const protocol::StreamError& e) {
+        report_stream_error(e);
+        return kBadInput;
+    } catch (const controller::gsp::GspFault& e) {
+        throw std::runtime_error(fmt::format("{}: {}", args.stream, e.what()));
+    }
+    if (!args.png.empty()) {
+        if (!r.last_frame)
+            throw std::runtime_error(args.stream + ": no complete frame; " + args.png +
+                                     " not written");
+        make_parent_dirs(args.png);
+        controller::write_png(args.png, *r.last_frame);
+    }
+    if (!args.quiet && args.png != "-") {
+        fmt::print("{}\nprofile {}\n", header_line(reader), profile.name);
+        fmt::print("{}", r.summary(profile));
+        const double model_ms = modelled_ms(profile, r.modelled_cycles());
+        const double executed_ms = modelled_ms(profile, r.executed_cycles());
+        fmt::print("time: executed {:.3f} ms, the model's {:.3f} ms\n", executed_ms, model_ms);
+        if (args.gsp_trace)
+            fmt::print(
+                "command {}, executed instruction by instruction (address, states, "
+                "states so far, line):\n{}",
+                *args.gsp_trace,
+                r.trace.empty() ? "  (not executed: no such command, or one not sent)\n"
+                                : trace_text(r.trace));
+    }
+    if (r.frames_differing) {
+        std::cerr << fmt::format("fb89: {}: the GSP's frames differ from the controller's: {}\n",
+                                 args.stream, r.first_difference);
+        return kCheckFailed;
+    }
+    return kSuccess;
+}
+
 int run_replay(const ReplayArgs& args) {
+    if (args.gsp || !args.listing.empty() || args.gsp_trace || args.gsp_warm) {
+        if (!args.gsp) throw UsageError("--listing, --gsp-trace and --gsp-warm go with --gsp");
+        return run_gsp_replay(args);
+    }
     Console console{args.quiet};
     protocol::CallSet snapshots;
     const bool stdout_taken = claims_stdout(
@@ -301,6 +366,19 @@ void register_replay(CLI::App& app, int& exit_code) {
                   "last complete frame, earlier snapshots, stats with an \"error\" entry): a "
                   "stream cut short or refused is then a warning, exit 0; a damaged one (a "
                   "batch failing its checksum) still exits 2, saying what was dropped");
+    sub->add_flag("--gsp", args->gsp,
+                  "Replay through the emulated TMS34010 executing the profile's executive "
+                  "(its listing), beside the controller: each frame compared pixel for pixel "
+                  "(exit 1 if one differs), each opcode's executed cycles beside the model's");
+    sub->add_option("--listing", args->listing,
+                    "With --gsp: run this TMS34010 listing (GSPA syntax) in place of the "
+                    "profile's built-in one");
+    sub->add_option("--gsp-trace", args->gsp_trace,
+                    "With --gsp: print this command's executed instructions with their states "
+                    "(commands numbered as fb89 dump numbers them)");
+    sub->add_flag("--gsp-warm", args->gsp_warm,
+                  "With --gsp: every instruction fetch hits the instruction cache, as the model "
+                  "assumes (no misses counted)");
     sub->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
     sub->callback([args, &exit_code] { exit_code = run_replay(*args); });
 }

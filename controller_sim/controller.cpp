@@ -383,8 +383,14 @@ Controller::Executed Controller::exec_depth_clear(const DepthClear&) {
 [[gnu::always_inline]] inline Controller::Executed Controller::exec_depth_span(
     const DepthSpan& s, DepthCounters& counts) {
     const int64_t w = m_fb.width(), h = m_fb.height();
-    if (!m_in_frame || s.y < 0 || s.y >= h || s.x1 < 0 || s.x0 >= w || s.x1 < s.x0)
-        return Executed{m_costs.depth_span_outside(), 0, false, true};
+    if (!m_in_frame || s.y < 0 || s.y >= h || s.x1 < 0 || s.x0 >= w || s.x1 < s.x0) {
+        // where the listing finds it so (dspan: the row, then the columns left after the cuts)
+        const ZOutside where = !m_in_frame || s.y < 0 ? ZOutside::Above
+                               : s.y >= h             ? ZOutside::Below
+                               : s.x0 < 0             ? ZOutside::EmptyCut
+                                                      : ZOutside::Empty;
+        return Executed{m_costs.depth_span_outside(where), 0, false, true};
+    }
     const int64_t x0 = std::max<int64_t>(s.x0, 0), x1 = std::min<int64_t>(s.x1, w - 1);
     const bool cut_left = x0 > s.x0;
     const int64_t z = int64_t{s.z} + int64_t{s.dz} * (x0 - s.x0);
@@ -395,6 +401,48 @@ Controller::Executed Controller::exec_depth_clear(const DepthClear&) {
     return Executed{m_costs.depth_span(cut_left, drawn, refused), drawn, cut_left || x1 < s.x1,
                     false};
 }
+
+namespace {
+
+// What the listing's edge loop meets in row y (tms34010.asm, face_edge), counted for the
+// cost model: each edge's N = floor((k0 - bias) / 256) + ny y; a level edge (none when
+// N < 0), a quotient N / |nx| beyond 32 bits (none when N < 0), else a bound from the
+// floored quotient that is nearer or not -- in the listing's 32-bit registers and order,
+// every edge of the row whatever the ones before it found. The pixels are row_span's.
+void count_edge_row(const protocol::EdgeFunction* edges, uint32_t n, int64_t y, int32_t last,
+                    FaceWork& work) {
+    int32_t lo = 0, hi = last;
+    for (uint32_t i = 0; i < n; ++i) {
+        const protocol::EdgeFunction& e = edges[i];
+        const int64_t big_n = ((e.k0 - e.bias) >> 8) + e.ny * y;
+        if (e.nx == 0 || big_n / (e.nx < 0 ? -e.nx : e.nx) > INT32_MAX ||
+            big_n / (e.nx < 0 ? -e.nx : e.nx) < INT32_MIN) {
+            const bool level = e.nx == 0;
+            if (big_n < 0) {
+                (level ? work.level_none : work.far_none) += 1;
+                hi = -1;
+            } else {
+                (level ? work.level : work.far) += 1;
+            }
+            continue;
+        }
+        const int64_t d = e.nx < 0 ? -e.nx : e.nx;
+        const int64_t q = big_n / d, r = big_n % d;
+        const auto floored = static_cast<int32_t>(static_cast<uint32_t>(q) - (r < 0 ? 1u : 0u));
+        if (e.nx > 0) {
+            const auto x = static_cast<int32_t>(0u - static_cast<uint32_t>(floored));
+            if (x > lo) {
+                lo = x;
+                ++work.bounds;
+            }
+        } else if (floored < hi) {
+            hi = floored;
+            ++work.bounds;
+        }
+    }
+}
+
+}  // namespace
 
 // FACE: its edges by the coverage rule (protocol/coverage.h), its rows clipped to the frame,
 // each row's covered run tested and drawn like a DEPTH_SPAN.
@@ -429,8 +477,11 @@ Controller::Executed Controller::exec_face(const Face& f) {
     const bool clipped = first > top || last < bottom;
     DepthCounters counts;
     bool cut_sides = false;
+    for (uint32_t i = 0; i < n; ++i)
+        work.level_points += edges[i].nx == 0 ? 1 : 0;
     for (int64_t y = first; y <= last; ++y) {
         ++work.rows;
+        count_edge_row(edges.data(), n, y, static_cast<int32_t>(w - 1), work);
         int xb = 0, xe = 0;
         if (!protocol::row_span(edges.data(), n, static_cast<int>(y), 0, static_cast<int>(w), xb,
                                 xe))

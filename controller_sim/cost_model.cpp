@@ -107,7 +107,10 @@ CycleCosts::CycleCosts(const CostProfile& p)
       m_op_partial(p.c_op_partial),
       m_line_pix(p.c_line_pix),
       m_zspan_base(depth_span_cycles(p, false, 0, 0)),
-      m_zspan_outside(depth_span_outside_cycles(p)),
+      m_zspan_outside{depth_span_outside_cycles(p, ZOutside::Above),
+                      depth_span_outside_cycles(p, ZOutside::Below),
+                      depth_span_outside_cycles(p, ZOutside::Empty),
+                      depth_span_outside_cycles(p, ZOutside::EmptyCut)},
       m_zclip(p.c_zclip),
       m_zpass(p.c_zpass),
       m_zfail(p.c_zfail),
@@ -132,16 +135,23 @@ uint64_t depth_span_cycles(const CostProfile& p, bool cut_left, uint64_t nearer,
            (cut_left ? p.c_zclip : 0) + nearer * p.c_zpass + farther * p.c_zfail + p.c_zexit;
 }
 
-uint64_t depth_span_outside_cycles(const CostProfile& p) {
-    return uint64_t{p.c_cmd} + p.c_zspan_outside + host_word_cycles(p, protocol::Opcode::DepthSpan);
+uint64_t depth_span_outside_cycles(const CostProfile& p, ZOutside where) {
+    const uint32_t setup = where == ZOutside::Above   ? p.c_zspan_outside
+                           : where == ZOutside::Below ? p.c_zspan_below
+                           : where == ZOutside::Empty ? p.c_zspan_empty
+                                                      : p.c_zspan_empty_cut;
+    return uint64_t{p.c_cmd} + setup + host_word_cycles(p, protocol::Opcode::DepthSpan);
 }
 
 uint64_t face_cycles(const CostProfile& p, const FaceWork& w) {
     const uint64_t host = uint64_t{(face_bytes(w.points) + 1) / 2} * p.c_host_word;
-    const uint64_t edges = w.points;
+    const uint64_t edges = w.rows * w.points;
+    const uint64_t divided = edges - w.level - w.level_none - w.far - w.far_none;
     return uint64_t{p.c_cmd} + host + p.c_face_setup +
            (w.points > 0 ? uint64_t{w.points - 1} * p.c_face_point + p.c_face_last : 0) +
-           w.rows * (p.c_face_row + edges * p.c_face_edge) +
+           uint64_t{w.level_points} * p.c_face_level_point + w.rows * p.c_face_row +
+           divided * p.c_face_edge + w.level * p.c_face_level + w.level_none * p.c_face_level_none +
+           w.far * p.c_face_far + w.far_none * p.c_face_far_none + w.bounds * p.c_face_bound +
            w.runs * (uint64_t{p.c_face_span} + p.c_zexit) + (w.rows - w.runs) * p.c_face_empty +
            w.nearer * p.c_zpass + w.farther * p.c_zfail + p.c_face_done;
 }

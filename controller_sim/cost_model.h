@@ -55,13 +55,21 @@ uint64_t depth_clear_cycles(const CostProfile& p, uint32_t width, uint32_t heigh
 // steps when it was cut there, each pixel nearer or not, and the loop's return.
 uint64_t depth_span_cycles(const CostProfile& p, bool cut_left, uint64_t nearer, uint64_t farther);
 // One with nothing in the frame: C_cmd, its host words and its set-up to where it finds so.
-uint64_t depth_span_outside_cycles(const CostProfile& p);
+// Where the listing finds it so: a row above the frame, below it, or no column of the span
+// left in the frame (after a cut on the left or not).
+enum class ZOutside { Above, Below, Empty, EmptyCut };
+uint64_t depth_span_outside_cycles(const CostProfile& p, ZOutside where = ZOutside::Above);
 // What a FACE did: its points, the rows of the frame it walked, the rows whose run was not
 // empty, and its pixels' tests.
 struct FaceWork {
     uint32_t points = 0;
+    uint32_t level_points = 0;  // points whose edge to the next is level (nx = 0)
     uint64_t rows = 0, runs = 0;
     uint64_t nearer = 0, farther = 0;
+    // of the rows' edges (rows x points), as the listing's edge loop meets them: level ones
+    // (N >= 0, and N < 0: the row emptied), ones whose quotient is beyond 32 bits (likewise),
+    // and the divided ones that gave a nearer bound
+    uint64_t level = 0, level_none = 0, far = 0, far_none = 0, bounds = 0;
 };
 // FACE: C_cmd, its host words, its set-up and each point's edge, each row's step of every
 // edge, each run's span set-up and return or an empty row's, each pixel, and the end.
@@ -93,7 +101,9 @@ class CycleCosts {
     uint64_t depth_span(bool cut_left, uint64_t nearer, uint64_t farther) const {
         return m_zspan_base + (cut_left ? m_zclip : 0) + nearer * m_zpass + farther * m_zfail;
     }
-    uint64_t depth_span_outside() const { return m_zspan_outside; }
+    uint64_t depth_span_outside(ZOutside where = ZOutside::Above) const {
+        return m_zspan_outside[static_cast<int>(where)];
+    }
     uint64_t frame_end() const { return m_frame_end; }
 
   private:
@@ -108,7 +118,7 @@ class CycleCosts {
 
     uint64_t m_fill_base, m_span_fill_base, m_line_base, m_fill_outside, m_span_outside,
         m_frame_end, m_row, m_op, m_op_partial, m_line_pix;
-    uint64_t m_zspan_base, m_zspan_outside, m_zclip, m_zpass, m_zfail;
+    uint64_t m_zspan_base, m_zspan_outside[4], m_zclip, m_zpass, m_zfail;
     uint32_t m_word_shift = 0;  // log2 P
     uint64_t m_word_mask = 0;   // P - 1
     bool m_span_as_fill;

@@ -88,6 +88,8 @@ class Assembler {
         Program p;
         p.name = m_file;
         p.labels = m_labels;
+        for (const auto& [name, v] : m_symbols)
+            p.symbols[name] = v.v;
         p.text_bits = m_section_bits[0];
         p.data_bits = m_section_bits[1];
         for (size_t i = 0; i < m_lines.size(); ++i) {

@@ -42,6 +42,7 @@ struct Program {
     std::string name;
     std::vector<AssembledLine> lines;        // every line of the source, in order
     std::map<std::string, uint32_t> labels;  // bit addresses
+    std::map<std::string, int64_t> symbols;  // .equ and .set numbers
     uint32_t text_bits = 0;                  // the .text section's length
     uint32_t data_bits = 0;                  // the .data section's, after it
 

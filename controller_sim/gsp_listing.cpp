@@ -7,6 +7,7 @@
 
 #include "controller_sim/gsp_assembler.h"
 #include "controller_sim/gsp_listing_text.h"
+#include "controller_sim/gsp_states.h"
 
 #include <algorithm>
 #include <cctype>
@@ -57,6 +58,17 @@ class Pricer {
   public:
     Pricer(const Listing& listing, const Parsed& parsed, const MemoryTiming& memory, TimingEnd end)
         : m_listing(listing), m_parsed(parsed), m_memory(memory), m_end(end) {
+        // each instruction's words as the assembler makes them: a jump's form (short, long, or
+        // a NOP to the next instruction) and DSJ's (DSJS within 31 words) are priced by them.
+        // A listing the assembler refuses is priced from its text alone (JRcc short, DSJ
+        // long), so that the pricer's own checks name what they find.
+        try {
+            for (const gsp::AssembledLine& l :
+                 gsp::assemble(fmt::format("{}.asm", listing.name), listing.text).lines)
+                if (l.code) m_words[l.line] = l.words;
+        } catch (const gsp::AssemblyError&) {
+            m_words.clear();
+        }
         if (m_memory.chip != Chip::Tms34020) return;
         // each instruction's address in words, the listing loaded at a long word (its words
         // do not depend on the chip): the 34020 prices a long immediate by its alignment
@@ -88,6 +100,8 @@ class Pricer {
                        : simple(words, c10, std::move(s10));
         };
 
+        if (m == "NOP" && n == 0)
+            return by_chip(1, gsp::states::kRegister, "[DS] p. 13, NOP", 1, "[UG20] ch. 13, NOP");
         if (m == "MOVE" && n == 2 && reg(0) && reg(1))
             return by_chip(1, 1, "[DS] p. 12, MOVE Rs,Rd", 1, "[UG20] p. 13-158, MOVE Rs,Rd");
         if (m == "MOVE" && (n == 2 || n == 3)) return c20 ? memory_move_34020(in) : memory_move(in);
@@ -136,19 +150,44 @@ class Pricer {
             if (std::find(std::begin(kConditions), std::end(kConditions), code) ==
                 std::end(kConditions))
                 fail(in, "not a condition code");
-            Price p = by_chip(1, 2, "[DS] p. 14, JRcc short: 2 taken, 1 not", 2,
-                              "[EMU] JRcc short: 2 taken, 1 not, as the 34010's (the User's "
-                              "Guide pages read give the long form only, 3/2: [UG20] p. 15-5)");
+            const std::vector<uint16_t>& w = words_of(in);
+            Price p;
+            if (w.size() == 1 && w[0] == 0x0300) {
+                // to the very next instruction: the assembler writes a NOP, which goes there
+                // either way
+                p = simple(1, gsp::states::kRegister,
+                           "[DS] p. 13, NOP (GSPA's word for a jump to the next instruction)");
+                p.cycles_not_taken = gsp::states::kRegister;
+            } else if (w.size() == 2) {
+                p = by_chip(2, gsp::states::kJumpLongTaken, "[DS] p. 14, JRcc long: 3 taken, 2 not",
+                            gsp::states::kJumpLongTaken,
+                            "[UG20] p. 15-5, JRcc long: 3 taken, 2 not");
+                p.cycles_not_taken = gsp::states::kJumpLongNot;
+            } else {
+                p = by_chip(1, gsp::states::kJumpShortTaken,
+                            "[DS] p. 14, JRcc short: 2 taken, 1 not", gsp::states::kJumpShortTaken,
+                            "[EMU] JRcc short: 2 taken, 1 not, as the 34010's (the User's "
+                            "Guide pages read give the long form only, 3/2: [UG20] p. 15-5)");
+                p.cycles_not_taken = gsp::states::kJumpShortNot;
+            }
             p.kind = code == "UC" ? Kind::Jump : Kind::Branch;
-            p.cycles_not_taken = 1;
             p.target = ops[0];
             return p;
         }
         if (m == "DSJ" && n == 2 && reg(0)) {
-            Price p = by_chip(2, 3, "[DS] p. 14, DSJ Rd,Address: 3 taken, 2 not", 3,
+            const bool is_short = words_of(in).size() == 1;  // DSJS (unknown: long)
+            Price p =
+                is_short
+                    ? by_chip(1, gsp::states::kDsjsTaken,
+                              "[DS] p. 14, DSJS Rd,Address (GSPA's form within 31 words): "
+                              "2 taken, 3 not",
+                              gsp::states::kDsjsTaken,
+                              "[EMU] DSJS Rd,Address: 2 taken, 3 not, as the 34010's")
+                    : by_chip(2, gsp::states::kDsjTaken,
+                              "[DS] p. 14, DSJ Rd,Address: 3 taken, 2 not", gsp::states::kDsjTaken,
                               "[UG20] pp. 13-103, 15-4, DSJ Rd,Address: 3 taken, 2 not");
             p.kind = Kind::Branch;
-            p.cycles_not_taken = 2;
+            p.cycles_not_taken = is_short ? gsp::states::kDsjsNot : gsp::states::kDsjNot;
             p.target = ops[1];
             return p;
         }
@@ -282,6 +321,11 @@ class Pricer {
     }
 
   private:
+    const std::vector<uint16_t>& words_of(const Instruction& in) const {
+        static const std::vector<uint16_t> unknown;
+        const auto it = m_words.find(in.line);
+        return it == m_words.end() ? unknown : it->second;
+    }
     static Price simple(uint32_t words, uint32_t cycles, std::string source) {
         Price p;
         p.words = words;
@@ -474,7 +518,8 @@ class Pricer {
     const Parsed& m_parsed;
     MemoryTiming m_memory;
     TimingEnd m_end;
-    std::map<int, uint32_t> m_word_at;  // the 34020's: each instruction's word, by line
+    std::map<int, uint32_t> m_word_at;             // the 34020's: each instruction's word, by line
+    std::map<int, std::vector<uint16_t>> m_words;  // each instruction's words, by line
 };
 
 // Walks one path from its label, pricing each instruction and applying the write queue:
@@ -494,6 +539,8 @@ CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pri
     std::size_t pc = label(spec.start);
     const std::size_t end = spec.end.empty() ? SIZE_MAX : label(spec.end);
     for (const std::string& t : spec.taken)
+        (void)label(t);
+    for (const std::string& t : spec.fallen)
         (void)label(t);
     uint32_t queued = 0;
     for (int step = 0;; ++step) {
@@ -518,9 +565,13 @@ CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pri
         bool taken = p.kind == Kind::Jump;
         const bool forced =
             std::find(spec.taken.begin(), spec.taken.end(), p.target) != spec.taken.end();
+        const bool falls =
+            std::find(spec.fallen.begin(), spec.fallen.end(), p.target) != spec.fallen.end();
         if (p.kind == Kind::Branch) {
             if (forced)
                 taken = true;
+            else if (falls)
+                taken = false;
             else if (in.comment.starts_with("not taken"))
                 taken = false;
             else if (in.comment.starts_with("taken"))
@@ -616,8 +667,8 @@ std::span<const CachedWork> cached_work() {
         {"a DEPTH_SPAN and its pixel loop",
          {"COMMON", "DEPTH_SPAN", "ZPIXEL16:nearer", "ZPIXEL16:farther", "ZSPAN_EXIT"}},
         {"a FACE's row loop",
-         {"FACE:row", "FACE:edge", "FACE:span", "FACE:empty", "ZPIXEL16:nearer", "ZPIXEL16:farther",
-          "ZSPAN_EXIT"}},
+         {"FACE:row", "FACE:edge", "FACE:nearer", "FACE:level", "FACE:lastedge", "FACE:span",
+          "FACE:step", "FACE:empty", "ZPIXEL16:nearer", "ZPIXEL16:farther", "ZSPAN_EXIT"}},
     };
     return work;
 }

@@ -68,10 +68,11 @@ std::span<const Listing> builtin_listings();  // defined in the generated file
 // The listing by name; throws std::runtime_error naming the known ones.
 const Listing& builtin_listing(std::string_view name);
 
-// Counts every ";@path NAME START [END] [take LABEL]..." of `listing`: from START to a
-// dispatch, a taken jump back to COMMON's label, or (with END) the point where it reaches END
-// (by a jump or by running into it). A "take LABEL" makes every conditional jump to LABEL
-// on the path taken, whatever its comment says (a loop's other way). Throws
+// Counts every ";@path NAME START [END] [take LABEL | fall LABEL]..." of `listing`: from
+// START to a dispatch, a taken jump back to COMMON's label, or (with END) the point where it
+// reaches END (by a jump or by running into it). A "take LABEL" makes every conditional jump
+// to LABEL on the path taken, whatever its comment says (a loop's other way); a "fall LABEL"
+// makes it not taken (a loop's last time round). Throws
 // std::runtime_error naming the listing and line for an instruction it cannot price, an
 // unknown label, or a path that does not end.
 std::map<std::string, CountedPath> count_paths(const Listing& listing, const MemoryTiming& memory,

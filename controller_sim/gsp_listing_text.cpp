@@ -86,13 +86,13 @@ Parsed parse(const Listing& listing) {
                                                        : trim(rest.substr(space + 1));
             }
             if (words.size() < 2) fail("@path takes a name and a label");
-            PathSpec spec{words[0], words[1], "", {}};
+            PathSpec spec{words[0], words[1], "", {}, {}};
             std::size_t i = 2;
-            if (i < words.size() && words[i] != "take") spec.end = words[i++];
+            if (i < words.size() && words[i] != "take" && words[i] != "fall") spec.end = words[i++];
             for (; i < words.size(); i += 2) {
-                if (words[i] != "take" || i + 1 >= words.size())
-                    fail("@path NAME START [END] [take LABEL]...");
-                spec.taken.push_back(words[i + 1]);
+                if ((words[i] != "take" && words[i] != "fall") || i + 1 >= words.size())
+                    fail("@path NAME START [END] [take LABEL | fall LABEL]...");
+                (words[i] == "take" ? spec.taken : spec.fallen).push_back(words[i + 1]);
             }
             out.paths.push_back(std::move(spec));
             continue;

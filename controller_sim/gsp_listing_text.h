@@ -42,8 +42,9 @@ struct Instruction {
 
 struct PathSpec {
     std::string name, start;
-    std::string end;                 // "" : to a dispatch or a jump back to COMMON's label
-    std::vector<std::string> taken;  // "take LABEL": jumps to these are taken on this path
+    std::string end;                  // "" : to a dispatch or a jump back to COMMON's label
+    std::vector<std::string> taken;   // "take LABEL": jumps to these are taken on this path
+    std::vector<std::string> fallen;  // "fall LABEL": and these not (a loop's last time)
 };
 
 struct Parsed {

@@ -528,21 +528,35 @@ void derive_figures(CostProfile& p) {
     p.c_span_fill_setup = path("DRAW_SPAN:fill", "FILL");
     p.c_frame_end_setup = path("FRAME_END", "");
     p.c_zclear_setup = path("DEPTH_CLEAR", "FILL");
-    p.c_zspan_setup = path("DEPTH_SPAN", "");
-    p.c_zspan_outside = path("DEPTH_SPAN:outside", "");
-    p.c_zclip = path("DEPTH_SPAN:clip", "");
     const bool wide = p.depth_bits == 32;
+    p.c_zspan_setup = path(wide ? "DEPTH_SPAN32" : "DEPTH_SPAN", "");
+    p.c_zspan_outside = path("DEPTH_SPAN:outside", "");
+    p.c_zspan_below = path("DEPTH_SPAN:below", "");
+    p.c_zspan_empty = path("DEPTH_SPAN:empty", "");
+    p.c_zspan_empty_cut = path("DEPTH_SPAN:emptycut", "");
+    // a cut on the left: the set-up through zclip less the set-up without it
+    p.c_zclip = path(wide ? "DEPTH_SPAN32:cut" : "DEPTH_SPAN:cut", "") - p.c_zspan_setup;
     p.c_zpass = path(wide ? "ZPIXEL32:nearer" : "ZPIXEL16:nearer", "");
     p.c_zfail = path(wide ? "ZPIXEL32:farther" : "ZPIXEL16:farther", "");
-    p.c_zexit = path("ZSPAN_EXIT", "");
+    // the loop's return, and its last pixel's jump not taken (DSJS: a state dearer than taken)
+    p.c_zexit = path("ZSPAN_EXIT", "") + path(wide ? "ZPIXEL32:last" : "ZPIXEL16:last", "") -
+                path(wide ? "ZPIXEL32:farther" : "ZPIXEL16:farther", "");
     p.c_face_setup = path("FACE", "");
     p.c_face_point = path("FACE:point", "");
     p.c_face_last = path("FACE:last", "");
-    p.c_face_row = path("FACE:row", "");
+    // a row: its set-up, and its edge loop's last jump not taken (DSJS: a state dearer)
+    p.c_face_row = path("FACE:row", "") + path("FACE:lastedge", "") - path("FACE:edge", "");
     p.c_face_edge = path("FACE:edge", "");
-    p.c_face_span = path("FACE:span", "");
+    // a run: its set-up to the pixel loop, and after it the step to the next row
+    p.c_face_span = path(wide ? "FACE:span32" : "FACE:span", "") + path("FACE:step", "");
     p.c_face_empty = path("FACE:empty", "");
     p.c_face_done = path("FACE:done", "");
+    p.c_face_level = path("FACE:level", "");
+    p.c_face_level_none = path("FACE:levelnone", "");
+    p.c_face_far = path("FACE:far", "");
+    p.c_face_far_none = path("FACE:farnone", "");
+    p.c_face_bound = path("FACE:nearer", "") - p.c_face_edge;
+    p.c_face_level_point = path("FACE:levelpoint", "") - p.c_face_point;
     p.depth_priced = true;
     // A word of the bus written whole is one write cycle; a partial word is read, modified
     // and written (one CAS, one W, no byte strobes: the pin list); so is a pixel narrower than
@@ -683,6 +697,9 @@ nlohmann::json CostProfile::to_json() const {
                         {"C_zclear_setup", c_zclear_setup},
                         {"C_zspan_setup", c_zspan_setup},
                         {"C_zspan_outside", c_zspan_outside},
+                        {"C_zspan_below", c_zspan_below},
+                        {"C_zspan_empty", c_zspan_empty},
+                        {"C_zspan_empty_cut", c_zspan_empty_cut},
                         {"C_zclip", c_zclip},
                         {"C_zpass", c_zpass},
                         {"C_zfail", c_zfail},
@@ -694,7 +711,13 @@ nlohmann::json CostProfile::to_json() const {
                         {"C_face_edge", c_face_edge},
                         {"C_face_span", c_face_span},
                         {"C_face_empty", c_face_empty},
-                        {"C_face_done", c_face_done}};
+                        {"C_face_done", c_face_done},
+                        {"C_face_level", c_face_level},
+                        {"C_face_level_none", c_face_level_none},
+                        {"C_face_far", c_face_far},
+                        {"C_face_far_none", c_face_far_none},
+                        {"C_face_bound", c_face_bound},
+                        {"C_face_level_point", c_face_level_point}};
     }
     return j;
 }

@@ -106,21 +106,31 @@ struct CostProfile {
     // Whether the profile prices them: one with a listing does, and one whose figures are
     // all zero (the ideal controller); any other refuses them.
     bool depth_priced = false;
-    uint32_t c_zclear_setup = 0;   // DEPTH_CLEAR's set-up, FILL's own included
-    uint32_t c_zspan_setup = 0;    // DEPTH_SPAN's set-up to its pixel loop
-    uint32_t c_zspan_outside = 0;  // ... to where it finds nothing in the frame
-    uint32_t c_zclip = 0;          // a span cut on the left: Z stepped to column 0
-    uint32_t c_zpass = 0;          // a pixel nearer than the depth buffer: tested and written
-    uint32_t c_zfail = 0;          // a pixel as near or farther: tested
-    uint32_t c_zexit = 0;          // the loop's return
-    uint32_t c_face_setup = 0;     // FACE's set-up
-    uint32_t c_face_point = 0;     // an edge set up from a point (all but the last)
-    uint32_t c_face_last = 0;      // the last point's edge, back to the first
-    uint32_t c_face_row = 0;       // a row of the face's rows in the frame
-    uint32_t c_face_edge = 0;      // an edge stepped to the row
-    uint32_t c_face_span = 0;      // a row's run handed to the pixel loop, a span's set-up
-    uint32_t c_face_empty = 0;     // a row with no covered centre
-    uint32_t c_face_done = 0;      // the end of its rows
+    uint32_t c_zclear_setup = 0;     // DEPTH_CLEAR's set-up, FILL's own included
+    uint32_t c_zspan_setup = 0;      // DEPTH_SPAN's set-up to its pixel loop
+    uint32_t c_zspan_outside = 0;    // ... to where it finds nothing in the frame: above it,
+    uint32_t c_zspan_below = 0;      // below it,
+    uint32_t c_zspan_empty = 0;      // nothing left of the span in the frame's columns,
+    uint32_t c_zspan_empty_cut = 0;  // the same after a cut on the left
+    uint32_t c_zclip = 0;            // a span cut on the left: Z stepped to column 0
+    uint32_t c_zpass = 0;            // a pixel nearer than the depth buffer: tested and written
+    uint32_t c_zfail = 0;            // a pixel as near or farther: tested
+    uint32_t c_zexit = 0;            // the loop's return
+    uint32_t c_face_setup = 0;       // FACE's set-up
+    uint32_t c_face_point = 0;       // an edge set up from a point (all but the last)
+    uint32_t c_face_last = 0;        // the last point's edge, back to the first
+    uint32_t c_face_row = 0;         // a row of the face's rows in the frame
+    uint32_t c_face_edge = 0;        // an edge stepped to the row
+    uint32_t c_face_span = 0;        // a row's run handed to the pixel loop, a span's set-up
+    uint32_t c_face_empty = 0;       // a row with no covered centre
+    uint32_t c_face_done = 0;        // the end of its rows
+    // What the edge loop's data decide (the listing's FACE:* paths): an edge a row that is
+    // level (no division; with N < 0 it empties the row), one whose quotient is beyond 32
+    // bits (likewise), the extra of a nearer bound taken, and a level point's set-up
+    uint32_t c_face_level = 0, c_face_level_none = 0;
+    uint32_t c_face_far = 0, c_face_far_none = 0;
+    uint32_t c_face_bound = 0;
+    uint32_t c_face_level_point = 0;
 
     double b_bus_bytes_per_s = 0;  // the host side's bandwidth; +inf: "unlimited"
     // The chip's host port: no faster than its strobe spacing and the memory cycle each word

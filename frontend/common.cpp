@@ -5,6 +5,11 @@
 #include <iostream>
 #include <regex>
 
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -69,6 +74,16 @@ void make_parent_dirs(const std::string& path) {
 
 void write_json(const std::string& path, const nlohmann::json& value, protocol::Publish publish) {
     write_text(path, value.dump(2) + "\n", publish);
+}
+
+std::string read_text_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw std::runtime_error(fmt::format("cannot read {}: {}", path, std::strerror(errno)));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw std::runtime_error(fmt::format("cannot read {}", path));
+    return text.str();
 }
 
 void write_text(const std::string& path, const std::string& text, protocol::Publish publish) {

@@ -54,6 +54,10 @@ void write_json(const std::string& path, const nlohmann::json& value,
 void write_text(const std::string& path, const std::string& text,
                 protocol::Publish publish = protocol::Publish::WithCommand);
 
+// A whole text file, e.g. a user's listing; throws std::runtime_error naming the path and
+// what went wrong.
+std::string read_text_file(const std::string& path);
+
 // Creates the parent folder of an output path if needed (not for "-", a device or a pipe).
 void make_parent_dirs(const std::string& path);
 

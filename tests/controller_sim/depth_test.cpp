@@ -98,14 +98,17 @@ TEST(ControllerDepth, SixteenLayersCostMoreAndKeepTheNearest) {
         const auto& d = ctl.stats().depth;
         EXPECT_EQ(d.tests, 16u * 32 * 16);
         EXPECT_EQ(d.nearer, back_to_front ? 16u * 32 * 16 : 32u * 16);
-        // the price: every face's rows and pixels, nearer dearer than farther
+        // the price: every face's rows and pixels, nearer dearer than farther; a rectangle's
+        // top and bottom edges are level (no division, and a level point's set-up), its sides
+        // divided, and neither side bounds a row the frame's width further
         const CostProfile& p = ctl.profile();
         const uint64_t faces =
             ctl.stats().totals[protocol::opcode_index(protocol::Opcode::Face)].cycles;
         const uint64_t nearer = d.nearer, farther = d.tests - d.nearer;
         const uint64_t per_face = uint64_t{p.c_cmd} + (face_bytes(4) + 1) / 2 * p.c_host_word +
                                   p.c_face_setup + 3 * p.c_face_point + p.c_face_last +
-                                  16 * (p.c_face_row + 4 * p.c_face_edge) +
+                                  2 * p.c_face_level_point +
+                                  16 * (p.c_face_row + 2 * p.c_face_edge + 2 * p.c_face_level) +
                                   16 * (p.c_face_span + p.c_zexit) + p.c_face_done;
         EXPECT_EQ(faces, 16 * per_face + nearer * p.c_zpass + farther * p.c_zfail);
     }
@@ -168,10 +171,11 @@ TEST(ControllerDepth, ADepthSpanCostsItsListingsPaths) {
     const CostProfile p = load_profile("tms34010-50mhz");
     // the pixel loop by hand from the data sheet (M = 2 states, a pixel at 8 bpp a read and a
     // write, 4): MOVE *A8,A5,0 1+2, MOVE 1, SRL 1, CMP 1, JRHS not taken 1, MOVE A9,*A8,0 1
-    // (its write queued), PIXT 1 after waiting 2 for it (its 4 queued), ADDK, ADDK, ADD 1 each,
-    // DSJ taken 3 (the PIXT's queue drained by then): 17; farther: 3+1+1+1+2+1+1+1+3 = 14
-    EXPECT_EQ(p.c_zpass, 17u);
-    EXPECT_EQ(p.c_zfail, 14u);
+    // (its write queued), PIXT 1 after waiting 2 for it (its 4 queued), ADDK, ADD, ADD 1 each,
+    // DSJS taken 2 (the PIXT's queue drained by then; GSPA writes DSJ within 31 words as
+    // DSJS): 16; farther: 3+1+1+1+2+1+1+1+2 = 13
+    EXPECT_EQ(p.c_zpass, 16u);
+    EXPECT_EQ(p.c_zfail, 13u);
     Controller ctl(p);
     ctl.frame_begin({0, 64, 8, {}});
     ctl.depth_clear({});

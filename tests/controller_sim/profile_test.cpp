@@ -59,7 +59,7 @@ TEST(Profile, DefaultIsTms34010At50MhzPricedFromTheDataSheet) {
     // derived: the listing's paths and the memory cycles
     EXPECT_EQ(p.c_cmd, 18u);
     EXPECT_EQ(p.c_setup, 29u);
-    EXPECT_EQ(p.c_line_setup, 32u);
+    EXPECT_EQ(p.c_line_setup, 33u);
     EXPECT_EQ(p.c_op, 2u);
     EXPECT_EQ(p.c_op_partial, 4u);
     EXPECT_EQ(p.c_row, 1u);  // TI's simulator's state a FILL row
@@ -68,8 +68,8 @@ TEST(Profile, DefaultIsTms34010At50MhzPricedFromTheDataSheet) {
     EXPECT_TRUE(p.outside_pays_setup);
     EXPECT_EQ(p.span_as, SpanAs::Fill);              // TI's draw_line
     EXPECT_EQ(p.clear_as, ClearAs::SerialRegister);  // TI's clear_page
-    EXPECT_EQ(p.c_span_fill_setup, 33u);
-    EXPECT_EQ(p.c_frame_begin_srt_setup, 86u);
+    EXPECT_EQ(p.c_span_fill_setup, 34u);
+    EXPECT_EQ(p.c_frame_begin_srt_setup, 94u);
     EXPECT_EQ(p.c_tiga_call, 137u);
     EXPECT_EQ(p.b_bus_bytes_per_s, 8e6);
     EXPECT_EQ(p.bus_bytes_per_s(), 2 / (2 * 8 / 50.35e6));  // a word a memory cycle
@@ -246,7 +246,7 @@ TEST(Profile, BandsHoldTheirFiguresAndSayWhy) {
     EXPECT_EQ(band_end(p, false).c_cmd, 18u);  // the lean executive
     EXPECT_EQ(dear.b_bus_bytes_per_s, 4e6);
     EXPECT_EQ(dear.t_handshake_s, 3e-6);
-    EXPECT_EQ(band_end(p, false).c_line_setup, 30u);  // LINE's own set-up at 2
+    EXPECT_EQ(band_end(p, false).c_line_setup, 31u);  // LINE's own set-up at 2
     // the first model's bands are on its given figures
     const CostProfile first = load_profile("tms34010-mame");
     EXPECT_EQ(band_end(first, true).c_cmd, 50u);

@@ -1,0 +1,221 @@
+// An emulated TMS34010 that executes the words the assembler (gsp_assembler.h) makes: the A
+// and B register files, the status bits N C Z V and the two fields, the I/O registers the
+// executive uses, memory as fb89's board maps it, and the graphics instructions FILL, LINE
+// and PIXT with the window and the VRAMs' serial-register transfers. Each instruction costs
+// its states from the data sheet's tables (SPVS002C pp. 11-14) as gsp_states.h gives them,
+// the memory cycles of its fields, the write queue, and the instruction cache's misses; the
+// graphics instructions' pixels cost the memory cycles the cost model gives them
+// (docs/COST_MODEL.md, "The GSP as code").
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "controller_sim/gsp_listing.h"
+
+namespace fb89::controller::gsp {
+
+// The board's memory map, in bit addresses (TI's TIGA development board, TDB10/README.1ST
+// and OEMPRIMS/CLEARFRM.ASM, with 4 MB of DRAM: tms34010.asm's header).
+inline constexpr uint32_t kDramBits = 4u << 23;         // DRAM from address 0
+inline constexpr uint32_t kVramStart = 0x10000000;      // VRAM_START
+inline constexpr uint32_t kVramBits = 1u << 23;         // 1 MB of VRAM
+inline constexpr uint32_t kIoStart = 0xC0000000;        // the I/O registers,
+inline constexpr uint32_t kIoBits = 0x200;              // 0C0000000h to 0C00001FFh
+inline constexpr uint32_t kVramRowBitsOnBoard = 16384;  // a VRAM row, the serial register
+
+// The I/O registers fb89's executive and board touch (bit addresses; TI's GSPREG.INC).
+inline constexpr uint32_t kDpyctl = 0xC0000080;   // display control: SRT is bit 11
+inline constexpr uint32_t kControl = 0xC00000B0;  // W (window mode) bits 7-6, T bit 5
+inline constexpr uint32_t kHstctll = 0xC00000F0;  // host control, low: the message out
+inline constexpr uint32_t kConvdp = 0xC0000140;
+inline constexpr uint32_t kPsize = 0xC0000150;
+
+// A 16-bit word's value, sign-extended.
+inline int32_t sext16(uint32_t v) {
+    return static_cast<int16_t>(static_cast<uint16_t>(v));
+}
+
+// Something the program did that the chip or the board cannot: an illegal word, a jump
+// out of the code, memory the board has not, an instruction budget spent. Names the address
+// (and the caller names the listing's line).
+class GspFault : public std::runtime_error {
+  public:
+    GspFault(uint32_t pc, const std::string& what);
+    uint32_t pc() const { return m_pc; }
+
+  private:
+    uint32_t m_pc;
+};
+
+// What the memory costs and what a graphics instruction's pixels cost, from the profile.
+struct GspTiming {
+    uint32_t cycle_states = 2;        // a local-memory cycle, wait states included
+    uint32_t io_cycle_states = 2;     // an I/O register's cycle
+    uint32_t pixel_write_states = 4;  // PIXT's pixel write
+    // FILL: each row, each whole word, each partial word (a read and a write)
+    uint32_t fill_row = 0, fill_word = 0, fill_partial_word = 0;
+    uint32_t line_pixel = 0;  // LINE: each pixel
+    uint32_t line_step = 0;   // and each pixel the window refuses: its step, no memory cycle
+    bool cache = true;        // model the instruction cache (off: every fetch hits)
+};
+
+// Counted as the program runs.
+struct GspCounters {
+    uint64_t instructions = 0;
+    uint64_t states = 0;                // all of it: instructions, memory, pixels, misses
+    uint64_t warm_states = 0;           // the same with every fetch a hit (the model's clock)
+    uint64_t graphics_states = 0;       // of which the graphics instructions' pixels
+    uint64_t cache_misses = 0;          // instruction-cache sub-segments fetched
+    uint64_t cache_miss_states = 0;     // of which what they cost
+    uint64_t pixels = 0;                // pixels written by FILL, LINE and PIXT
+    uint64_t queue_overlap_states = 0;  // on the warm clock, a queued write run beside work
+};
+
+class Tms34010 {
+  public:
+    explicit Tms34010(const GspTiming& timing);
+
+    // Memory, by bit address; a field of 1 to 32 bits at any bit address. Throws GspFault
+    // for an address the board does not decode.
+    uint32_t read_field(uint32_t address, uint32_t bits) const;
+    void write_field(uint32_t address, uint32_t bits, uint32_t value);
+    // Loads 16-bit words at `address` (a word boundary), as the host port writes them.
+    void load_words(uint32_t address, std::span<const uint16_t> words);
+    // The VRAM's bytes (a byte is 8 bits from a bit address that is a multiple of 8).
+    std::span<const uint8_t> vram() const { return m_vram; }
+    std::span<const uint8_t> dram() const { return m_dram; }
+
+    // Registers: file 0 is A, 1 is B; n 15 is SP in both.
+    uint32_t reg(int file, int n) const { return n == 15 ? m_sp : m_r[file][n]; }
+    void set_reg(int file, int n, uint32_t v) {
+        if (n == 15)
+            m_sp = v;
+        else
+            m_r[file][n] = v;
+    }
+    uint32_t pc() const { return m_pc; }
+    void set_pc(uint32_t pc) { m_pc = pc; }
+    uint32_t status() const;
+    void set_status(uint32_t st);
+    // SETF size, extension, field
+    void set_field(int field, uint32_t size, bool sign_extend);
+    uint16_t io(uint32_t address) const { return m_io[(address - kIoStart) >> 4]; }
+    void set_io(uint32_t address, uint16_t v) { write_io(address, v); }
+
+    // Executes one instruction; returns its states.
+    uint32_t step();
+    // Executes until `stop` says so after an instruction, or `budget` instructions have run
+    // (then GspFault).
+    void run(const std::function<bool()>& stop, uint64_t budget);
+    // Called before each instruction with its address (empty: none).
+    std::function<void(uint32_t pc)> on_instruction;
+
+    const GspCounters& counters() const { return m_count; }
+    void reset_counters() { m_count = {}; }
+    // The states the write queue still holds (paid by the next memory access), on the
+    // clock with the cache and on the warm one.
+    uint32_t queued_states() const { return m_queued; }
+    uint32_t warm_queued_states() const { return m_warm_queued; }
+    // Whether the last instruction touched memory (and so waited for the queue).
+    bool touched_memory() const { return m_touched_memory; }
+    // A message the executive sent the host through HSTCTLL since the last take (0: none).
+    uint16_t take_host_message() {
+        const uint16_t m = m_message;
+        m_message = 0;
+        return m;
+    }
+
+  private:
+    uint32_t& r(int file, int n) { return n == 15 ? m_sp : m_r[file][n]; }
+    uint16_t fetch();
+    uint32_t fetch_long();
+    void cache_fetch(uint32_t address);
+    [[noreturn]] void fault(const std::string& what) const;
+
+    // memory
+    uint8_t* bytes_at(uint32_t address, uint32_t bits);
+    const uint8_t* bytes_at(uint32_t address, uint32_t bits) const;
+    void write_io(uint32_t address, uint16_t v);
+    uint32_t memory_read(uint32_t address, int field);  // a MOVE's read, states counted
+    void memory_write(uint32_t address, int field, uint32_t value);
+    uint32_t extend(uint32_t v, int field) const;
+    // A memory access waits for the queued write; an instruction that touches no memory
+    // runs beside it (SPVS002C p. 10), and GSPSIM shows the same ("write 16, NOP, read 16"
+    // takes the read's 4 states and the write's 2 only). The wait is settled at the end of
+    // the instruction (finish()), on two clocks: the cache's and a warm one.
+    void pay_queue() { m_touched_memory = true; }
+    void queue_write(uint32_t states) {
+        m_new_queue = states;
+        m_wrote = true;
+    }
+    // This instruction's states on both clocks from its own (m_states), the queue and the
+    // cache's misses; returns the states with the cache.
+    uint32_t finish();
+    uint32_t cycle_states(uint32_t address) const {
+        return address >= kIoStart ? m_timing.io_cycle_states : m_timing.cycle_states;
+    }
+
+    // the instruction groups
+    void exec_0(uint16_t w);
+    void exec_alu(uint16_t w);
+    void exec_k(uint16_t w);
+    void exec_move(uint16_t w);
+    void exec_jump(uint16_t w);
+    void exec_xy(uint16_t w);
+    void exec_pixt(uint16_t w);
+    void exec_immediate(uint16_t w);
+    void multiply(uint16_t w, bool is_signed);
+    void divide(uint16_t w, bool is_signed, bool modulo);
+    bool condition(int cc) const;
+    void set_nz(uint32_t v) {
+        m_n = (v >> 31) != 0;
+        m_z = v == 0;
+    }
+
+    // graphics (gsp_graphics.cpp)
+    void fill(bool xy);
+    void line(bool greater);
+    void write_pixel(uint32_t address, uint32_t pixel);
+    uint32_t read_pixel(uint32_t address);
+    uint32_t xy_address(uint32_t xy) const;
+    bool in_window(int32_t x, int32_t y) const;
+    uint32_t pixel_size() const { return m_io[(kPsize - kIoStart) >> 4]; }
+    bool serial_transfer() const { return (m_io[(kDpyctl - kIoStart) >> 4] & 0x0800) != 0; }
+    uint32_t window_mode() const { return (m_io[(kControl - kIoStart) >> 4] >> 6) & 3; }
+
+    GspTiming m_timing;
+    std::array<std::array<uint32_t, 15>, 2> m_r{};
+    uint32_t m_sp = 0, m_pc = 0, m_instruction_pc = 0;
+    bool m_n = false, m_c = false, m_z = false, m_v = false, m_ie = false;
+    uint32_t m_fs[2] = {32, 32};
+    bool m_fe[2] = {false, false};
+    uint32_t m_states = 0;       // this instruction's own, before the queue and the cache
+    uint32_t m_queued = 0;       // the write queue's states, not yet paid
+    uint32_t m_warm_queued = 0;  // the same on the warm clock
+    uint32_t m_new_queue = 0;    // this instruction's write
+    bool m_wrote = false;
+    uint32_t m_misses = 0;          // this instruction's cache misses
+    bool m_touched_memory = false;  // this instruction's
+    std::vector<uint8_t> m_dram, m_vram;
+    std::array<uint16_t, kIoBits / 16> m_io{};
+    std::vector<uint8_t> m_shift_register;  // the VRAMs' serial registers, one row
+    uint16_t m_message = 0;
+    // the instruction cache: four segments of eight sub-segments of four words (SPVS002C
+    // p. 2), least recently used replaced
+    struct Segment {
+        uint32_t tag = ~0u;
+        uint8_t present = 0;  // one bit a sub-segment
+        uint64_t used = 0;
+    };
+    std::array<Segment, 4> m_cache{};
+    uint64_t m_use = 0;
+    GspCounters m_count;
+};
+
+}  // namespace fb89::controller::gsp
