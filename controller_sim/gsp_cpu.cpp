@@ -21,9 +21,10 @@ GspFault::GspFault(uint32_t pc, const std::string& what)
 Tms34010::Tms34010(const GspTiming& timing)
     : m_timing(timing),
       m_dram(kDramBits / 8),
-      m_vram(kVramBits / 8),
+      m_vram_storage(kVramBits / 8 + 4096),
       m_shift_register(kVramRowBitsOnBoard / 8) {
     m_io[(kPsize - kIoStart) >> 4] = 8;
+    m_vram = m_vram_storage.data() + 2112;
 }
 
 void Tms34010::fault(const std::string& what) const {
@@ -59,7 +60,7 @@ const uint8_t* Tms34010::bytes_at(uint32_t address, uint32_t bits) const {
     const uint64_t end = uint64_t{address} + bits;
     if (end <= kDramBits) return m_dram.data() + address / 8;
     if (address >= kVramStart && end <= uint64_t{kVramStart} + kVramBits)
-        return m_vram.data() + (address - kVramStart) / 8;
+        return m_vram + (address - kVramStart) / 8;
     return nullptr;
 }
 
@@ -77,6 +78,20 @@ uint32_t Tms34010::read_field(uint32_t address, uint32_t bits) const {
         uint32_t v = io(address);
         if (bits == 32 && address + 16 < kIoStart + kIoBits) v |= uint32_t{io(address + 16)} << 16;
         return v;
+    }
+    if (address % 16 == 0 && (bits == 16 || bits == 32)) {  // a word or two: the common case
+        const uint8_t* w = bytes_at(address, bits);
+        if (w) {
+            uint32_t v = 0;
+            if (bits == 16) {
+                uint16_t h;
+                std::memcpy(&h, w, 2);
+                v = h;
+            } else {
+                std::memcpy(&v, w, 4);
+            }
+            return v;
+        }
     }
     // a field of up to 32 bits at any bit offset lies within 5 bytes
     const uint32_t offset = address & 7;
@@ -99,6 +114,17 @@ void Tms34010::write_field(uint32_t address, uint32_t bits, uint32_t value) {
         if (bits == 32 && address + 16 < kIoStart + kIoBits)
             write_io(address + 16, static_cast<uint16_t>(value >> 16));
         return;
+    }
+    if (address % 16 == 0 && (bits == 16 || bits == 32)) {  // a word or two
+        if (uint8_t* w = bytes_at(address, bits)) {
+            if (bits == 16) {
+                const auto h = static_cast<uint16_t>(value);
+                std::memcpy(w, &h, 2);
+            } else {
+                std::memcpy(w, &value, 4);
+            }
+            return;
+        }
     }
     const uint32_t offset = address & 7;
     uint8_t* p = bytes_at(address - offset, offset + bits);
@@ -176,7 +202,11 @@ void Tms34010::cache_fetch(uint32_t address) {
 uint16_t Tms34010::fetch() {
     if (m_pc % 16 != 0 || m_pc >= kDramBits)
         fault(fmt::format("an instruction fetched from {:08X}h, outside the code", m_pc));
-    if (m_timing.cache) cache_fetch(m_pc);
+    // the cache is looked at once a sub-segment: a fetch from the one the last came from hits
+    if (m_timing.cache && (m_pc >> 6) != m_last_sub) {
+        cache_fetch(m_pc);
+        m_last_sub = m_pc >> 6;
+    }
     uint16_t w;
     std::memcpy(&w, m_dram.data() + m_pc / 8, 2);
     m_pc += 16;
@@ -192,7 +222,6 @@ uint32_t Tms34010::fetch_long() {
 
 uint32_t Tms34010::step() {
     m_instruction_pc = m_pc;
-    if (on_instruction) on_instruction(m_pc);
     m_states = 0;
     m_touched_memory = false;
     m_wrote = false;

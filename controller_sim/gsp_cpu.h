@@ -22,9 +22,12 @@ namespace fb89::controller::gsp {
 
 // The board's memory map, in bit addresses (TI's TIGA development board, TDB10/README.1ST
 // and OEMPRIMS/CLEARFRM.ASM, with 4 MB of DRAM: tms34010.asm's header).
-inline constexpr uint32_t kDramBits = 4u << 23;         // DRAM from address 0
-inline constexpr uint32_t kVramStart = 0x10000000;      // VRAM_START
-inline constexpr uint32_t kVramBits = 1u << 23;         // 1 MB of VRAM
+inline constexpr uint32_t kDramBits = 4u << 23;     // DRAM from address 0
+inline constexpr uint32_t kVramStart = 0x10000000;  // VRAM_START
+// The TDB's VRAM is 1 MB (the listing's serial-register clear reaches its 512 rows); the
+// board maps 2 MB, so that a frame larger than the TDB's (1024 x 780 at 16 bits) has memory
+// too, which the listing clears by FILL.
+inline constexpr uint32_t kVramBits = 2u << 23;
 inline constexpr uint32_t kIoStart = 0xC0000000;        // the I/O registers,
 inline constexpr uint32_t kIoBits = 0x200;              // 0C0000000h to 0C00001FFh
 inline constexpr uint32_t kVramRowBitsOnBoard = 16384;  // a VRAM row, the serial register
@@ -80,6 +83,8 @@ struct GspCounters {
 class Tms34010 {
   public:
     explicit Tms34010(const GspTiming& timing);
+    Tms34010(const Tms34010&) = delete;  // (m_vram points into its own storage)
+    Tms34010& operator=(const Tms34010&) = delete;
 
     // Memory, by bit address; a field of 1 to 32 bits at any bit address. Throws GspFault
     // for an address the board does not decode.
@@ -88,7 +93,7 @@ class Tms34010 {
     // Loads 16-bit words at `address` (a word boundary), as the host port writes them.
     void load_words(uint32_t address, std::span<const uint16_t> words);
     // The VRAM's bytes (a byte is 8 bits from a bit address that is a multiple of 8).
-    std::span<const uint8_t> vram() const { return m_vram; }
+    std::span<const uint8_t> vram() const { return {m_vram, kVramBits / 8}; }
     std::span<const uint8_t> dram() const { return m_dram; }
 
     // Registers: file 0 is A, 1 is B; n 15 is SP in both.
@@ -113,8 +118,6 @@ class Tms34010 {
     // Executes until `stop` says so after an instruction, or `budget` instructions have run
     // (then GspFault).
     void run(const std::function<bool()>& stop, uint64_t budget);
-    // Called before each instruction with its address (empty: none).
-    std::function<void(uint32_t pc)> on_instruction;
 
     const GspCounters& counters() const { return m_count; }
     void reset_counters() { m_count = {}; }
@@ -202,7 +205,12 @@ class Tms34010 {
     bool m_wrote = false;
     uint32_t m_misses = 0;          // this instruction's cache misses
     bool m_touched_memory = false;  // this instruction's
-    std::vector<uint8_t> m_dram, m_vram;
+    std::vector<uint8_t> m_dram;
+    // the VRAM, placed a little past a page boundary in its storage: a depth word in DRAM and
+    // its pixel in VRAM at the same offset from their pages would alias in the host's store
+    // buffer (4K aliasing) and halve the emulator's speed
+    std::vector<uint8_t> m_vram_storage;
+    uint8_t* m_vram = nullptr;
     std::array<uint16_t, kIoBits / 16> m_io{};
     std::vector<uint8_t> m_shift_register;  // the VRAMs' serial registers, one row
     uint16_t m_message = 0;
@@ -214,6 +222,7 @@ class Tms34010 {
         uint64_t used = 0;
     };
     std::array<Segment, 4> m_cache{};
+    uint32_t m_last_sub = ~0u;  // the sub-segment the last fetch came from
     uint64_t m_use = 0;
     GspCounters m_count;
 };

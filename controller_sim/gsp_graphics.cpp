@@ -48,8 +48,8 @@ void Tms34010::write_pixel(uint32_t address, uint32_t pixel) {
         if (address < kVramStart || address >= kVramStart + kVramBits)
             fault(fmt::format("a serial-register transfer at {:08X}h, outside the VRAM", address));
         const uint32_t row = (address - kVramStart) / kVramRowBitsOnBoard;
-        std::memcpy(m_vram.data() + std::size_t{row} * (kVramRowBitsOnBoard / 8),
-                    m_shift_register.data(), m_shift_register.size());
+        std::memcpy(m_vram + std::size_t{row} * (kVramRowBitsOnBoard / 8), m_shift_register.data(),
+                    m_shift_register.size());
         return;
     }
     write_field(address, pixel_size(), pixel);
@@ -60,8 +60,7 @@ uint32_t Tms34010::read_pixel(uint32_t address) {
         if (address < kVramStart || address >= kVramStart + kVramBits)
             fault(fmt::format("a serial-register transfer at {:08X}h, outside the VRAM", address));
         const uint32_t row = (address - kVramStart) / kVramRowBitsOnBoard;
-        std::memcpy(m_shift_register.data(),
-                    m_vram.data() + std::size_t{row} * (kVramRowBitsOnBoard / 8),
+        std::memcpy(m_shift_register.data(), m_vram + std::size_t{row} * (kVramRowBitsOnBoard / 8),
                     m_shift_register.size());
         return 0;
     }
