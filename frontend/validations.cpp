@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "controller_sim/controller.h"
+#include "controller_sim/gsp_board.h"
 #include "controller_sim/gsp_listing.h"
 #include "experiments/controller_validation.h"
 #include "experiments/measure.h"
@@ -18,6 +20,7 @@
 #include "host/scene/scene.h"
 #include "period/isa.h"
 #include "period/validation.h"
+#include "protocol/depth_fixed.h"
 
 namespace fb89::frontend {
 
@@ -360,6 +363,63 @@ ValidationReport host_validation(const HostValidationRequest& a) {
 
 // ---- controller-validate ----
 
+namespace {
+
+// The listing executed (controller_sim/gsp_board.h) beside the model, command kind by kind:
+// the demo's Z-buffer frame, then a frame of the other kinds made here (a FILL_RECT inside,
+// cut and outside; a depth clear, DEPTH_SPANs inside, cut and outside; FACEs). Each kind's
+// executed cycles, the model's, what the instruction cache's misses and the queue account
+// for, and what is left, which must be 0. "" for a profile whose chip is not the TMS34010.
+std::string executed_beside_model(const controller::CostProfile& p,
+                                  const std::vector<protocol::Command>& demo, bool& all_pass) {
+    if (p.gsp_chip != controller::Chip::Tms34010) return "";
+    using protocol::Rgb;
+    std::vector<protocol::Command> c = demo;
+    const Rgb grey{90, 90, 90}, red{200, 0, 0}, green{0, 180, 0};
+    const uint32_t half = protocol::depth_fixed(0.5);
+    protocol::Face face;
+    face.color = green;
+    face.x_ref = 20;
+    face.y_ref = 20;
+    face.z = half;
+    face.dzdx = 3000;
+    face.dzdy = -2000;
+    face.points = {{1000, 1000}, {30000, 4000}, {9000, 40000}};
+    c.insert(c.end(),
+             {protocol::FrameBegin{1, 256, 192, grey}, protocol::FillRect{10, 10, 50, 40, red},
+              protocol::FillRect{-20, 180, 100, 40, red}, protocol::FillRect{300, 10, 5, 5, red},
+              protocol::DepthClear{}, protocol::DepthSpan{50, 20, 200, half, -1000, red},
+              protocol::DepthSpan{60, -30, 40, half, 500, green},
+              protocol::DepthSpan{500, 0, 10, half, 0, red}, face, protocol::FrameEnd{}});
+    controller::gsp::GspBoard board(p, fmt::format("{}.asm", p.gsp),
+                                    controller::builtin_listing(p.gsp).text);
+    board.execute(c);
+    controller::Controller model(p);
+    model.execute(c);
+    std::string out = fmt::format(
+        "\nThe listing executed (fb89 replay --gsp): the demo's Z-buffer frame and a frame of "
+        "the other kinds, each kind's cycles as the emulated TMS34010 runs {}.asm beside the "
+        "model's\n{:<12} {:>8} {:>12} {:>12} {:>11} {:>7} {:>12}\n",
+        p.gsp, "command", "commands", "executed", "model", "cache miss", "queue", "unexplained");
+    for (int i = 0; i < protocol::kOpcodeCount; ++i) {
+        const auto& e = board.executed()[static_cast<std::size_t>(i)];
+        if (e.commands == 0) continue;
+        const uint64_t m = model.stats().totals[static_cast<std::size_t>(i)].cycles;
+        const int64_t left = static_cast<int64_t>(e.cycles()) - static_cast<int64_t>(m) -
+                             static_cast<int64_t>(e.cache_miss_states) +
+                             static_cast<int64_t>(e.queue_overlapped);
+        all_pass = all_pass && left == 0;
+        out += fmt::format("{:<12} {:>8} {:>12} {:>12} {:>11} {:>7} {:>12}{}\n",
+                           protocol::to_string(protocol::kOpcodes[i]), e.commands,
+                           controller::grouped(e.cycles()), controller::grouped(m),
+                           controller::grouped(e.cache_miss_states), e.queue_overlapped,
+                           fmt::format("{:+}", left), left == 0 ? "  ok" : "  MISSED");
+    }
+    return out;
+}
+
+}  // namespace
+
 ValidationReport controller_validation(const ControllerValidationRequest& a) {
     const char* option = a.spelling == Spelling::Option ? "--profile" : "profile";
     const controller::CostProfile after = profile_option(a.profile, option);
@@ -399,6 +459,7 @@ ValidationReport controller_validation(const ControllerValidationRequest& a) {
                            csv_number(r.after), r.checked ? "yes" : "no", r.pass ? "yes" : "no",
                            r.before_pass ? "yes" : "no");
     }
+    table += executed_beside_model(after, measured.at(0).commands.commands(), all_pass);
     ValidationReport report;
     report.text = table;
     report.csv = csv;

@@ -31,7 +31,9 @@ TEST(ControllerValidate, PrintsEveryFigureWithItsSourceBeforeAndNow) {
           "a 100-pixel DRAW_SPAN by FILL XY (TI's draw_line)",
           "TMS34020 : TMS34010, a 100x100 FILL_RECT",
           "TMS34020 : TMS34010, a 100-pixel span by LINE",
-          "[SIM] TI's GSPSIM 1.04, tests/ti-gsp/fills.asm m15-m16 -- 6"})
+          "[SIM] TI's GSPSIM 1.04, tests/ti-gsp/fills.asm m15-m16 -- 6",
+          // the listing executed beside the model, kind by kind, nothing left unexplained
+          "The listing executed (fb89 replay --gsp)", "DRAW_SPAN", "FACE  ", "+0  ok"})
         EXPECT_NE(r.out.find(text), std::string::npos) << text << " not in\n" << r.out;
     EXPECT_EQ(r.out.find("MISSED"), std::string::npos) << r.out;
 }
