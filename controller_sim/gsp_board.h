@@ -40,6 +40,12 @@ struct ExecutedCounters {
     // in that next command's row, where execution is that much cheaper than the model.
     uint64_t queue_overlapped = 0;
     uint64_t cycles() const { return states + host_states; }
+    // The executed cycles less the model's, less what the model leaves out (the cache's
+    // misses, the queue run beside the next command): 0 when the two agree.
+    int64_t unexplained(uint64_t model_cycles) const {
+        return static_cast<int64_t>(cycles()) - static_cast<int64_t>(model_cycles) -
+               static_cast<int64_t>(cache_miss_states) + static_cast<int64_t>(queue_overlapped);
+    }
     ExecutedCounters& operator+=(const ExecutedCounters& o);
 };
 

@@ -1,6 +1,7 @@
 // Replay through the emulated GSP (see gsp_replay.h).
 #include "frontend/gsp_replay.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -17,6 +18,7 @@ std::string difference(const controller::Framebuffer& gsp, const controller::Fra
     if (gsp.width() != model.width() || gsp.height() != model.height())
         return fmt::format("the GSP's frame is {}x{}, the controller's {}x{}", gsp.width(),
                            gsp.height(), model.width(), model.height());
+    if (std::equal(gsp.pixels().begin(), gsp.pixels().end(), model.pixels().begin())) return "";
     uint64_t differing = 0;
     std::string first;
     for (uint32_t y = 0; y < gsp.height(); ++y)
@@ -102,10 +104,8 @@ GspReplayResult gsp_replay(protocol::StreamReader& reader, const controller::Cos
 }
 
 int64_t GspReplayResult::unexplained(int opcode_index) const {
-    const auto& e = executed[static_cast<std::size_t>(opcode_index)];
-    return static_cast<int64_t>(e.cycles()) -
-           static_cast<int64_t>(model_cycles[static_cast<std::size_t>(opcode_index)]) -
-           static_cast<int64_t>(e.cache_miss_states) + static_cast<int64_t>(e.queue_overlapped);
+    const auto i = static_cast<std::size_t>(opcode_index);
+    return executed[i].unexplained(model_cycles[i]);
 }
 
 std::string GspReplayResult::summary(const controller::CostProfile& profile) const {

@@ -405,9 +405,7 @@ std::string executed_beside_model(const controller::CostProfile& p,
         const auto& e = board.executed()[static_cast<std::size_t>(i)];
         if (e.commands == 0) continue;
         const uint64_t m = model.stats().totals[static_cast<std::size_t>(i)].cycles;
-        const int64_t left = static_cast<int64_t>(e.cycles()) - static_cast<int64_t>(m) -
-                             static_cast<int64_t>(e.cache_miss_states) +
-                             static_cast<int64_t>(e.queue_overlapped);
+        const int64_t left = e.unexplained(m);
         all_pass = all_pass && left == 0;
         out += fmt::format("{:<12} {:>8} {:>12} {:>12} {:>11} {:>7} {:>12}{}\n",
                            protocol::to_string(protocol::kOpcodes[i]), e.commands,
