@@ -80,17 +80,9 @@ OpcodeCounters sum(const PerOpcode& ops) {
 std::array<Controller::OpcodeEntry, protocol::kOpcodeCount> Controller::make_opcode_table(
     const CostProfile& p) {
     // opcode table: in opcode order (protocol::opcode_index)
-    std::array<OpcodeEntry, protocol::kOpcodeCount> t = {{
-        {"FRAME_BEGIN", 4, 0, 0},
-        {"FILL_RECT", 5, 0, 0},
-        {"DRAW_SPAN", 4, 0, 0},
-        {"MARKER", 1, 0, 0},
-        {"FRAME_END", 0, 0, 0},
-        {"DEPTH_CLEAR", 0, 0, 0},
-        {"DEPTH_SPAN", 6, 0, 0},
-        {"FACE", 7, 0, 0},  // and the points
-    }};
+    std::array<OpcodeEntry, protocol::kOpcodeCount> t{};
     for (int i = 0; i < protocol::kOpcodeCount; ++i) {
+        t[i].name = protocol::kCommandRows[i].name;
         t[i].bytes = p.bytes[i];
         t[i].bus_us = bus_seconds(p, p.bytes[i]) * 1e6;
     }

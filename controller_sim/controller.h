@@ -180,9 +180,8 @@ class Controller final : public protocol::CommandSink {
     };
     struct OpcodeEntry {
         const char* name;
-        int param_count;  // fields on the wire, as in docs/PROTOCOL.md
-        uint32_t bytes;   // modelled bytes, from the profile
-        double bus_us;    // bus time of one command
+        uint32_t bytes;  // modelled bytes, from the profile
+        double bus_us;   // bus time of one command
     };
     static std::array<OpcodeEntry, protocol::kOpcodeCount> make_opcode_table(const CostProfile& p);
 

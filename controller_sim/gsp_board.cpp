@@ -33,7 +33,9 @@ constexpr uint32_t kStackTop = 0x00100000;  // SP, growing down
 constexpr uint32_t kRingStart = 0x00100000;
 constexpr uint32_t kDepthBase = 0x00400000;  // the listing's ZBASE
 // The largest command's words (a FACE of 64 points), which may run past the ring's end.
-constexpr uint32_t kLargestCommandWords = 11 + 4 * 64;
+constexpr uint32_t kLargestCommandWords =
+    protocol::kCommandRows[protocol::opcode_index(protocol::Opcode::Face)].port_words +
+    4 * protocol::kMaxFacePoints;
 // The board's display: 1,024 pixels a line (the pitch is that many pixels' bits).
 constexpr uint32_t kDisplayWidth = 1024;
 
@@ -41,8 +43,9 @@ uint32_t label(const Program& p, const std::string& name, std::string_view file)
     const auto it = p.labels.find(name);
     if (it == p.labels.end())
         throw std::invalid_argument(fmt::format(
-            "{}: no label \"{}\": the board starts the executive at `next` and patches its "
-            "dispatch `table` (docs/COST_MODEL.md, \"The GSP as code\")",
+            "{}: no label \"{}\": the board starts the executive at `next` and fills its "
+            "dispatch `table` with each command's handler (docs/COST_MODEL.md, \"The GSP as "
+            "code\")",
             file, name));
     return it->second;
 }
@@ -119,17 +122,20 @@ GspBoard::GspBoard(const CostProfile& profile, std::string_view file, std::strin
             file, (m_program.text_bits + m_program.data_bits) / 8));
     cpu.load_words(0, m_program.image());
 
-    // the dispatch table: the profile's choice of FRAME_BEGIN's and DRAW_SPAN's handler
+    // the dispatch table, an entry by opcode: each command's handler as its row names it
+    // (protocol/command.h), FRAME_BEGIN's and DRAW_SPAN's as the profile chooses
     const uint32_t table = label(m_program, "table", file);
     m_next = label(m_program, "next", file);
-    const auto entry = [&](protocol::Opcode op) { return table + 32 * static_cast<uint32_t>(op); };
-    cpu.write_field(
-        entry(protocol::Opcode::FrameBegin), 32,
-        label(m_program, m_profile.clear_as == ClearAs::Fill ? "frame_begin_fill" : "frame_begin",
-              file));
-    cpu.write_field(
-        entry(protocol::Opcode::DrawSpan), 32,
-        label(m_program, m_profile.span_as == SpanAs::Fill ? "span_fill" : "span_line", file));
+    for (const protocol::CommandRow& row : protocol::kCommandRows) {
+        if (!row.handler) continue;
+        std::string handler = row.handler;
+        if (row.opcode == protocol::Opcode::FrameBegin && m_profile.clear_as == ClearAs::Fill)
+            handler = "frame_begin_fill";
+        if (row.opcode == protocol::Opcode::DrawSpan && m_profile.span_as == SpanAs::Line)
+            handler = "span_line";
+        cpu.write_field(table + 32 * static_cast<uint32_t>(row.opcode), 32,
+                        label(m_program, handler, file));
+    }
 
     // start-up, as the listing's header says: the fields, the frame's pixel size, pitch and
     // offset, the window with clipping on, the depth buffer's word and pitch, the ring
@@ -193,73 +199,88 @@ uint16_t GspBoard::colour_word(protocol::Rgb c) {
     return m_profile.bpp == 8 ? static_cast<uint16_t>(i | (i << 8)) : i;
 }
 
+namespace {
+
+// A command as the host's 16-bit words can carry it: its coordinates cut so as to keep every
+// pixel of the frame it covers (a rectangle to what the words hold; a span's columns in their
+// order, a row beyond their reach above or below the frame, Z stepped to the first column the
+// words hold; a FACE's reference pixel moved to one they hold, Z with it).
+template <class C>
+C port_form(const C& c) {
+    using namespace protocol;
+    if constexpr (std::is_same_v<C, FillRect>) {
+        const int16_t x0 = clamp16(c.x), y0 = clamp16(c.y);
+        const int64_t x1 = clamp16(int64_t{c.x} + c.w), y1 = clamp16(int64_t{c.y} + c.h);
+        return FillRect{x0, y0, static_cast<uint32_t>(std::max<int64_t>(0, x1 - x0)),
+                        static_cast<uint32_t>(std::max<int64_t>(0, y1 - y0)), c.color};
+    } else if constexpr (std::is_same_v<C, DrawSpan>) {
+        const bool none = outside16(c.x0, c.x1, c.y);
+        return DrawSpan{none ? -1 : c.y, clamp16(c.x0), clamp16(c.x1), c.color};
+    } else if constexpr (std::is_same_v<C, DepthSpan>) {
+        uint32_t z = c.z;
+        if (c.x0 < INT16_MIN)
+            z += static_cast<uint32_t>(c.dz) * static_cast<uint32_t>(INT16_MIN - c.x0);
+        return DepthSpan{clamp16(c.y), clamp16(c.x0), clamp16(c.x1), z, c.dz, c.color};
+    } else if constexpr (std::is_same_v<C, Face>) {
+        Face f = c;
+        f.x_ref = clamp16(c.x_ref);
+        f.y_ref = clamp16(c.y_ref);
+        f.z = c.z +
+              static_cast<uint32_t>(c.dzdx) * static_cast<uint32_t>(int64_t{f.x_ref} - c.x_ref) +
+              static_cast<uint32_t>(c.dzdy) * static_cast<uint32_t>(int64_t{f.y_ref} - c.y_ref);
+        return f;
+    } else {
+        return c;
+    }
+}
+
+}  // namespace
+
+// The opcode's word, then the words the command's row lays out (protocol/command.h), then a
+// FACE's points.
 std::vector<uint16_t> GspBoard::words_of(const protocol::Command& command) {
     using namespace protocol;
+    if (const auto* c = std::get_if<FrameBegin>(&command)) {
+        const uint64_t rows = kVramBits / (uint64_t{std::bit_ceil(c->width)} * m_profile.bpp);
+        if (c->width == 0 || c->height == 0 || c->width > kDisplayWidth || c->height > rows)
+            throw std::invalid_argument(fmt::format(
+                "command {}: {}: the board's frame is 1 to {} pixels wide and 1 to {} rows at "
+                "this width (its VRAM at {} bits a pixel)",
+                m_number, to_string(command), kDisplayWidth, rows, m_profile.bpp));
+        if (std::bit_ceil(c->width) * m_profile.bpp != m_pitch_bits) m_mode_width = c->width;
+        m_width = c->width;
+        m_height = c->height;
+    }
     std::vector<uint16_t> w;
-    const auto u16 = [](int64_t v) { return static_cast<uint16_t>(clamp16(v)); };
     std::visit(
-        [&](const auto& c) {
-            using T = std::decay_t<decltype(c)>;
-            if constexpr (std::is_same_v<T, FrameBegin>) {
-                const uint64_t rows =
-                    kVramBits / (uint64_t{std::bit_ceil(c.width)} * m_profile.bpp);
-                if (c.width == 0 || c.height == 0 || c.width > kDisplayWidth || c.height > rows)
-                    throw std::invalid_argument(fmt::format(
-                        "command {}: {}: the board's frame is 1 to {} pixels wide and 1 to {} "
-                        "rows at this width (its VRAM at {} bits a pixel)",
-                        m_number, to_string(Command{c}), kDisplayWidth, rows, m_profile.bpp));
-                if (std::bit_ceil(c.width) * m_profile.bpp != m_pitch_bits) m_mode_width = c.width;
-                w = {1, static_cast<uint16_t>(c.frame), static_cast<uint16_t>(c.width),
-                     static_cast<uint16_t>(c.height), colour_word(c.background)};
-                m_width = c.width;
-                m_height = c.height;
-            } else if constexpr (std::is_same_v<T, FillRect>) {
-                // the host's words are 16 bits: the rectangle cut to what they hold, which
-                // keeps every pixel of the frame it covers
-                const int16_t x0 = clamp16(c.x), y0 = clamp16(c.y);
-                const int64_t x1 = clamp16(int64_t{c.x} + c.w), y1 = clamp16(int64_t{c.y} + c.h);
-                w = {2,
-                     static_cast<uint16_t>(x0),
-                     static_cast<uint16_t>(y0),
-                     static_cast<uint16_t>(std::max<int64_t>(0, x1 - x0)),
-                     static_cast<uint16_t>(std::max<int64_t>(0, y1 - y0)),
-                     colour_word(c.color)};
-            } else if constexpr (std::is_same_v<T, DrawSpan>) {
-                const bool none = outside16(c.x0, c.x1, c.y);
-                w = {3, u16(c.x0), static_cast<uint16_t>(none ? -1 : c.y), u16(c.x1),
-                     colour_word(c.color)};
-            } else if constexpr (std::is_same_v<T, Marker>) {
-                // not sent
-            } else if constexpr (std::is_same_v<T, FrameEnd>) {
-                w = {5};
-            } else if constexpr (std::is_same_v<T, DepthClear>) {
-                w = {8};
-            } else if constexpr (std::is_same_v<T, DepthSpan>) {
-                // a row beyond the words' reach stays above or below the frame; the columns
-                // keep their order (the listing finds an empty span itself)
-                uint32_t z = c.z;
-                if (c.x0 < INT16_MIN)  // Z stepped to the first column the words hold
-                    z += static_cast<uint32_t>(c.dz) * static_cast<uint32_t>(INT16_MIN - c.x0);
-                w = {9, u16(c.x0), u16(c.y), u16(c.x1)};
-                push_long(w, z);
-                push_long(w, static_cast<uint32_t>(c.dz));
-                w.push_back(colour_word(c.color));
-            } else if constexpr (std::is_same_v<T, Face>) {
-                // the reference pixel moved to one the words hold, Z with it
-                const int16_t xr = clamp16(c.x_ref), yr = clamp16(c.y_ref);
-                const uint32_t z =
-                    c.z +
-                    static_cast<uint32_t>(c.dzdx) * static_cast<uint32_t>(int64_t{xr} - c.x_ref) +
-                    static_cast<uint32_t>(c.dzdy) * static_cast<uint32_t>(int64_t{yr} - c.y_ref);
-                w = {10, static_cast<uint16_t>(c.points.size()), colour_word(c.color),
-                     static_cast<uint16_t>(xr), static_cast<uint16_t>(yr)};
-                push_long(w, z);
-                push_long(w, static_cast<uint32_t>(c.dzdx));
-                push_long(w, static_cast<uint32_t>(c.dzdy));
-                for (const SnappedPoint& p : c.points) {
-                    push_long(w, static_cast<uint32_t>(p.x));
-                    push_long(w, static_cast<uint32_t>(p.y));
+        [&](const auto& original) {
+            using C = std::decay_t<decltype(original)>;
+            using I = CommandInfo<C>;
+            if constexpr (I::handler != nullptr) {
+                const C c = port_form(original);
+                w.push_back(static_cast<uint16_t>(I::opcode));
+                for (const PortWord& pw : I::port) {
+                    uint32_t v = 0;
+                    if constexpr (I::tail == Tail::Points)
+                        if (pw.field == kPortCount) v = static_cast<uint32_t>(c.points.size());
+                    int index = 0;
+                    for_each_field(c, [&](const auto& value, const auto&) {
+                        if (index++ != pw.field) return;
+                        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, Rgb>)
+                            v = colour_word(value);
+                        else
+                            v = static_cast<uint32_t>(value);
+                    });
+                    if (pw.form == PortForm::Long)
+                        push_long(w, v);
+                    else
+                        w.push_back(static_cast<uint16_t>(v));
                 }
+                if constexpr (I::tail == Tail::Points)
+                    for (const SnappedPoint& p : c.points) {
+                        push_long(w, static_cast<uint32_t>(p.x));
+                        push_long(w, static_cast<uint32_t>(p.y));
+                    }
             }
         },
         command);

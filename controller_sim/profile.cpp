@@ -200,13 +200,13 @@ void read_bytes(const FieldReader& r, CostProfile& p) {
         const int i = protocol::opcode_index(op);
         if (protocol::is_depth_opcode(op)) continue;
         const std::string key = protocol::to_string(op);
-        auto it = bytes.find(key);
-        if (it == bytes.end()) r.fail("bytes." + key, "missing");
-        p.bytes[i] = r.count(*it, "bytes." + key, 1'000'000);
+        auto it = bytes.find(key);  // not given: its words, as the listing reads them
+        p.bytes[i] = it == bytes.end() ? 2 * protocol::kCommandRows[i].port_words
+                                       : r.count(*it, "bytes." + key, 1'000'000);
     }
-    p.bytes[protocol::opcode_index(protocol::Opcode::DepthClear)] = kDepthClearBytes;
-    p.bytes[protocol::opcode_index(protocol::Opcode::DepthSpan)] = kDepthSpanBytes;
-    p.bytes[protocol::opcode_index(protocol::Opcode::Face)] = kFaceFixedBytes;
+    for (int i = 0; i < protocol::kOpcodeCount; ++i)  // a depth command's: from its words
+        if (protocol::is_depth_opcode(protocol::kOpcodes[i]))
+            p.bytes[i] = 2 * protocol::kCommandRows[i].port_words;
 }
 
 void read_sources(const FieldReader& r, const json& j, CostProfile& p) {

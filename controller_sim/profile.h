@@ -197,14 +197,17 @@ std::string command_buffer_text(uint64_t bytes);
 // bus or for room in the buffer ("host stalled 1.234 ms (bus or full buffer)").
 std::string host_stall_text(uint64_t buffer_bytes, double stalled_ms);
 
-// The depth commands' words as the host writes them (controller_sim/gsp/tms34010.asm's
-// header): DEPTH_CLEAR its opcode; DEPTH_SPAN opcode, x0, y, x1, z and dz (two each), colour;
-// FACE opcode, count, colour, x_ref, y_ref, z, dzdx and dzdy (two each), and each point's x
-// and y (two each).
-inline constexpr uint32_t kDepthClearBytes = 2;
-inline constexpr uint32_t kDepthSpanBytes = 18;
-inline constexpr uint32_t kFaceFixedBytes = 22;
+// The depth commands' bytes on the host port: twice their words, as their rows in
+// protocol/command.h lay them out (controller_sim/gsp/tms34010.asm's header reads them so);
+// a FACE's fixed part, then each point's x and y as two words each.
+inline constexpr uint32_t kDepthClearBytes =
+    2 * protocol::kCommandRows[protocol::opcode_index(protocol::Opcode::DepthClear)].port_words;
+inline constexpr uint32_t kDepthSpanBytes =
+    2 * protocol::kCommandRows[protocol::opcode_index(protocol::Opcode::DepthSpan)].port_words;
+inline constexpr uint32_t kFaceFixedBytes =
+    2 * protocol::kCommandRows[protocol::opcode_index(protocol::Opcode::Face)].port_words;
 inline constexpr uint32_t kFacePointBytes = 8;
+static_assert(kDepthClearBytes == 2 && kDepthSpanBytes == 18 && kFaceFixedBytes == 22);
 
 // A profile compiled into the library.
 struct BuiltinProfile {

@@ -10,25 +10,8 @@
 namespace fb89::protocol {
 
 const char* to_string(Opcode op) {
-    switch (op) {
-        case Opcode::FrameBegin:
-            return "FRAME_BEGIN";
-        case Opcode::FillRect:
-            return "FILL_RECT";
-        case Opcode::DrawSpan:
-            return "DRAW_SPAN";
-        case Opcode::Marker:
-            return "MARKER";
-        case Opcode::FrameEnd:
-            return "FRAME_END";
-        case Opcode::DepthClear:
-            return "DEPTH_CLEAR";
-        case Opcode::DepthSpan:
-            return "DEPTH_SPAN";
-        case Opcode::Face:
-            return "FACE";
-    }
-    return "UNKNOWN";
+    const CommandRow* row = command_row(static_cast<uint8_t>(op));
+    return row ? row->name : "UNKNOWN";
 }
 
 std::string to_string(Rgb c) {
@@ -40,85 +23,87 @@ Opcode opcode_of(const Command& c) {
 }
 
 namespace {
-struct Describe {
-    std::string operator()(const FrameBegin& c) const {
-        return fmt::format("FRAME_BEGIN frame={} width={} height={} background={}", c.frame,
-                           c.width, c.height, to_string(c.background));
-    }
-    std::string operator()(const FillRect& c) const {
-        return fmt::format("FILL_RECT x={} y={} w={} h={} color={}", c.x, c.y, c.w, c.h,
-                           to_string(c.color));
-    }
-    std::string operator()(const DrawSpan& c) const {
-        return fmt::format("DRAW_SPAN y={} x0={} x1={} color={}", c.y, c.x0, c.x1,
-                           to_string(c.color));
-    }
-    std::string operator()(const Marker& c) const { return fmt::format("MARKER \"{}\"", c.text); }
-    std::string operator()(const FrameEnd&) const { return "FRAME_END"; }
-    std::string operator()(const DepthClear&) const { return "DEPTH_CLEAR"; }
-    std::string operator()(const DepthSpan& c) const {
-        return fmt::format("DEPTH_SPAN y={} x0={} x1={} z={} dz={} color={}", c.y, c.x0, c.x1, c.z,
-                           c.dz, to_string(c.color));
-    }
-    std::string operator()(const Face& c) const {
-        std::string points;
-        for (const SnappedPoint& p : c.points)
-            points += fmt::format(" ({},{})", p.x, p.y);
-        return fmt::format("FACE ref=({},{}) z={} dzdx={} dzdy={} color={} points={}{}", c.x_ref,
-                           c.y_ref, c.z, c.dzdx, c.dzdy, to_string(c.color), c.points.size(),
-                           points);
-    }
-};
+
+std::string value_text(int32_t v) {
+    return std::to_string(v);
+}
+std::string value_text(uint32_t v) {
+    return std::to_string(v);
+}
+std::string value_text(Rgb c) {
+    return to_string(c);
+}
+
 }  // namespace
 
+// NAME, each field as name=value, then the tail: a MARKER's text in quotes, a FACE's point
+// count and points.
 std::string to_string(const Command& c) {
-    return std::visit(Describe{}, c);
+    return std::visit(
+        [](const auto& command) {
+            using C = std::decay_t<decltype(command)>;
+            std::string out = CommandInfo<C>::name;
+            for_each_field(command, [&](const auto& value, const auto& field) {
+                out += fmt::format(" {}={}", field.name, value_text(value));
+            });
+            if constexpr (CommandInfo<C>::tail == Tail::Text) {
+                out += fmt::format(" \"{}\"", command.text);
+            } else if constexpr (CommandInfo<C>::tail == Tail::Points) {
+                out += fmt::format(" points={}", command.points.size());
+                for (const SnappedPoint& p : command.points)
+                    out += fmt::format(" ({},{})", p.x, p.y);
+            }
+            return out;
+        },
+        c);
 }
 
-void CommandSink::submit(const Command& c) {
-    switch (c.index()) {
-        case 0:
-            frame_begin(std::get<FrameBegin>(c));
-            break;
-        case 1:
-            fill_rect(std::get<FillRect>(c));
-            break;
-        case 2:
-            draw_span(std::get<DrawSpan>(c));
-            break;
-        case 3:
-            marker(std::get<Marker>(c));
-            break;
-        case 4:
-            frame_end(std::get<FrameEnd>(c));
-            break;
-        case 5:
-            depth_clear(std::get<DepthClear>(c));
-            break;
-        case 6:
-            depth_span(std::get<DepthSpan>(c));
-            break;
-        case 7:
-            face(std::get<Face>(c));
-            break;
+std::optional<std::string> CommandInfo<FrameBegin>::check(const FrameBegin& c) {
+    for (const auto& [name, v] : {std::pair{"width", c.width}, std::pair{"height", c.height}})
+        if (v == 0 || v > kMaxFrameDimension)
+            return fmt::format("{} {} is outside 1..{}", name, v, kMaxFrameDimension);
+    return std::nullopt;
+}
+
+std::optional<std::string> CommandInfo<DrawSpan>::check(const DrawSpan& c) {
+    if (c.x1 < c.x0) return fmt::format("x1 {} < x0 {}", c.x1, c.x0);
+    return std::nullopt;
+}
+
+std::optional<std::string> CommandInfo<Marker>::check(const Marker& c) {
+    if (c.text.size() > kMaxMarkerLength)
+        return fmt::format("text of {} bytes is longer than {}", c.text.size(), kMaxMarkerLength);
+    return std::nullopt;
+}
+
+std::optional<std::string> CommandInfo<DepthSpan>::check(const DepthSpan& c) {
+    if (c.x1 < c.x0) return fmt::format("x1 {} < x0 {}", c.x1, c.x0);
+    return std::nullopt;
+}
+
+std::optional<std::string> CommandInfo<Face>::check(const Face& c) {
+    if (c.points.size() < 3 || c.points.size() > kMaxFacePoints)
+        return fmt::format("{} points, outside 3..{}", c.points.size(), kMaxFacePoints);
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+        const SnappedPoint& p = c.points[i];
+        if (p.x < -kMaxFaceCoordinate || p.x > kMaxFaceCoordinate || p.y < -kMaxFaceCoordinate ||
+            p.y > kMaxFaceCoordinate)
+            return fmt::format("point {} ({}, {}) is outside +-{} grid units", i, p.x, p.y,
+                               kMaxFaceCoordinate);
     }
+    return std::nullopt;
 }
 
-namespace {
-[[noreturn]] void refuse(const Command& c) {
-    throw std::invalid_argument(fmt::format(
-        "{}: this sink takes no depth commands (stream format version 3)", to_string(c)));
-}
-}  // namespace
-
-void CommandSink::depth_clear(const DepthClear& c) {
-    refuse(c);
-}
-void CommandSink::depth_span(const DepthSpan& c) {
-    refuse(c);
-}
-void CommandSink::face(const Face& c) {
-    refuse(c);
+std::optional<std::string> check_command(const Command& c) {
+    return std::visit(
+        [](const auto& command) -> std::optional<std::string> {
+            using I = CommandInfo<std::decay_t<decltype(command)>>;
+            if constexpr (requires { I::check(command); })
+                return I::check(command);
+            else
+                return std::nullopt;
+        },
+        c);
 }
 
 void MemoryBuffer::replay_into(CommandSink& sink) const {

@@ -23,17 +23,11 @@ inline constexpr uint32_t kSendPacketCommands = 64;
 
 class MemoryBuffer final : public CommandSink {
   public:
-    void frame_begin(const FrameBegin& c) override { add(c); }
-    void fill_rect(const FillRect& c) override { add(c); }
-    void draw_span(const DrawSpan& c) override { add(c); }
-    void marker(const Marker& c) override { add(c); }
+    void take(const Command& c) override { add(c); }
     void frame_end(const FrameEnd& c) override {
         m_commands.emplace_back(c);
         if (m_packet) stamp();
     }
-    void depth_clear(const DepthClear& c) override { add(c); }
-    void depth_span(const DepthSpan& c) override { add(c); }
-    void face(const Face& c) override { add(c); }
 
     const std::vector<Command>& commands() const { return m_commands; }
     std::size_t size() const { return m_commands.size(); }

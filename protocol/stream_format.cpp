@@ -12,25 +12,9 @@
 namespace fb89::protocol {
 
 std::optional<std::size_t> payload_size(uint8_t opcode) {
-    switch (opcode) {
-        case static_cast<uint8_t>(Opcode::FrameBegin):
-            return 15;  // u32 frame, w, h; RGB
-        case static_cast<uint8_t>(Opcode::FillRect):
-            return 19;  // i32 x, y; u32 w, h; RGB
-        case static_cast<uint8_t>(Opcode::DrawSpan):
-            return 15;  // i32 y, x0, x1; RGB
-        case static_cast<uint8_t>(Opcode::Marker):
-            return 2;  // u16 length; text follows
-        case static_cast<uint8_t>(Opcode::FrameEnd):
-        case static_cast<uint8_t>(Opcode::DepthClear):
-            return 0;
-        case static_cast<uint8_t>(Opcode::DepthSpan):
-            return 23;  // i32 y, x0, x1; u32 z; i32 dz; RGB
-        case static_cast<uint8_t>(Opcode::Face):
-            return kFaceFixedSize;  // u8 count, RGB, i32 x_ref, y_ref; u32 z; i32 dzdx, dzdy
-        default:
-            return std::nullopt;
-    }
+    const int i = opcode_index(static_cast<Opcode>(opcode));
+    if (i < 0) return std::nullopt;
+    return kPayloadSizes[i];
 }
 
 // --- little-endian helpers -----------------------------------------------------------
@@ -79,62 +63,35 @@ std::optional<std::string> FrameTimes::check(int64_t ns) const {
 
 namespace {
 
-void put_rgb(std::vector<uint8_t>& out, Rgb c) {
+void put_field(std::vector<uint8_t>& out, int32_t v) {
+    put_i32(out, v);
+}
+void put_field(std::vector<uint8_t>& out, uint32_t v) {
+    put_u32(out, v);
+}
+void put_field(std::vector<uint8_t>& out, Rgb c) {
     out.push_back(c.r);
     out.push_back(c.g);
     out.push_back(c.b);
 }
 
-Rgb get_rgb(const uint8_t* p) {
-    return Rgb{p[0], p[1], p[2]};
-}
-
+// The tail's count, the fields in the row's order, the tail.
 struct EncodePayload {
     std::vector<uint8_t>& out;
-    void operator()(const FrameBegin& c) const {
-        put_u32(out, c.frame);
-        put_u32(out, c.width);
-        put_u32(out, c.height);
-        put_rgb(out, c.background);
-    }
-    void operator()(const FillRect& c) const {
-        put_i32(out, c.x);
-        put_i32(out, c.y);
-        put_u32(out, c.w);
-        put_u32(out, c.h);
-        put_rgb(out, c.color);
-    }
-    void operator()(const DrawSpan& c) const {
-        put_i32(out, c.y);
-        put_i32(out, c.x0);
-        put_i32(out, c.x1);
-        put_rgb(out, c.color);
-    }
-    void operator()(const Marker& c) const {
-        put_u16(out, static_cast<uint16_t>(c.text.size()));
-        out.insert(out.end(), c.text.begin(), c.text.end());
-    }
-    void operator()(const FrameEnd&) const {}
-    void operator()(const DepthClear&) const {}
-    void operator()(const DepthSpan& c) const {
-        put_i32(out, c.y);
-        put_i32(out, c.x0);
-        put_i32(out, c.x1);
-        put_u32(out, c.z);
-        put_i32(out, c.dz);
-        put_rgb(out, c.color);
-    }
-    void operator()(const Face& c) const {
-        put_u8(out, static_cast<uint8_t>(c.points.size()));
-        put_rgb(out, c.color);
-        put_i32(out, c.x_ref);
-        put_i32(out, c.y_ref);
-        put_u32(out, c.z);
-        put_i32(out, c.dzdx);
-        put_i32(out, c.dzdy);
-        for (const SnappedPoint& p : c.points) {
-            put_i32(out, static_cast<int32_t>(p.x));
-            put_i32(out, static_cast<int32_t>(p.y));
+    template <class C>
+    void operator()(const C& c) const {
+        if constexpr (CommandInfo<C>::tail == Tail::Text)
+            put_u16(out, static_cast<uint16_t>(c.text.size()));
+        else if constexpr (CommandInfo<C>::tail == Tail::Points)
+            put_u8(out, static_cast<uint8_t>(c.points.size()));
+        for_each_field(c, [&](const auto& value, const auto&) { put_field(out, value); });
+        if constexpr (CommandInfo<C>::tail == Tail::Text) {
+            out.insert(out.end(), c.text.begin(), c.text.end());
+        } else if constexpr (CommandInfo<C>::tail == Tail::Points) {
+            for (const SnappedPoint& p : c.points) {
+                put_i32(out, static_cast<int32_t>(p.x));
+                put_i32(out, static_cast<int32_t>(p.y));
+            }
         }
     }
 };
@@ -214,35 +171,25 @@ uint64_t seal_batch(uint8_t* record, const BatchRecord& b) {
 // --- decoders ------------------------------------------------------------------------
 
 Command decode_fixed_payload(Opcode op, const uint8_t* p) {
-    switch (op) {
-        case Opcode::FrameBegin:
-            return FrameBegin{get_u32(p), get_u32(p + 4), get_u32(p + 8), get_rgb(p + 12)};
-        case Opcode::FillRect:
-            return decode_fill_rect(p);
-        case Opcode::DrawSpan:
-            return decode_draw_span(p);
-        case Opcode::FrameEnd:
-            return FrameEnd{};
-        case Opcode::DepthClear:
-            return DepthClear{};
-        case Opcode::DepthSpan:
-            return decode_depth_span(p);
-        case Opcode::Marker:
-        case Opcode::Face:
-            break;
+    const int i = opcode_index(op);
+    if (i < 0 || kCommandRows[i].tail != Tail::None)
+        throw std::logic_error(fmt::format("decode_fixed_payload: opcode {} has no fixed payload",
+                                           static_cast<int>(op)));
+    Command out;
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+        ((I == static_cast<std::size_t>(i)
+              ? decode_fields(p, out.emplace<std::variant_alternative_t<I, Command>>())
+              : void()),
+         ...);
     }
-    throw std::logic_error("decode_fixed_payload: MARKER and FACE have no fixed payload");
+    (std::make_index_sequence<kOpcodeCount>{});
+    return out;
 }
 
 Face decode_face_fixed(const uint8_t* p) {
     Face f;
     f.points.resize(p[0]);
-    f.color = get_rgb(p + 1);
-    f.x_ref = get_i32(p + 4);
-    f.y_ref = get_i32(p + 8);
-    f.z = get_u32(p + 12);
-    f.dzdx = get_i32(p + 16);
-    f.dzdy = get_i32(p + 20);
+    decode_fields(p + 1, f);
     return f;
 }
 
@@ -265,58 +212,6 @@ uint64_t batch_checksum(const uint8_t* record, std::size_t length) {
 }
 
 // --- validation ----------------------------------------------------------------------
-
-namespace {
-
-std::optional<std::string> check_dimension(const char* name, uint32_t v) {
-    if (v == 0 || v > kMaxFrameDimension) {
-        return fmt::format("{} {} is outside 1..{}", name, v, kMaxFrameDimension);
-    }
-    return std::nullopt;
-}
-
-struct CheckCommand {
-    std::optional<std::string> operator()(const FrameBegin& c) const {
-        if (auto problem = check_dimension("width", c.width)) return problem;
-        return check_dimension("height", c.height);
-    }
-    std::optional<std::string> operator()(const FillRect&) const { return std::nullopt; }
-    std::optional<std::string> operator()(const DrawSpan& c) const {
-        if (c.x1 < c.x0) return fmt::format("x1 {} < x0 {}", c.x1, c.x0);
-        return std::nullopt;
-    }
-    std::optional<std::string> operator()(const Marker& c) const {
-        if (c.text.size() > kMaxMarkerLength) {
-            return fmt::format("text of {} bytes is longer than {}", c.text.size(),
-                               kMaxMarkerLength);
-        }
-        return std::nullopt;
-    }
-    std::optional<std::string> operator()(const FrameEnd&) const { return std::nullopt; }
-    std::optional<std::string> operator()(const DepthClear&) const { return std::nullopt; }
-    std::optional<std::string> operator()(const DepthSpan& c) const {
-        if (c.x1 < c.x0) return fmt::format("x1 {} < x0 {}", c.x1, c.x0);
-        return std::nullopt;
-    }
-    std::optional<std::string> operator()(const Face& c) const {
-        if (c.points.size() < 3 || c.points.size() > kMaxFacePoints)
-            return fmt::format("{} points, outside 3..{}", c.points.size(), kMaxFacePoints);
-        for (std::size_t i = 0; i < c.points.size(); ++i) {
-            const SnappedPoint& p = c.points[i];
-            if (p.x < -kMaxFaceCoordinate || p.x > kMaxFaceCoordinate ||
-                p.y < -kMaxFaceCoordinate || p.y > kMaxFaceCoordinate)
-                return fmt::format("point {} ({}, {}) is outside +-{} grid units", i, p.x, p.y,
-                                   kMaxFaceCoordinate);
-        }
-        return std::nullopt;
-    }
-};
-
-}  // namespace
-
-std::optional<std::string> check_command(const Command& c) {
-    return std::visit(CheckCommand{}, c);
-}
 
 std::optional<std::string> check_properties(const Properties& properties) {
     if (properties.size() > kMaxPropertyCount) {

@@ -17,6 +17,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "protocol/command.h"
@@ -46,19 +49,45 @@ inline constexpr const char* kPropertyHost = "host";
 
 // --- records -------------------------------------------------------------------------
 inline constexpr uint8_t kIndexOpcode = 0xFE;  // trailing frame index; not a command
-inline constexpr uint32_t kMaxFrameDimension = 16384;
 
-// Bytes after the opcode byte of each command record. For MARKER this is the u16 length
-// prefix only; its text follows.
+// The bytes of a field on the wire, and of a command's payload: after the opcode byte, the
+// tail's count (MARKER's u16, FACE's u8) and the fields; a MARKER's text and a FACE's points
+// follow.
+template <class T>
+inline constexpr std::size_t kWireSize = std::is_same_v<T, Rgb> ? 3 : sizeof(T);
+template <class C>
+constexpr std::size_t fixed_payload_size() {
+    using I = CommandInfo<C>;
+    std::size_t n = I::tail == Tail::Text ? 2 : I::tail == Tail::Points ? 1 : 0;
+    std::apply(
+        [&](const auto&... f) {
+            ((n += kWireSize<std::remove_cvref_t<decltype(C{}.*f.member)>>), ...);
+        },
+        I::fields);
+    return n;
+}
+namespace detail {
+template <std::size_t... I>
+constexpr std::array<std::size_t, sizeof...(I)> payload_sizes(std::index_sequence<I...>) {
+    return {fixed_payload_size<std::variant_alternative_t<I, Command>>()...};
+}
+}  // namespace detail
+inline constexpr std::array<std::size_t, kOpcodeCount> kPayloadSizes =
+    detail::payload_sizes(std::make_index_sequence<kOpcodeCount>{});
+
+// Bytes after the opcode byte of each command record (for MARKER the u16 length only).
 std::optional<std::size_t> payload_size(uint8_t opcode);  // nullopt: not a command opcode
-inline constexpr std::size_t kFrameBeginRecordSize = 16;  // opcode + 15-byte payload
-inline constexpr std::size_t kFillRectRecordSize = 20;    // opcode + 19-byte payload
-inline constexpr std::size_t kDrawSpanRecordSize = 16;    // opcode + 15-byte payload
-inline constexpr std::size_t kDepthSpanRecordSize = 24;   // opcode + 23-byte payload
-// FACE: opcode, a 24-byte fixed part (u8 count first), then 8 bytes a point.
-inline constexpr std::size_t kFaceFixedSize = 24;
+inline constexpr std::size_t kFrameBeginRecordSize = 1 + fixed_payload_size<FrameBegin>();
+inline constexpr std::size_t kFillRectRecordSize = 1 + fixed_payload_size<FillRect>();
+inline constexpr std::size_t kDrawSpanRecordSize = 1 + fixed_payload_size<DrawSpan>();
+inline constexpr std::size_t kDepthSpanRecordSize = 1 + fixed_payload_size<DepthSpan>();
+// FACE: opcode, its fixed part (u8 count first), then 8 bytes a point.
+inline constexpr std::size_t kFaceFixedSize = fixed_payload_size<Face>();
 inline constexpr std::size_t kFacePointSize = 8;
 inline constexpr std::size_t kMaxRecordSize = 1 + 2 + kMaxMarkerLength;
+// The sizes docs/PROTOCOL.md gives.
+static_assert(kFrameBeginRecordSize == 16 && kFillRectRecordSize == 20 &&
+              kDrawSpanRecordSize == 16 && kDepthSpanRecordSize == 24 && kFaceFixedSize == 24);
 static_assert(1 + kFaceFixedSize + kMaxFacePoints * kFacePointSize <= kMaxRecordSize);
 
 // Version 3's header flags: bit 0, the stream carries send-time records (as version 2 does).
@@ -218,17 +247,24 @@ uint64_t seal_batch(uint8_t* record, const BatchRecord& b);
 // Decodes a fixed-size command record's payload (not MARKER or FACE); p points after the
 // opcode and holds payload_size(opcode) bytes.
 Command decode_fixed_payload(Opcode op, const uint8_t* p);
-// The same for the two drawing commands, inline for the reader's per-record fast path.
-inline FillRect decode_fill_rect(const uint8_t* p) {
-    return FillRect{get_i32(p), get_i32(p + 4), get_u32(p + 8), get_u32(p + 12),
-                    Rgb{p[16], p[17], p[18]}};
+// Stores the fields at p, in the row's order, into c one by one (the reader's fast path
+// relies on that: detail::held).
+inline int32_t get_field(const uint8_t* p, int32_t*) {
+    return get_i32(p);
 }
-inline DrawSpan decode_draw_span(const uint8_t* p) {
-    return DrawSpan{get_i32(p), get_i32(p + 4), get_i32(p + 8), Rgb{p[12], p[13], p[14]}};
+inline uint32_t get_field(const uint8_t* p, uint32_t*) {
+    return get_u32(p);
 }
-inline DepthSpan decode_depth_span(const uint8_t* p) {
-    return DepthSpan{get_i32(p),      get_i32(p + 4),  get_i32(p + 8),
-                     get_u32(p + 12), get_i32(p + 16), Rgb{p[20], p[21], p[22]}};
+inline Rgb get_field(const uint8_t* p, Rgb*) {
+    return Rgb{p[0], p[1], p[2]};
+}
+template <class C>
+inline void decode_fields(const uint8_t* p, C& c) {
+    for_each_field(c, [&](auto& value, const auto&) {
+        using T = std::remove_cvref_t<decltype(value)>;
+        value = get_field(p, static_cast<T*>(nullptr));
+        p += kWireSize<T>;
+    });
 }
 // A FACE's fixed part (p after the opcode, kFaceFixedSize bytes) with its point count as
 // the size of points (unfilled); then each point, p at its 8 bytes.
@@ -249,6 +285,21 @@ T& held(Command& out) {
     return out.emplace<T>();
 }
 
+template <class T>
+void store_fields(const T& from, T& to) {
+    std::apply([&](const auto&... f) { ((to.*f.member = from.*f.member), ...); },
+               CommandInfo<T>::fields);
+}
+// A span's record at p decoded into out, or 0 for one check_command refuses (x1 < x0).
+template <class T>
+std::size_t decode_span(const uint8_t* p, Command& out) {
+    T s;
+    decode_fields(p + 1, s);
+    if (s.x1 < s.x0) return 0;
+    store_fields(s, held<T>(out));
+    return 1 + fixed_payload_size<T>();
+}
+
 }  // namespace detail
 
 // The StreamReader's fast path: decodes the FILL_RECT, DRAW_SPAN, FRAME_END or (with `depth`,
@@ -258,42 +309,19 @@ T& held(Command& out) {
 // the general path.
 inline std::size_t decode_common_record(const uint8_t* p, Command& out, bool depth) {
     switch (p[0]) {
-        case static_cast<uint8_t>(Opcode::DrawSpan): {
-            const DrawSpan s = decode_draw_span(p + 1);
-            if (s.x1 < s.x0) return 0;
-            DrawSpan& d = detail::held<DrawSpan>(out);
-            d.y = s.y;
-            d.x0 = s.x0;
-            d.x1 = s.x1;
-            d.color = s.color;
-            return kDrawSpanRecordSize;
-        }
+        case static_cast<uint8_t>(Opcode::DrawSpan):
+            return detail::decode_span<DrawSpan>(p, out);
         case static_cast<uint8_t>(Opcode::FillRect): {
-            const FillRect f = decode_fill_rect(p + 1);
-            FillRect& d = detail::held<FillRect>(out);
-            d.x = f.x;
-            d.y = f.y;
-            d.w = f.w;
-            d.h = f.h;
-            d.color = f.color;
+            FillRect f;
+            decode_fields(p + 1, f);
+            detail::store_fields(f, detail::held<FillRect>(out));
             return kFillRectRecordSize;
         }
         case static_cast<uint8_t>(Opcode::FrameEnd):
             detail::held<FrameEnd>(out);
             return 1;
-        case static_cast<uint8_t>(Opcode::DepthSpan): {
-            if (!depth) return 0;
-            const DepthSpan s = decode_depth_span(p + 1);
-            if (s.x1 < s.x0) return 0;
-            DepthSpan& d = detail::held<DepthSpan>(out);
-            d.y = s.y;
-            d.x0 = s.x0;
-            d.x1 = s.x1;
-            d.z = s.z;
-            d.dz = s.dz;
-            d.color = s.color;
-            return kDepthSpanRecordSize;
-        }
+        case static_cast<uint8_t>(Opcode::DepthSpan):
+            return depth ? detail::decode_span<DepthSpan>(p, out) : 0;
         default:
             return 0;
     }
@@ -308,8 +336,7 @@ BatchRecord decode_batch(const uint8_t* p);
 uint64_t batch_checksum(const uint8_t* record, std::size_t length);
 
 // --- validation ----------------------------------------------------------------------
-// What is wrong with a command ("x1 -3 < x0 0"), or nullopt if it is valid.
-std::optional<std::string> check_command(const Command& c);
+// (a command's own check: check_command, protocol/command.h)
 std::optional<std::string> check_properties(const Properties& properties);
 // Whether entries are in stream order and point inside [first_record, index_offset) at
 // command numbers below command_count.

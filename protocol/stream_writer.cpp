@@ -108,28 +108,6 @@ void StreamWriter::discard() noexcept {
     m_live.reset();
 }
 
-void StreamWriter::frame_begin(const FrameBegin& c) {
-    write_command(c);
-}
-void StreamWriter::fill_rect(const FillRect& c) {
-    write_command(c);
-}
-void StreamWriter::draw_span(const DrawSpan& c) {
-    write_command(c);
-}
-void StreamWriter::marker(const Marker& c) {
-    write_command(c);
-}
-void StreamWriter::depth_clear(const DepthClear& c) {
-    write_command(c);
-}
-void StreamWriter::depth_span(const DepthSpan& c) {
-    write_command(c);
-}
-void StreamWriter::face(const Face& c) {
-    write_command(c);
-}
-
 void StreamWriter::frame_end(const FrameEnd& c) {
     write_command(c);
     if (m_fd >= 0) flush_buffer();  // a reader at the other end of a pipe gets the frame

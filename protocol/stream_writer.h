@@ -75,14 +75,8 @@ class StreamWriter final : public CommandSink {
     // Commands::Depth),
     // std::runtime_error naming the path on a write error (disk full...), std::logic_error
     // after close().
-    void frame_begin(const FrameBegin& c) override;
-    void fill_rect(const FillRect& c) override;
-    void draw_span(const DrawSpan& c) override;
-    void marker(const Marker& c) override;
+    void take(const Command& c) override { write_command(c); }
     void frame_end(const FrameEnd& c) override;
-    void depth_clear(const DepthClear& c) override;
-    void depth_span(const DepthSpan& c) override;
-    void face(const Face& c) override;
 
     // Timed streams only, inside a frame (after its FRAME_BEGIN, before its FRAME_END): the
     // frame's commands from here on were sent `ns` nanoseconds after the start of the

@@ -67,14 +67,7 @@ struct CommandRows final : protocol::CommandSink {
 
     void add(const protocol::Command& c);
     void add(std::span<const protocol::Command> commands);
-    void frame_begin(const protocol::FrameBegin& c) override { add(c); }
-    void fill_rect(const protocol::FillRect& c) override { add(c); }
-    void draw_span(const protocol::DrawSpan& c) override { add(c); }
-    void marker(const protocol::Marker& c) override { add(c); }
-    void frame_end(const protocol::FrameEnd& c) override { add(c); }
-    void depth_clear(const protocol::DepthClear& c) override { add(c); }
-    void depth_span(const protocol::DepthSpan& c) override { add(c); }
-    void face(const protocol::Face& c) override { add(c); }
+    void take(const protocol::Command& c) override { add(c); }
     // Sends every row as its command, in order. Throws std::invalid_argument naming the row
     // ("commands: row 3: opcode 9 is none of ...") of one the stream format cannot carry: an
     // opcode that is none, a span of width 0, a frame of size 0 or over 16384 (what

@@ -33,14 +33,7 @@ class PipelineRows final : public protocol::CommandSink {
     PipelineRows(const StreamFile& s, controller::Controller& ctl,
                  frontend::FramePipelines& pipelines)
         : m_s(s), m_ctl(ctl), m_pipelines(pipelines) {}
-    void frame_begin(const protocol::FrameBegin& c) override { step(c); }
-    void fill_rect(const protocol::FillRect& c) override { step(c); }
-    void draw_span(const protocol::DrawSpan& c) override { step(c); }
-    void marker(const protocol::Marker& c) override { step(c); }
-    void frame_end(const protocol::FrameEnd& c) override { step(c); }
-    void depth_clear(const protocol::DepthClear& c) override { step(c); }
-    void depth_span(const protocol::DepthSpan& c) override { step(c); }
-    void face(const protocol::Face& c) override { step(c); }
+    void take(const protocol::Command& c) override { step(c); }
 
   private:
     void step(const protocol::Command& c) {

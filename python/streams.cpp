@@ -236,12 +236,7 @@ class TimedRows final : public protocol::CommandSink {
         m_in_frame = true;
         ++m_row;
     }
-    void fill_rect(const protocol::FillRect& c) override { timed(c); }
-    void draw_span(const protocol::DrawSpan& c) override { timed(c); }
-    void marker(const protocol::Marker& c) override { timed(c); }
-    void depth_clear(const protocol::DepthClear& c) override { timed(c); }
-    void depth_span(const protocol::DepthSpan& c) override { timed(c); }
-    void face(const protocol::Face& c) override { timed(c); }
+    void take(const protocol::Command& c) override { timed(c); }
     void frame_end(const protocol::FrameEnd& c) override {
         if (m_in_frame) {
             m_writer.send_time(m_s.send_ns.at(m_row));
@@ -279,8 +274,11 @@ std::vector<uint8_t> encode_rows(const StreamFile& s) {
         throw std::invalid_argument("header: " + *problem);
     s.commands.check();  // the rows may have changed since: they are a writable view
     const bool timed = !s.send_ns.empty();
-    const bool depth = std::any_of(s.commands.rows.begin(), s.commands.rows.end(),
-                                   [](const CommandRow& r) { return r.opcode >= 8; });
+    const bool depth =
+        std::any_of(s.commands.rows.begin(), s.commands.rows.end(), [](const CommandRow& r) {
+            const protocol::CommandRow* c = protocol::command_row(r.opcode);
+            return c && c->since >= protocol::kDepthVersion;
+        });
     protocol::StreamWriter writer(s.header,
                                   timed ? protocol::Timing::Timed : protocol::Timing::Untimed,
                                   depth ? protocol::Commands::Depth : protocol::Commands::Tiling);
@@ -307,6 +305,10 @@ void save_rows(const StreamFile& s, const std::string& path) {
 
 void register_streams(py::module_& m) {
     m.attr("COMMAND_DTYPE") = command_dtype();
+    py::dict opcodes;  // each command's name and opcode, from its row (protocol/command.h)
+    for (const protocol::CommandRow& r : protocol::kCommandRows)
+        opcodes[py::str(r.name)] = static_cast<int>(r.opcode);
+    m.attr("OPCODES") = opcodes;
 
     py::class_<StreamFile, std::shared_ptr<StreamFile>>(
         m, "Stream",
@@ -413,7 +415,7 @@ array (of fb89.COMMAND_DTYPE, or one that casts to it); a render's is Render.str
             [](const StreamFile& s) {
                 std::size_t n = 0;
                 for (const CommandRow& r : s.commands.rows)
-                    n += r.opcode == 1;
+                    n += r.opcode == static_cast<uint8_t>(protocol::Opcode::FrameBegin);
                 return n;
             },
             "How many frames the stream begins.")

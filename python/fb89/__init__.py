@@ -59,10 +59,12 @@ __all__ = [
     "profiles", "radiosity", "render", "replay", "scenes", "sweep", "trim",
 ]
 
-# Opcodes of COMMAND_DTYPE's "opcode" field (docs/PROTOCOL.md).
-FRAME_BEGIN, FILL_RECT, DRAW_SPAN, MARKER, FRAME_END = 1, 2, 3, 4, 5
-# version 3's depth commands (their depth in Stream.depth, a FACE's points in Stream.face_points)
-DEPTH_CLEAR, DEPTH_SPAN, FACE = 8, 9, 10
+# Opcodes of COMMAND_DTYPE's "opcode" field by name (docs/PROTOCOL.md), from the commands'
+# table: FRAME_BEGIN 1, FILL_RECT 2, DRAW_SPAN 3, MARKER 4, FRAME_END 5, and version 3's depth
+# commands DEPTH_CLEAR 8, DEPTH_SPAN 9, FACE 10 (their depth in Stream.depth, a FACE's points
+# in Stream.face_points). Each is also a name of this module: fb89.DRAW_SPAN.
+OPCODES = dict(_fb89.OPCODES)
+globals().update(OPCODES)
 
 DEFAULT_PROFILE = "tms34010-50mhz"
 DEFAULT_CONTROLLER = DEFAULT_PROFILE  # its old name

@@ -32,6 +32,17 @@ def test_the_lists_are_the_command_lines():
     assert "demo" in fb89.scenes() and "garish_room" in fb89.scenes()
 
 
+def test_the_opcodes_are_the_command_tables():
+    assert fb89.OPCODES == {"FRAME_BEGIN": 1, "FILL_RECT": 2, "DRAW_SPAN": 3, "MARKER": 4,
+                            "FRAME_END": 5, "DEPTH_CLEAR": 8, "DEPTH_SPAN": 9, "FACE": 10}
+    assert (fb89.DRAW_SPAN, fb89.FACE) == (3, 10)
+    rows = np.zeros(1, dtype=fb89.COMMAND_DTYPE)
+    rows[0]["opcode"] = 11
+    with pytest.raises(fb89.OptionError, match=r"opcode 11 is none of 1 \(FRAME_BEGIN\), "
+                                               r".*, 10 \(FACE\)"):
+        fb89.Stream(rows)
+
+
 def test_a_render_gives_the_image_the_ids_and_the_split():
     r = fb89.render("demo", method="zbuffer", size="256x195")
     assert r.image.shape == (195, 256, 3) and r.image.dtype == np.uint8

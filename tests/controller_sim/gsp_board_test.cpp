@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "controller_sim/controller.h"
+#include "controller_sim/gsp_assembler.h"
 #include "controller_sim/gsp_listing.h"
 
 namespace fb89::controller::gsp {
@@ -73,6 +74,45 @@ std::vector<protocol::SnappedPoint> oriented(std::vector<protocol::SnappedPoint>
 }
 
 const Rgb kRed{200, 0, 0}, kGreen{0, 180, 0}, kBlue{0, 0, 220}, kGrey{90, 90, 90};
+
+// The commands' rows (protocol/command.h) and the listing agree: its dispatch table holds each
+// command's handler by opcode, as the board fills it; each command's words on the host port
+// are its row's, and the profile's modelled bytes twice their count.
+TEST(GspBoard, TheListingsTableAndTheHostsWordsAreTheCommandsRows) {
+    const Program program = assemble("tms34010.asm", builtin_listing("tms34010").text);
+    const std::vector<uint16_t> image = program.image();
+    const uint32_t table = program.labels.at("table");
+    for (const protocol::CommandRow& row : protocol::kCommandRows) {
+        if (!row.handler) continue;
+        const std::size_t at = (table + 32 * static_cast<uint32_t>(row.opcode)) / 16;
+        ASSERT_LT(at + 1, image.size()) << row.name;
+        const uint32_t entry = image[at] | (uint32_t{image[at + 1]} << 16);
+        EXPECT_EQ(entry, program.labels.at(row.handler)) << row.name;
+    }
+    const CostProfile p = load_profile("tms34010-50mhz");
+    GspBoard board = board_for(p);
+    const std::vector<Command> commands = {
+        protocol::FrameBegin{0, 64, 48, Rgb{1, 2, 3}},
+        protocol::FillRect{-3, 2, 10, 5, Rgb{4, 5, 6}},
+        protocol::DrawSpan{3, 1, 9, Rgb{7, 8, 9}},
+        protocol::Marker{"m"},
+        protocol::DepthClear{},
+        protocol::DepthSpan{4, 0, 20, 1000, 3, Rgb{1, 1, 1}},
+        protocol::Face{Rgb{2, 2, 2}, 1, 1, 500, 1, 1, {{0, 0}, {2560, 0}, {0, 2560}}},
+        protocol::FrameEnd{}};
+    for (const Command& c : commands) {
+        const protocol::Opcode op = protocol::opcode_of(c);
+        const protocol::CommandRow& row = protocol::kCommandRows[protocol::opcode_index(op)];
+        const std::size_t points =
+            op == protocol::Opcode::Face ? std::get<protocol::Face>(c).points.size() : 0;
+        const std::vector<uint16_t> words = board.words_of(c);
+        EXPECT_EQ(words.size(), row.port_words + 4 * points) << row.name;
+        if (!words.empty()) {
+            EXPECT_EQ(words[0], static_cast<uint16_t>(op));
+        }
+        EXPECT_EQ(p.bytes_of(op) + kFacePointBytes * points, 2 * words.size()) << row.name;
+    }
+}
 
 TEST(GspBoard, ClippedAndOutsideTilingCommandsDrawWhatTheControllerDraws) {
     for (const char* span_as : {"fill", "line"}) {

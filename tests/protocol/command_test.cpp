@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <iterator>
+#include <string>
 #include <vector>
 
 #include "protocol/command_sink.h"
@@ -60,6 +62,54 @@ TEST(Command, ToStringDescribesEveryFieldOnOneLine) {
               "DRAW_SPAN y=7 x0=0 x1=99 color=#00ff00");
     EXPECT_EQ(to_string(Command{Marker{"scan-line"}}), "MARKER \"scan-line\"");
     EXPECT_EQ(to_string(Command{FrameEnd{}}), "FRAME_END");
+    EXPECT_EQ(to_string(Command{DepthSpan{4, -1, 2, 268435456, -5, Rgb{1, 2, 3}}}),
+              "DEPTH_SPAN y=4 x0=-1 x1=2 z=268435456 dz=-5 color=#010203");
+    EXPECT_EQ(
+        to_string(Command{Face{Rgb{9, 9, 9}, 1, 2, 300, -4, 5, {{0, 0}, {256, 0}, {0, 512}}}}),
+        "FACE color=#090909 x_ref=1 y_ref=2 z=300 dzdx=-4 dzdy=5 points=3 (0,0) (256,0) "
+        "(0,512)");
+}
+
+// The table: each command's row names it, its opcode, the format that first carries it and
+// what its record and its host-port words hold, as docs/PROTOCOL.md and the listing's header
+// give them.
+TEST(Command, TheRowsGiveEachCommandsNameVersionAndWords) {
+    struct Expect {
+        Opcode op;
+        const char* name;
+        uint16_t since;
+        uint32_t port_words;
+    };
+    const Expect expect[] = {
+        {Opcode::FrameBegin, "FRAME_BEGIN", 1, 5}, {Opcode::FillRect, "FILL_RECT", 1, 6},
+        {Opcode::DrawSpan, "DRAW_SPAN", 1, 5},     {Opcode::Marker, "MARKER", 1, 0},
+        {Opcode::FrameEnd, "FRAME_END", 1, 1},     {Opcode::DepthClear, "DEPTH_CLEAR", 3, 1},
+        {Opcode::DepthSpan, "DEPTH_SPAN", 3, 9},   {Opcode::Face, "FACE", 3, 11}};
+    ASSERT_EQ(std::size(expect), static_cast<std::size_t>(kOpcodeCount));
+    for (int i = 0; i < kOpcodeCount; ++i) {
+        const CommandRow& row = kCommandRows[i];
+        EXPECT_EQ(row.opcode, expect[i].op);
+        EXPECT_STREQ(row.name, expect[i].name);
+        EXPECT_EQ(row.since, expect[i].since) << row.name;
+        EXPECT_EQ(row.port_words, expect[i].port_words) << row.name;
+        EXPECT_EQ(is_depth_opcode(row.opcode), row.since >= kDepthVersion);
+        EXPECT_EQ(command_row(static_cast<uint8_t>(row.opcode)), &row);
+    }
+    EXPECT_EQ(command_row(6), nullptr);  // version 2's time records are no commands
+    EXPECT_EQ(command_row(0), nullptr);
+    EXPECT_EQ(opcode_index(static_cast<Opcode>(0x7f)), -1);
+    EXPECT_FALSE(is_depth_opcode(static_cast<Opcode>(0x7f)));
+}
+
+TEST(Command, EachRowsCheckIsCheckCommands) {
+    EXPECT_EQ(check_command(FrameBegin{0, 0, 10, {}}), "width 0 is outside 1..16384");
+    EXPECT_EQ(check_command(FrameBegin{0, 10, 16385, {}}), "height 16385 is outside 1..16384");
+    EXPECT_EQ(check_command(DrawSpan{0, 5, 4, {}}), "x1 4 < x0 5");
+    EXPECT_EQ(check_command(DepthSpan{0, 5, 4, 0, 0, {}}), "x1 4 < x0 5");
+    EXPECT_EQ(check_command(Face{}), "0 points, outside 3..64");
+    EXPECT_EQ(check_command(Marker{std::string(kMaxMarkerLength + 1, 'm')}),
+              "text of 1025 bytes is longer than 1024");
+    EXPECT_EQ(check_command(FillRect{-5, -5, 0, 0, {}}), std::nullopt);  // no check of its own
 }
 
 // Records which sink call each submitted command reached.
