@@ -660,10 +660,33 @@ uint32_t working_set_words(const std::map<std::string, CountedPath>& paths,
     return n;
 }
 
+uint32_t working_set_segments(const Listing& listing,
+                              const std::map<std::string, CountedPath>& paths,
+                              std::span<const std::string_view> names) {
+    std::map<int, const gsp::AssembledLine*> at;
+    const gsp::Program program = gsp::assemble(fmt::format("{}.asm", listing.name), listing.text);
+    for (const gsp::AssembledLine& l : program.lines)
+        if (l.code) at[l.line] = &l;
+    constexpr uint32_t kSegmentBits = 32 * 16;
+    std::map<uint32_t, bool> segments;
+    for (std::string_view name : names) {
+        auto it = paths.find(std::string(name));
+        if (it == paths.end()) throw std::runtime_error(fmt::format("no @path {}", name));
+        for (const CountedLine& l : it->second.lines) {
+            auto a = at.find(l.line);
+            if (a == at.end() || a->second->words.empty()) continue;
+            const uint32_t first = a->second->address;
+            const uint32_t last = first + 16 * static_cast<uint32_t>(a->second->words.size()) - 1;
+            for (uint32_t s = first / kSegmentBits; s <= last / kSegmentBits; ++s)
+                segments[s] = true;
+        }
+    }
+    return static_cast<uint32_t>(segments.size());
+}
+
 std::span<const CachedWork> cached_work() {
     static const std::vector<CachedWork> work = {
-        {"the tiling commands' executive",
-         {"COMMON", "FRAME_BEGIN", "FILL_RECT", "DRAW_SPAN:fill", "FRAME_END"}},
+        {"a FILL_RECT or a DRAW_SPAN", {"COMMON", "FILL_RECT", "DRAW_SPAN:fill"}},
         {"a DEPTH_SPAN and its pixel loop",
          {"COMMON", "DEPTH_SPAN", "ZPIXEL16:nearer", "ZPIXEL16:farther", "ZSPAN_EXIT"}},
         {"a FACE's row loop",

@@ -89,9 +89,19 @@ uint32_t listing_words(const Listing& listing);
 // sit in the instruction cache for those paths to run at their minimum cycles.
 uint32_t working_set_words(const std::map<std::string, CountedPath>& paths,
                            std::span<const std::string_view> names);
-// The paths each command repeats, whose working set the cache must hold: the tiling
-// commands' whole executive, a DEPTH_SPAN with its pixel loop, and a FACE's row loop (its
-// set-up, once a face, runs through the cache: docs/COST_MODEL.md, "Depth commands").
+// The instruction cache's segments those instructions lie in, as the assembler places the
+// listing: 32-word blocks aligned to 64 bytes, four of which the cache holds (SPVS002C p. 2;
+// least recently used replacement, the User's Guide 5-3). A working set of at most 128 words
+// that spans five or more still misses on every pass.
+inline constexpr uint32_t kInstructionCacheSegments = 4;
+uint32_t working_set_segments(const Listing& listing,
+                              const std::map<std::string, CountedPath>& paths,
+                              std::span<const std::string_view> names);
+// The paths each command repeats, whose working set the cache must hold: a FILL_RECT's and a
+// DRAW_SPAN's with the loop's dispatch, a DEPTH_SPAN with its pixel loop, and a FACE's row
+// loop. FRAME_BEGIN and FRAME_END, once a frame, and a FACE's set-up, once a face, run
+// through the cache (docs/COST_MODEL.md, "Depth commands"; the emulated GSP counts their
+// misses, "The GSP as code").
 struct CachedWork {
     std::string_view what;
     std::vector<std::string_view> paths;

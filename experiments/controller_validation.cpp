@@ -276,6 +276,11 @@ std::vector<ValidationRow> controller_validation(const CostProfile& after,
         add({fmt::format("{}: its length", w.what), "16-bit words",
              "[DS] SPVS002C p. 2: a 256-byte instruction cache", "at most 128", kNone,
              static_cast<double>(words), true, words <= 128, true});
+        const auto segments = controller::working_set_segments(listing, paths, w.paths);
+        add({fmt::format("{}: its cache segments", w.what), "64-byte segments",
+             "[DS] SPVS002C p. 2: four segments of 32 words; the listing as assembled", "at most 4",
+             kNone, static_cast<double>(segments), true,
+             segments <= controller::kInstructionCacheSegments, true});
     }
     add({"C_cmd: the loop's fetch and dispatch", "states", "the listing, COMMON", "",
          static_cast<double>(before.c_cmd), static_cast<double>(after.c_cmd), false, true, true});

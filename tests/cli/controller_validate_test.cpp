@@ -19,8 +19,8 @@ TEST(ControllerValidate, PrintsEveryFigureWithItsSourceBeforeAndNow) {
     for (const char* text :
          {"tms34010-50mhz now", "a pixel of LINE at 8 bpp (states)", "[DS] SPVS002C p. 34",
           "before 2 (missed), now 4  ok", "before 8 (missed), now 6.29375  ok",
-          "the tiling commands' executive: its length", "BYTE, September 1988",
-          "C_cmd: the loop's fetch",
+          "a FILL_RECT or a DRAW_SPAN: its length", "a FACE's row loop: its cache segments",
+          "BYTE, September 1988", "C_cmd: the loop's fetch",
           // what TI's own routines imply, and TI's simulator on the same FILLs and LINE
           "the frame's clear by FILL XY, as TI's clear_screen (ms)",
           "[TI] TDB10/OEMPRIMS/CLEARSCR.ASM",
