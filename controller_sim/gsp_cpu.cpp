@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -20,7 +21,8 @@ GspFault::GspFault(uint32_t pc, const std::string& what)
 
 Tms34010::Tms34010(const GspTiming& timing)
     : m_timing(timing),
-      m_dram(kDramBits / 8),
+      m_handlers(handlers().data()),
+      m_dram(kDramBits / 8 + 8),  // (field_bytes)
       m_vram_storage(kVramBits / 8 + 4096),
       m_shift_register(kVramRowBitsOnBoard / 8) {
     m_io[(kPsize - kIoStart) >> 4] = 8;
@@ -68,7 +70,8 @@ uint8_t* Tms34010::bytes_at(uint32_t address, uint32_t bits) {
     return const_cast<uint8_t*>(std::as_const(*this).bytes_at(address, bits));
 }
 
-uint32_t Tms34010::read_field(uint32_t address, uint32_t bits) const {
+// Fields outside the DRAM and the VRAM: the I/O registers, and the faults.
+uint32_t Tms34010::read_field_slow(uint32_t address, uint32_t bits) const {
     if (address >= kIoStart && address < kIoStart + kIoBits) {
         if (address % 16 != 0 || (bits != 16 && bits != 32))
             throw GspFault(m_instruction_pc,
@@ -105,7 +108,7 @@ uint32_t Tms34010::read_field(uint32_t address, uint32_t bits) const {
     return bits == 32 ? static_cast<uint32_t>(v) : static_cast<uint32_t>(v & ((1u << bits) - 1));
 }
 
-void Tms34010::write_field(uint32_t address, uint32_t bits, uint32_t value) {
+void Tms34010::write_field_slow(uint32_t address, uint32_t bits, uint32_t value) {
     if (address >= kIoStart && address < kIoStart + kIoBits) {
         if (address % 16 != 0 || (bits != 16 && bits != 32))
             fault(
@@ -153,30 +156,6 @@ void Tms34010::write_io(uint32_t address, uint16_t v) {
     m_io[index] = v;
 }
 
-uint32_t Tms34010::extend(uint32_t v, int field) const {
-    const uint32_t bits = m_fs[field];
-    if (bits == 32 || !m_fe[field]) return v;
-    const uint32_t sign = 1u << (bits - 1);
-    return (v ^ sign) - sign;
-}
-
-uint32_t Tms34010::memory_read(uint32_t address, int field) {
-    const uint32_t bits = m_fs[field];
-    pay_queue();
-    const uint32_t words = (address % 16 + bits + 15) / 16;
-    m_states += states::kMemoryIssue + words * cycle_states(address);
-    return extend(read_field(address, bits), field);
-}
-
-void Tms34010::memory_write(uint32_t address, int field, uint32_t value) {
-    const uint32_t bits = m_fs[field];
-    pay_queue();
-    const uint32_t words = (address % 16 + bits + 15) / 16;
-    m_states += states::kMemoryIssue;
-    queue_write(words * cycle_states(address));
-    write_field(address, bits, value);
-}
-
 // --- fetch and the instruction cache ------------------------------------------------------
 
 void Tms34010::cache_fetch(uint32_t address) {
@@ -199,23 +178,9 @@ void Tms34010::cache_fetch(uint32_t address) {
     ++m_misses;
 }
 
-uint16_t Tms34010::fetch() {
-    if (m_pc % 16 != 0 || m_pc >= kDramBits)
-        fault(fmt::format("an instruction fetched from {:08X}h, outside the code", m_pc));
-    // the cache is looked at once a sub-segment: a fetch from the one the last came from hits
-    if (m_timing.cache && (m_pc >> 6) != m_last_sub) {
-        cache_fetch(m_pc);
-        m_last_sub = m_pc >> 6;
-    }
-    uint16_t w;
-    std::memcpy(&w, m_dram.data() + m_pc / 8, 2);
-    m_pc += 16;
-    return w;
-}
-
-uint32_t Tms34010::fetch_long() {
-    const uint32_t lo = fetch();
-    return lo | (uint32_t{fetch()} << 16);
+void Tms34010::fetch_fault() const {
+    // (the instruction's address is m_instruction_pc, the fetch's m_pc)
+    fault(fmt::format("an instruction fetched from {:08X}h, outside the code", m_pc));
 }
 
 // --- execution ----------------------------------------------------------------------------
@@ -227,44 +192,7 @@ uint32_t Tms34010::step() {
     m_wrote = false;
     m_misses = 0;
     const uint16_t w = fetch();
-    switch (w >> 12) {
-        case 0x0:
-            exec_0(w);
-            break;
-        case 0x1:
-        case 0x2:
-        case 0x3:
-            exec_k(w);
-            break;
-        case 0x4:
-        case 0x5:
-        case 0x6:
-            exec_alu(w);
-            break;
-        case 0x8:
-        case 0x9:
-        case 0xA:
-        case 0xB:
-            exec_move(w);
-            break;
-        case 0xC:
-            exec_jump(w);
-            break;
-        case 0xD:
-            if (w == 0xDF1A || w == 0xDF9A) {
-                line(w == 0xDF9A);
-                break;
-            }
-            fault(fmt::format("word {:04X}h: not an instruction fb89's GSP executes", w));
-        case 0xE:
-            exec_xy(w);
-            break;
-        case 0xF:
-            exec_pixt(w);
-            break;
-        default:
-            fault(fmt::format("word {:04X}h: not a TMS34010 instruction", w));
-    }
+    m_handlers[w](*this, w);
     return finish();
 }
 
@@ -303,6 +231,38 @@ uint32_t Tms34010::finish() {
     m_count.states += cold;
     m_count.warm_states += warm;
     return cold;
+}
+
+uint64_t Tms34010::run_until(uint32_t stop, uint64_t most) {
+    uint64_t n = 0;
+    do {
+        step();
+    } while (++n < most && m_pc != stop);
+    return n;
+}
+
+void Tms34010::exec_d(uint16_t w) {
+    if (w == 0xDF1A || w == 0xDF9A) {
+        line(w == 0xDF9A);
+        return;
+    }
+    fault(fmt::format("word {:04X}h: not an instruction fb89's GSP executes", w));
+}
+
+void Tms34010::exec_undefined(uint16_t w) {
+    fault(fmt::format("word {:04X}h: not a TMS34010 instruction", w));
+}
+
+const std::array<Tms34010::Handler, 65536>& Tms34010::handlers() {
+    static const std::array<Handler, 65536> table = [] {
+        std::array<Handler, 65536> t;
+        t.fill(&call<&Tms34010::exec_undefined>);
+        install_instructions(t);
+        install_moves(t);
+        install_graphics(t);
+        return t;
+    }();
+    return table;
 }
 
 void Tms34010::run(const std::function<bool()>& stop, uint64_t budget) {
@@ -353,13 +313,15 @@ bool Tms34010::condition(int cc) const {
 }
 
 // The MOVEs through a register: *Rd, *Rd+, -*Rd, *Rd(displacement), to, from and between
+template <uint16_t Form>
 void Tms34010::exec_move(uint16_t w) {
     const int file = (w >> 4) & 1, rd = w & 15, rs = (w >> 5) & 15;
     const int field = (w >> 9) & 1;
     const uint32_t bits = m_fs[field];
-    const uint32_t kind = (w >> 10) & 3;  // 0: Rs to memory, 1: memory to Rd, 2: memory to memory
-    const uint32_t mode = w >> 12;        // 8 *R, 9 *R+, A -*R, B *R(disp)
-    if (kind == 3) fault(fmt::format("word {:04X}h: MOVB is not executed by fb89's GSP", w));
+    constexpr uint32_t kind = (Form >> 10) & 3;  // 0: Rs to memory, 1: memory to Rd, 2: both
+    constexpr uint32_t mode = Form >> 12;        // 8 *R, 9 *R+, A -*R, B *R(disp)
+    if constexpr (kind == 3)
+        fault(fmt::format("word {:04X}h: MOVB is not executed by fb89's GSP", w));
     const auto address = [&](int n, int32_t disp) -> uint32_t {
         uint32_t& p = r(file, n);
         switch (mode) {
@@ -377,11 +339,11 @@ void Tms34010::exec_move(uint16_t w) {
                 return static_cast<uint32_t>(int64_t{p} + disp);
         }
     };
-    if (kind == 0) {
+    if constexpr (kind == 0) {
         const int32_t disp = mode == 0xB ? sext16(fetch()) : 0;
         const uint32_t v = reg(file, rs);
         memory_write(address(rd, disp), field, v);
-    } else if (kind == 1) {
+    } else if constexpr (kind == 1) {
         const int32_t disp = mode == 0xB ? sext16(fetch()) : 0;
         const uint32_t v = memory_read(address(rs, disp), field);
         r(file, rd) = v;
@@ -395,17 +357,18 @@ void Tms34010::exec_move(uint16_t w) {
     }
 }
 
+template <int Cc, int Kind>
 void Tms34010::exec_jump(uint16_t w) {
-    const int cc = (w >> 8) & 15;
+    constexpr int cc = Cc;
     const uint8_t disp = static_cast<uint8_t>(w & 0xFF);
-    if (disp == 0x80) {  // JAcc address
+    if constexpr (Kind == 2) {  // JAcc address
         const uint32_t to = fetch_long();
         const bool go = condition(cc);
         if (go) m_pc = to & ~15u;
         m_states += go ? states::kJumpAbsTaken : states::kJumpAbsNot;
         return;
     }
-    if (disp == 0) {  // JRcc long
+    if constexpr (Kind == 1) {  // JRcc long
         const int32_t words = sext16(fetch());
         const bool go = condition(cc);
         if (go) m_pc = static_cast<uint32_t>(int64_t{m_pc} + int64_t{words} * 16);
@@ -415,6 +378,31 @@ void Tms34010::exec_jump(uint16_t w) {
     const bool go = condition(cc);
     if (go) m_pc = static_cast<uint32_t>(int64_t{m_pc} + int64_t{static_cast<int8_t>(disp)} * 16);
     m_states += go ? states::kJumpShortTaken : states::kJumpShortNot;
+}
+
+// The handlers of the MOVEs through a register, the jumps (a condition's test decided when
+// the table is built) and the 7xxxh and Dxxxh words.
+void Tms34010::install_moves(std::array<Handler, 65536>& table) {
+    using std::index_sequence, std::make_index_sequence;
+    const auto move = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{
+            &call<&Tms34010::exec_move<static_cast<uint16_t>(0x8000 + 0x400 * I)>>...};
+    }
+    (make_index_sequence<16>());
+    const auto jump = []<int Kind, std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_jump<static_cast<int>(I), Kind>>...};
+    };
+    const auto short_jump = jump.operator()<0>(make_index_sequence<16>());
+    const auto long_jump = jump.operator()<1>(make_index_sequence<16>());
+    const auto absolute = jump.operator()<2>(make_index_sequence<16>());
+    for (uint32_t w = 0x8000; w < 0xC000; ++w)
+        table[w] = move[(w - 0x8000) >> 10];
+    for (uint32_t w = 0xC000; w < 0xD000; ++w) {
+        const uint32_t cc = (w >> 8) & 15, disp = w & 0xFF;
+        table[w] = disp == 0x80 ? absolute[cc] : disp == 0 ? long_jump[cc] : short_jump[cc];
+    }
+    for (uint32_t w = 0xD000; w < 0xE000; ++w)
+        table[w] = &call<&Tms34010::exec_d>;
 }
 
 }  // namespace fb89::controller::gsp
