@@ -161,15 +161,21 @@ void Tms34010::write_io(uint32_t address, uint16_t v) {
 void Tms34010::cache_fetch(uint32_t address) {
     const uint32_t tag = address >> 9;                        // 32 words a segment
     const uint8_t bit = uint8_t(1u << ((address >> 6) & 7));  // 4 words a sub-segment
-    Segment* hit = nullptr;
-    for (Segment& s : m_cache)
-        if (s.tag == tag) hit = &s;
-    if (!hit) {
-        hit = &m_cache[0];
+    // a segment's tag is in no other, so that the one last looked at, if its tag is this,
+    // is the one the search would find
+    Segment* hit = &m_cache[m_last_segment];
+    if (hit->tag != tag) {
+        hit = nullptr;
         for (Segment& s : m_cache)
-            if (s.used < hit->used) hit = &s;
-        hit->tag = tag;
-        hit->present = 0;
+            if (s.tag == tag) hit = &s;
+        if (!hit) {
+            hit = &m_cache[0];
+            for (Segment& s : m_cache)
+                if (s.used < hit->used) hit = &s;
+            hit->tag = tag;
+            hit->present = 0;
+        }
+        m_last_segment = static_cast<uint32_t>(hit - m_cache.data());
     }
     hit->used = ++m_use;
     if (hit->present & bit) return;
@@ -198,6 +204,19 @@ uint32_t Tms34010::step() {
 
 uint32_t Tms34010::finish() {
     const uint32_t own = m_states;
+    if (!m_touched_memory && !m_wrote && m_misses == 0) [[likely]] {
+        // most instructions: the same on both clocks, and beside the queued write, if any
+        if ((m_warm_queued | m_queued) != 0) {
+            const uint32_t overlap = std::min(m_warm_queued, own);
+            m_warm_queued -= overlap;
+            m_count.queue_overlap_states += overlap;
+            m_queued -= std::min(m_queued, own);
+        }
+        ++m_count.instructions;
+        m_count.states += own;
+        m_count.warm_states += own;
+        return own;
+    }
     // the warm clock: every fetch a hit
     uint32_t warm = own;
     if (m_touched_memory) {

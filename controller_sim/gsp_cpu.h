@@ -330,7 +330,8 @@ class Tms34010 {
         uint64_t used = 0;
     };
     std::array<Segment, 4> m_cache{};
-    uint32_t m_last_sub = ~0u;  // the sub-segment the last fetch came from
+    uint32_t m_last_sub = ~0u;    // the sub-segment the last fetch came from
+    uint32_t m_last_segment = 0;  // and the segment it was found in
     uint64_t m_use = 0;
     GspCounters m_count;
 };
