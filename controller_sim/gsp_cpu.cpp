@@ -181,7 +181,7 @@ void Tms34010::cache_fetch(uint32_t address) {
     if (hit->present & bit) return;
     hit->present |= bit;
     // a miss fetches the sub-segment's four words, after the write queue (finish())
-    ++m_misses;
+    m_events += kMiss;
 }
 
 void Tms34010::fetch_fault() const {
@@ -191,56 +191,61 @@ void Tms34010::fetch_fault() const {
 
 // --- execution ----------------------------------------------------------------------------
 
-uint32_t Tms34010::step() {
+// (always inlined: step() and the loops share it, and a call per instruction costs)
+[[gnu::always_inline]] inline uint32_t Tms34010::execute_one() {
     m_instruction_pc = m_pc;
     m_states = 0;
-    m_touched_memory = false;
-    m_wrote = false;
-    m_misses = 0;
+    m_events = 0;
     const uint16_t w = fetch();
     m_handlers[w](*this, w);
-    return finish();
+    if (m_events != 0) return finish();
+    // most instructions: the same on both clocks, and beside the queued write, if any (as
+    // finish() would settle them)
+    const uint32_t own = m_states;
+    if ((m_warm_queued | m_queued) != 0) {
+        const uint32_t overlap = std::min(m_warm_queued, own);
+        m_warm_queued -= overlap;
+        m_count.queue_overlap_states += overlap;
+        m_queued -= std::min(m_queued, own);
+    }
+    ++m_count.instructions;
+    m_count.states += own;
+    m_count.warm_states += own;
+    return own;
+}
+
+uint32_t Tms34010::step() {
+    return execute_one();
 }
 
 uint32_t Tms34010::finish() {
     const uint32_t own = m_states;
-    if (!m_touched_memory && !m_wrote && m_misses == 0) [[likely]] {
-        // most instructions: the same on both clocks, and beside the queued write, if any
-        if ((m_warm_queued | m_queued) != 0) {
-            const uint32_t overlap = std::min(m_warm_queued, own);
-            m_warm_queued -= overlap;
-            m_count.queue_overlap_states += overlap;
-            m_queued -= std::min(m_queued, own);
-        }
-        ++m_count.instructions;
-        m_count.states += own;
-        m_count.warm_states += own;
-        return own;
-    }
+    const bool touched = (m_events & kTouched) != 0, wrote = (m_events & kWrote) != 0;
+    const uint32_t misses = m_events / kMiss;
     // the warm clock: every fetch a hit
     uint32_t warm = own;
-    if (m_touched_memory) {
+    if (touched) {
         warm += m_warm_queued;
         m_warm_queued = 0;
     }
     // the cache's: a miss fills its sub-segment after the queued write, four memory cycles
     // and a state (TI's GSPSIM 1.04: 9 states a miss at 2 a cycle)
     uint32_t cold = own;
-    if (m_misses) {
-        const uint32_t fill = m_misses * (4 * m_timing.cycle_states + 1);
+    if (misses) {
+        const uint32_t fill = misses * (4 * m_timing.cycle_states + 1);
         cold += m_queued + fill;
         m_queued = 0;
-        m_count.cache_misses += m_misses;
+        m_count.cache_misses += misses;
         m_count.cache_miss_states += fill;
     }
-    if (m_touched_memory) {
+    if (touched) {
         cold += m_queued;
         m_queued = 0;
     }
-    if (m_wrote) {
+    if (wrote) {
         m_queued = m_new_queue;
         m_warm_queued = m_new_queue;
-    } else if (!m_touched_memory) {
+    } else if (!touched) {
         const uint32_t overlap = std::min(m_warm_queued, own);
         m_warm_queued -= overlap;
         m_count.queue_overlap_states += overlap;
@@ -255,7 +260,7 @@ uint32_t Tms34010::finish() {
 uint64_t Tms34010::run_until(uint32_t stop, uint64_t most) {
     uint64_t n = 0;
     do {
-        step();
+        execute_one();
     } while (++n < most && m_pc != stop);
     return n;
 }
@@ -286,7 +291,7 @@ const std::array<Tms34010::Handler, 65536>& Tms34010::handlers() {
 
 void Tms34010::run(const std::function<bool()>& stop, uint64_t budget) {
     for (uint64_t i = 0; i < budget; ++i) {
-        step();
+        execute_one();
         if (stop()) return;
     }
     throw GspFault(m_pc, fmt::format("{} instructions without finishing: a loop that does not "

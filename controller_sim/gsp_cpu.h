@@ -90,12 +90,14 @@ class Tms34010 {
 
     // Memory, by bit address; a field of 1 to 32 bits at any bit address. Throws GspFault
     // for an address the board does not decode.
-    uint32_t read_field(uint32_t address, uint32_t bits) const {
+    // (always inlined, as memory_read and memory_write are: the compiler would call them from
+    // each MOVE, and a field's access is the emulator's commonest after a fetch)
+    [[gnu::always_inline]] uint32_t read_field(uint32_t address, uint32_t bits) const {
         if (const uint8_t* p = field_bytes(address, bits)) [[likely]]
             return load_field(p, address & 7, bits);
         return read_field_slow(address, bits);
     }
-    void write_field(uint32_t address, uint32_t bits, uint32_t value) {
+    [[gnu::always_inline]] void write_field(uint32_t address, uint32_t bits, uint32_t value) {
         if (const uint8_t* p = field_bytes(address, bits)) [[likely]]
             return store_field(const_cast<uint8_t*>(p), address & 7, bits, value);
         write_field_slow(address, bits, value);
@@ -134,7 +136,7 @@ class Tms34010 {
     uint32_t queued_states() const { return m_queued; }
     uint32_t warm_queued_states() const { return m_warm_queued; }
     // Whether the last instruction touched memory (and so waited for the queue).
-    bool touched_memory() const { return m_touched_memory; }
+    bool touched_memory() const { return (m_events & kTouched) != 0; }
     // A message the executive sent the host through HSTCTLL since the last take (0: none).
     uint16_t take_host_message() {
         const uint16_t m = m_message;
@@ -171,13 +173,18 @@ class Tms34010 {
         return m_regs[i == 31 ? 15 : i];
     }
 
-    uint16_t fetch() {
+    [[gnu::always_inline]] uint16_t fetch() {
         if ((m_pc & 15) != 0 || m_pc >= kDramBits) [[unlikely]]
             fetch_fault();
         // the cache is looked at once a sub-segment: a fetch from the one the last came
         // from hits
-        if (m_timing.cache && (m_pc >> 6) != m_last_sub) {
-            cache_fetch(m_pc);
+        if ((m_pc >> 6) != m_last_sub && m_timing.cache) {
+            // a hit in the segment last found, as cache_fetch() would count it
+            Segment& s = m_cache[m_last_segment];
+            if (s.tag == m_pc >> 9 && (s.present & (1u << ((m_pc >> 6) & 7))) != 0)
+                s.used = ++m_use;
+            else
+                cache_fetch(m_pc);
             m_last_sub = m_pc >> 6;
         }
         uint16_t w;
@@ -185,7 +192,7 @@ class Tms34010 {
         m_pc += 16;
         return w;
     }
-    uint32_t fetch_long() {
+    [[gnu::always_inline]] uint32_t fetch_long() {
         const uint32_t lo = fetch();
         return lo | (uint32_t{fetch()} << 16);
     }
@@ -221,14 +228,15 @@ class Tms34010 {
     uint32_t read_field_slow(uint32_t address, uint32_t bits) const;
     void write_field_slow(uint32_t address, uint32_t bits, uint32_t value);
     void write_io(uint32_t address, uint16_t v);
-    uint32_t memory_read(uint32_t address, int field) {  // a MOVE's read, states counted
+    [[gnu::always_inline]] uint32_t memory_read(uint32_t address,
+                                                int field) {  // a MOVE's read, states counted
         const uint32_t bits = m_fs[field];
         pay_queue();
         const uint32_t words = (address % 16 + bits + 15) / 16;
         m_states += states::kMemoryIssue + words * cycle_states(address);
         return extend(read_field(address, bits), field);
     }
-    void memory_write(uint32_t address, int field, uint32_t value) {
+    [[gnu::always_inline]] void memory_write(uint32_t address, int field, uint32_t value) {
         const uint32_t bits = m_fs[field];
         pay_queue();
         const uint32_t words = (address % 16 + bits + 15) / 16;
@@ -246,14 +254,15 @@ class Tms34010 {
     // runs beside it (SPVS002C p. 10), and GSPSIM shows the same ("write 16, NOP, read 16"
     // takes the read's 4 states and the write's 2 only). The wait is settled at the end of
     // the instruction (finish()), on two clocks: the cache's and a warm one.
-    void pay_queue() { m_touched_memory = true; }
+    void pay_queue() { m_events |= kTouched; }
     void queue_write(uint32_t states) {
         m_new_queue = states;
-        m_wrote = true;
+        m_events |= kWrote;
     }
     // This instruction's states on both clocks from its own (m_states), the queue and the
     // cache's misses; returns the states with the cache.
     uint32_t finish();
+    uint32_t execute_one();  // step(), inlined in the loops
     uint32_t cycle_states(uint32_t address) const {
         return address >= kIoStart ? m_timing.io_cycle_states : m_timing.cycle_states;
     }
@@ -261,7 +270,8 @@ class Tms34010 {
     // the instruction groups
     // the instruction groups; a template's Form is the bits of the word that name its
     // instruction (the installers in each file give each word its form's handler)
-    void exec_0(uint16_t w);  // the 0xxxh words other than the immediates and DSJ
+    template <uint16_t Form>
+    void exec_0(uint16_t w);  // the 0xxxh words but the immediates and DSJ; Form: w & FFE0h
     template <uint16_t Form>
     void exec_immediate(uint16_t w);  // Form: w & FFE0h
     template <uint16_t Form>
@@ -310,9 +320,11 @@ class Tms34010 {
     uint32_t m_queued = 0;       // the write queue's states, not yet paid
     uint32_t m_warm_queued = 0;  // the same on the warm clock
     uint32_t m_new_queue = 0;    // this instruction's write
-    bool m_wrote = false;
-    uint32_t m_misses = 0;          // this instruction's cache misses
-    bool m_touched_memory = false;  // this instruction's
+    // what this instruction did besides its own states, in one word so that the commonest
+    // case, none of it, is one test: whether it touched memory (and so waited for the queue),
+    // whether it wrote, and its cache misses (from bit 8)
+    static constexpr uint32_t kTouched = 1, kWrote = 2, kMiss = 1u << 8;
+    uint32_t m_events = 0;
     std::vector<uint8_t> m_dram;
     // the VRAM, placed a little past a page boundary in its storage: a depth word in DRAM and
     // its pixel in VRAM at the same offset from their pages would alias in the host's store

@@ -15,10 +15,11 @@
 
 namespace fb89::controller::gsp {
 
+template <uint16_t Form>
 void Tms34010::exec_0(uint16_t w) {
     const int file = (w >> 4) & 1, rd = w & 15;
     uint32_t& d = r(file, rd);
-    switch (w & 0xFFE0) {
+    switch (Form) {
         case 0x0020:  // REV Rd: the chip's revision
             d = 0x0008;
             m_states += states::kRegister;
@@ -110,15 +111,15 @@ void Tms34010::exec_0(uint16_t w) {
             break;
     }
     // SEXT, ZEXT, SETF and the absolute MOVEs carry the field in bit 9
-    const int field = (w >> 9) & 1;
-    switch (w & 0xFDE0) {
+    constexpr int field = (Form >> 9) & 1;
+    switch (Form & 0xFDE0) {
         case 0x0500:    // SEXT Rd,F
         case 0x0520: {  // ZEXT Rd,F
             const uint32_t bits = m_fs[field];
             if (bits < 32) {
                 const uint32_t mask = (1u << bits) - 1;
                 d &= mask;
-                if ((w & 0xFDE0) == 0x0500) d = (d ^ (1u << (bits - 1))) - (1u << (bits - 1));
+                if ((Form & 0xFDE0) == 0x0500) d = (d ^ (1u << (bits - 1))) - (1u << (bits - 1));
             }
             set_nz(d);
             m_states += states::kRegister;
@@ -149,15 +150,15 @@ void Tms34010::exec_0(uint16_t w) {
         default:
             break;
     }
-    if ((w & 0xFFE0) == 0x0960) {  // RETS N
+    if (Form == 0x0960) {  // RETS N
         pay_queue();
         m_pc = read_field(sp(), 32) & ~15u;
         sp() += 32 + 16 * (w & 31);
         m_states += states::kRets + 2 * m_timing.cycle_states;
         return;
     }
-    if ((w & 0xFFC0) == 0x0980) {  // MMTM Rp,list / MMFM Rp,list
-        const bool to_memory = (w & 0x0020) == 0;
+    if ((Form & 0xFFC0) == 0x0980) {  // MMTM Rp,list / MMFM Rp,list
+        constexpr bool to_memory = (Form & 0x0020) == 0;
         const uint16_t mask = fetch();
         uint32_t& p = r(file, rd);
         uint32_t n = 0;
@@ -563,6 +564,10 @@ void Tms34010::install_instructions(std::array<Handler, 65536>& table) {
             &call<&Tms34010::exec_immediate<static_cast<uint16_t>(0x0B00 + 0x20 * I)>>...};
     }
     (make_index_sequence<8>());
+    const auto group_0 = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_0<static_cast<uint16_t>(0x20 * I)>>...};
+    }
+    (make_index_sequence<128>());
     const auto dsj = []<std::size_t... I>(index_sequence<I...>) {
         return std::array{&call<&Tms34010::exec_dsj<static_cast<uint16_t>(0x0D80 + 0x20 * I)>>...};
     }
@@ -578,7 +583,7 @@ void Tms34010::install_instructions(std::array<Handler, 65536>& table) {
         else if (form == 0x0D80 || form == 0x0DA0 || form == 0x0DC0)
             table[w] = dsj[(form - 0x0D80) >> 5];
         else
-            table[w] = &call<&Tms34010::exec_0>;
+            table[w] = group_0[w >> 5];
     }
     for (uint32_t w = 0x1000; w < 0x4000; ++w)
         table[w] = k[(w - 0x1000) >> 10];
