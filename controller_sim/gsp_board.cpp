@@ -395,6 +395,11 @@ void GspBoard::run() {
                     tracing = m_options.trace && *m_options.trace == current->number;
                 }
             }
+            if (memory_seen && !tracing && steps < m_options.budget) {
+                // nothing to look at after each instruction until `next`: the CPU's own loop
+                steps += cpu.run_until(m_next, m_options.budget - steps);
+                continue;
+            }
             const uint32_t at = cpu.pc();
             const uint32_t states = cpu.step();
             if (!memory_seen && cpu.touched_memory()) {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -20,7 +21,8 @@ GspFault::GspFault(uint32_t pc, const std::string& what)
 
 Tms34010::Tms34010(const GspTiming& timing)
     : m_timing(timing),
-      m_dram(kDramBits / 8),
+      m_handlers(handlers().data()),
+      m_dram(kDramBits / 8 + 8),  // (field_bytes)
       m_vram_storage(kVramBits / 8 + 4096),
       m_shift_register(kVramRowBitsOnBoard / 8) {
     m_io[(kPsize - kIoStart) >> 4] = 8;
@@ -68,7 +70,8 @@ uint8_t* Tms34010::bytes_at(uint32_t address, uint32_t bits) {
     return const_cast<uint8_t*>(std::as_const(*this).bytes_at(address, bits));
 }
 
-uint32_t Tms34010::read_field(uint32_t address, uint32_t bits) const {
+// Fields outside the DRAM and the VRAM: the I/O registers, and the faults.
+uint32_t Tms34010::read_field_slow(uint32_t address, uint32_t bits) const {
     if (address >= kIoStart && address < kIoStart + kIoBits) {
         if (address % 16 != 0 || (bits != 16 && bits != 32))
             throw GspFault(m_instruction_pc,
@@ -105,7 +108,7 @@ uint32_t Tms34010::read_field(uint32_t address, uint32_t bits) const {
     return bits == 32 ? static_cast<uint32_t>(v) : static_cast<uint32_t>(v & ((1u << bits) - 1));
 }
 
-void Tms34010::write_field(uint32_t address, uint32_t bits, uint32_t value) {
+void Tms34010::write_field_slow(uint32_t address, uint32_t bits, uint32_t value) {
     if (address >= kIoStart && address < kIoStart + kIoBits) {
         if (address % 16 != 0 || (bits != 16 && bits != 32))
             fault(
@@ -153,147 +156,96 @@ void Tms34010::write_io(uint32_t address, uint16_t v) {
     m_io[index] = v;
 }
 
-uint32_t Tms34010::extend(uint32_t v, int field) const {
-    const uint32_t bits = m_fs[field];
-    if (bits == 32 || !m_fe[field]) return v;
-    const uint32_t sign = 1u << (bits - 1);
-    return (v ^ sign) - sign;
-}
-
-uint32_t Tms34010::memory_read(uint32_t address, int field) {
-    const uint32_t bits = m_fs[field];
-    pay_queue();
-    const uint32_t words = (address % 16 + bits + 15) / 16;
-    m_states += states::kMemoryIssue + words * cycle_states(address);
-    return extend(read_field(address, bits), field);
-}
-
-void Tms34010::memory_write(uint32_t address, int field, uint32_t value) {
-    const uint32_t bits = m_fs[field];
-    pay_queue();
-    const uint32_t words = (address % 16 + bits + 15) / 16;
-    m_states += states::kMemoryIssue;
-    queue_write(words * cycle_states(address));
-    write_field(address, bits, value);
-}
-
 // --- fetch and the instruction cache ------------------------------------------------------
 
 void Tms34010::cache_fetch(uint32_t address) {
     const uint32_t tag = address >> 9;                        // 32 words a segment
     const uint8_t bit = uint8_t(1u << ((address >> 6) & 7));  // 4 words a sub-segment
-    Segment* hit = nullptr;
-    for (Segment& s : m_cache)
-        if (s.tag == tag) hit = &s;
-    if (!hit) {
-        hit = &m_cache[0];
+    // a segment's tag is in no other, so that the one last looked at, if its tag is this,
+    // is the one the search would find
+    Segment* hit = &m_cache[m_last_segment];
+    if (hit->tag != tag) {
+        hit = nullptr;
         for (Segment& s : m_cache)
-            if (s.used < hit->used) hit = &s;
-        hit->tag = tag;
-        hit->present = 0;
+            if (s.tag == tag) hit = &s;
+        if (!hit) {
+            hit = &m_cache[0];
+            for (Segment& s : m_cache)
+                if (s.used < hit->used) hit = &s;
+            hit->tag = tag;
+            hit->present = 0;
+        }
+        m_last_segment = static_cast<uint32_t>(hit - m_cache.data());
     }
     hit->used = ++m_use;
     if (hit->present & bit) return;
     hit->present |= bit;
     // a miss fetches the sub-segment's four words, after the write queue (finish())
-    ++m_misses;
+    m_events += kMiss;
 }
 
-uint16_t Tms34010::fetch() {
-    if (m_pc % 16 != 0 || m_pc >= kDramBits)
-        fault(fmt::format("an instruction fetched from {:08X}h, outside the code", m_pc));
-    // the cache is looked at once a sub-segment: a fetch from the one the last came from hits
-    if (m_timing.cache && (m_pc >> 6) != m_last_sub) {
-        cache_fetch(m_pc);
-        m_last_sub = m_pc >> 6;
-    }
-    uint16_t w;
-    std::memcpy(&w, m_dram.data() + m_pc / 8, 2);
-    m_pc += 16;
-    return w;
-}
-
-uint32_t Tms34010::fetch_long() {
-    const uint32_t lo = fetch();
-    return lo | (uint32_t{fetch()} << 16);
+void Tms34010::fetch_fault() const {
+    // (the instruction's address is m_instruction_pc, the fetch's m_pc)
+    fault(fmt::format("an instruction fetched from {:08X}h, outside the code", m_pc));
 }
 
 // --- execution ----------------------------------------------------------------------------
 
-uint32_t Tms34010::step() {
+// (always inlined: step() and the loops share it, and a call per instruction costs)
+[[gnu::always_inline]] inline uint32_t Tms34010::execute_one() {
     m_instruction_pc = m_pc;
     m_states = 0;
-    m_touched_memory = false;
-    m_wrote = false;
-    m_misses = 0;
+    m_events = 0;
     const uint16_t w = fetch();
-    switch (w >> 12) {
-        case 0x0:
-            exec_0(w);
-            break;
-        case 0x1:
-        case 0x2:
-        case 0x3:
-            exec_k(w);
-            break;
-        case 0x4:
-        case 0x5:
-        case 0x6:
-            exec_alu(w);
-            break;
-        case 0x8:
-        case 0x9:
-        case 0xA:
-        case 0xB:
-            exec_move(w);
-            break;
-        case 0xC:
-            exec_jump(w);
-            break;
-        case 0xD:
-            if (w == 0xDF1A || w == 0xDF9A) {
-                line(w == 0xDF9A);
-                break;
-            }
-            fault(fmt::format("word {:04X}h: not an instruction fb89's GSP executes", w));
-        case 0xE:
-            exec_xy(w);
-            break;
-        case 0xF:
-            exec_pixt(w);
-            break;
-        default:
-            fault(fmt::format("word {:04X}h: not a TMS34010 instruction", w));
+    m_handlers[w](*this, w);
+    if (m_events != 0) return finish();
+    // most instructions: the same on both clocks, and beside the queued write, if any (as
+    // finish() would settle them)
+    const uint32_t own = m_states;
+    if ((m_warm_queued | m_queued) != 0) {
+        const uint32_t overlap = std::min(m_warm_queued, own);
+        m_warm_queued -= overlap;
+        m_count.queue_overlap_states += overlap;
+        m_queued -= std::min(m_queued, own);
     }
-    return finish();
+    ++m_count.instructions;
+    m_count.states += own;
+    m_count.warm_states += own;
+    return own;
+}
+
+uint32_t Tms34010::step() {
+    return execute_one();
 }
 
 uint32_t Tms34010::finish() {
     const uint32_t own = m_states;
+    const bool touched = (m_events & kTouched) != 0, wrote = (m_events & kWrote) != 0;
+    const uint32_t misses = m_events / kMiss;
     // the warm clock: every fetch a hit
     uint32_t warm = own;
-    if (m_touched_memory) {
+    if (touched) {
         warm += m_warm_queued;
         m_warm_queued = 0;
     }
     // the cache's: a miss fills its sub-segment after the queued write, four memory cycles
     // and a state (TI's GSPSIM 1.04: 9 states a miss at 2 a cycle)
     uint32_t cold = own;
-    if (m_misses) {
-        const uint32_t fill = m_misses * (4 * m_timing.cycle_states + 1);
+    if (misses) {
+        const uint32_t fill = misses * (4 * m_timing.cycle_states + 1);
         cold += m_queued + fill;
         m_queued = 0;
-        m_count.cache_misses += m_misses;
+        m_count.cache_misses += misses;
         m_count.cache_miss_states += fill;
     }
-    if (m_touched_memory) {
+    if (touched) {
         cold += m_queued;
         m_queued = 0;
     }
-    if (m_wrote) {
+    if (wrote) {
         m_queued = m_new_queue;
         m_warm_queued = m_new_queue;
-    } else if (!m_touched_memory) {
+    } else if (!touched) {
         const uint32_t overlap = std::min(m_warm_queued, own);
         m_warm_queued -= overlap;
         m_count.queue_overlap_states += overlap;
@@ -305,9 +257,41 @@ uint32_t Tms34010::finish() {
     return cold;
 }
 
+uint64_t Tms34010::run_until(uint32_t stop, uint64_t most) {
+    uint64_t n = 0;
+    do {
+        execute_one();
+    } while (++n < most && m_pc != stop);
+    return n;
+}
+
+void Tms34010::exec_d(uint16_t w) {
+    if (w == 0xDF1A || w == 0xDF9A) {
+        line(w == 0xDF9A);
+        return;
+    }
+    fault(fmt::format("word {:04X}h: not an instruction fb89's GSP executes", w));
+}
+
+void Tms34010::exec_undefined(uint16_t w) {
+    fault(fmt::format("word {:04X}h: not a TMS34010 instruction", w));
+}
+
+const std::array<Tms34010::Handler, 65536>& Tms34010::handlers() {
+    static const std::array<Handler, 65536> table = [] {
+        std::array<Handler, 65536> t;
+        t.fill(&call<&Tms34010::exec_undefined>);
+        install_instructions(t);
+        install_moves(t);
+        install_graphics(t);
+        return t;
+    }();
+    return table;
+}
+
 void Tms34010::run(const std::function<bool()>& stop, uint64_t budget) {
     for (uint64_t i = 0; i < budget; ++i) {
-        step();
+        execute_one();
         if (stop()) return;
     }
     throw GspFault(m_pc, fmt::format("{} instructions without finishing: a loop that does not "
@@ -353,13 +337,15 @@ bool Tms34010::condition(int cc) const {
 }
 
 // The MOVEs through a register: *Rd, *Rd+, -*Rd, *Rd(displacement), to, from and between
+template <uint16_t Form>
 void Tms34010::exec_move(uint16_t w) {
     const int file = (w >> 4) & 1, rd = w & 15, rs = (w >> 5) & 15;
     const int field = (w >> 9) & 1;
     const uint32_t bits = m_fs[field];
-    const uint32_t kind = (w >> 10) & 3;  // 0: Rs to memory, 1: memory to Rd, 2: memory to memory
-    const uint32_t mode = w >> 12;        // 8 *R, 9 *R+, A -*R, B *R(disp)
-    if (kind == 3) fault(fmt::format("word {:04X}h: MOVB is not executed by fb89's GSP", w));
+    constexpr uint32_t kind = (Form >> 10) & 3;  // 0: Rs to memory, 1: memory to Rd, 2: both
+    constexpr uint32_t mode = Form >> 12;        // 8 *R, 9 *R+, A -*R, B *R(disp)
+    if constexpr (kind == 3)
+        fault(fmt::format("word {:04X}h: MOVB is not executed by fb89's GSP", w));
     const auto address = [&](int n, int32_t disp) -> uint32_t {
         uint32_t& p = r(file, n);
         switch (mode) {
@@ -377,11 +363,11 @@ void Tms34010::exec_move(uint16_t w) {
                 return static_cast<uint32_t>(int64_t{p} + disp);
         }
     };
-    if (kind == 0) {
+    if constexpr (kind == 0) {
         const int32_t disp = mode == 0xB ? sext16(fetch()) : 0;
         const uint32_t v = reg(file, rs);
         memory_write(address(rd, disp), field, v);
-    } else if (kind == 1) {
+    } else if constexpr (kind == 1) {
         const int32_t disp = mode == 0xB ? sext16(fetch()) : 0;
         const uint32_t v = memory_read(address(rs, disp), field);
         r(file, rd) = v;
@@ -395,17 +381,18 @@ void Tms34010::exec_move(uint16_t w) {
     }
 }
 
+template <int Cc, int Kind>
 void Tms34010::exec_jump(uint16_t w) {
-    const int cc = (w >> 8) & 15;
+    constexpr int cc = Cc;
     const uint8_t disp = static_cast<uint8_t>(w & 0xFF);
-    if (disp == 0x80) {  // JAcc address
+    if constexpr (Kind == 2) {  // JAcc address
         const uint32_t to = fetch_long();
         const bool go = condition(cc);
         if (go) m_pc = to & ~15u;
         m_states += go ? states::kJumpAbsTaken : states::kJumpAbsNot;
         return;
     }
-    if (disp == 0) {  // JRcc long
+    if constexpr (Kind == 1) {  // JRcc long
         const int32_t words = sext16(fetch());
         const bool go = condition(cc);
         if (go) m_pc = static_cast<uint32_t>(int64_t{m_pc} + int64_t{words} * 16);
@@ -415,6 +402,31 @@ void Tms34010::exec_jump(uint16_t w) {
     const bool go = condition(cc);
     if (go) m_pc = static_cast<uint32_t>(int64_t{m_pc} + int64_t{static_cast<int8_t>(disp)} * 16);
     m_states += go ? states::kJumpShortTaken : states::kJumpShortNot;
+}
+
+// The handlers of the MOVEs through a register, the jumps (a condition's test decided when
+// the table is built) and the 7xxxh and Dxxxh words.
+void Tms34010::install_moves(std::array<Handler, 65536>& table) {
+    using std::index_sequence, std::make_index_sequence;
+    const auto move = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{
+            &call<&Tms34010::exec_move<static_cast<uint16_t>(0x8000 + 0x400 * I)>>...};
+    }
+    (make_index_sequence<16>());
+    const auto jump = []<int Kind, std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_jump<static_cast<int>(I), Kind>>...};
+    };
+    const auto short_jump = jump.operator()<0>(make_index_sequence<16>());
+    const auto long_jump = jump.operator()<1>(make_index_sequence<16>());
+    const auto absolute = jump.operator()<2>(make_index_sequence<16>());
+    for (uint32_t w = 0x8000; w < 0xC000; ++w)
+        table[w] = move[(w - 0x8000) >> 10];
+    for (uint32_t w = 0xC000; w < 0xD000; ++w) {
+        const uint32_t cc = (w >> 8) & 15, disp = w & 0xFF;
+        table[w] = disp == 0x80 ? absolute[cc] : disp == 0 ? long_jump[cc] : short_jump[cc];
+    }
+    for (uint32_t w = 0xD000; w < 0xE000; ++w)
+        table[w] = &call<&Tms34010::exec_d>;
 }
 
 }  // namespace fb89::controller::gsp

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -182,10 +183,11 @@ void Tms34010::line(bool greater) {
 }
 
 // ADDXY, SUBXY, CMPXY, CVXYL, MOVX, MOVY
+template <uint16_t Form>
 void Tms34010::exec_xy(uint16_t w) {
     const int file = (w >> 4) & 1, rd = w & 15, rs = (w >> 5) & 15;
     const uint32_t s = reg(file, rs), d = reg(file, rd);
-    switch (w & 0xFE00) {
+    switch (Form) {
         case 0xE000: {  // ADDXY: N x = 0, C the sign of y, Z y = 0, V the sign of x
             const int32_t x = static_cast<int16_t>(x_of(d) + x_of(s));
             const int32_t y = static_cast<int16_t>(y_of(d) + y_of(s));
@@ -205,7 +207,7 @@ void Tms34010::exec_xy(uint16_t w) {
             m_c = y_of(s) > y_of(d);
             m_z = y == 0;
             m_v = x_of(s) > x_of(d);
-            if ((w & 0xFE00) == 0xE200) {
+            if (Form == 0xE200) {
                 set_reg(file, rd, xy_of(x, y));
                 m_states += states::kRegister;
             } else {
@@ -231,6 +233,7 @@ void Tms34010::exec_xy(uint16_t w) {
 }
 
 // PIXT: Rs,*Rd  *Rs,Rd  *Rs,*Rd, and the XY forms (with the window in mode 3)
+template <uint16_t Form>
 void Tms34010::exec_pixt(uint16_t w) {
     const int file = (w >> 4) & 1, rd = w & 15, rs = (w >> 5) & 15;
     const uint32_t s = reg(file, rs), d = reg(file, rd);
@@ -249,7 +252,7 @@ void Tms34010::exec_pixt(uint16_t w) {
     const auto xy_ok = [&](uint32_t xy) {
         return window_mode() != 3 || in_window(x_of(xy), y_of(xy));
     };
-    switch (w & 0xFE00) {
+    switch (Form) {
         case 0xF800:
             write(d, s);
             return;  // PIXT Rs,*Rd
@@ -278,6 +281,22 @@ void Tms34010::exec_pixt(uint16_t w) {
         default:
             fault(fmt::format("word {:04X}h: not an instruction fb89's GSP executes", w));
     }
+}
+
+// The handlers of the XY instructions and PIXT.
+void Tms34010::install_graphics(std::array<Handler, 65536>& table) {
+    using std::index_sequence, std::make_index_sequence;
+    const auto xy = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_xy<static_cast<uint16_t>(0xE000 + 0x200 * I)>>...};
+    }
+    (make_index_sequence<8>());
+    const auto pixt = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{
+            &call<&Tms34010::exec_pixt<static_cast<uint16_t>(0xF000 + 0x200 * I)>>...};
+    }
+    (make_index_sequence<8>());
+    for (uint32_t w = 0xE000; w < 0x10000; ++w)
+        table[w] = w < 0xF000 ? xy[(w - 0xE000) >> 9] : pixt[(w - 0xF000) >> 9];
 }
 
 }  // namespace fb89::controller::gsp

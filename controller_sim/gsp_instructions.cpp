@@ -9,20 +9,17 @@
 
 #include <bit>
 #include <cstdint>
+#include <utility>
 
 #include <fmt/format.h>
 
 namespace fb89::controller::gsp {
 
+template <uint16_t Form>
 void Tms34010::exec_0(uint16_t w) {
     const int file = (w >> 4) & 1, rd = w & 15;
     uint32_t& d = r(file, rd);
-    const uint16_t form = w & 0xFFE0;
-    if ((w & 0xFFC0) == 0x09C0 || (w & 0xFF00) == 0x0B00 || form == 0x0D00) {
-        exec_immediate(w);  // MOVI, ADDI, CMPI, ANDI, ORI, XORI, SUBI
-        return;
-    }
-    switch (form) {
+    switch (Form) {
         case 0x0020:  // REV Rd: the chip's revision
             d = 0x0008;
             m_states += states::kRegister;
@@ -96,9 +93,9 @@ void Tms34010::exec_0(uint16_t w) {
             m_states += states::kRegister;
             return;
         case 0x0920:  // CALL Rs
-            m_sp -= 32;
+            sp() -= 32;
             pay_queue();
-            write_field(m_sp, 32, m_pc);
+            write_field(sp(), 32, m_pc);
             m_pc = d & ~15u;
             m_states += states::kCall;
             return;
@@ -114,15 +111,15 @@ void Tms34010::exec_0(uint16_t w) {
             break;
     }
     // SEXT, ZEXT, SETF and the absolute MOVEs carry the field in bit 9
-    const int field = (w >> 9) & 1;
-    switch (w & 0xFDE0) {
+    constexpr int field = (Form >> 9) & 1;
+    switch (Form & 0xFDE0) {
         case 0x0500:    // SEXT Rd,F
         case 0x0520: {  // ZEXT Rd,F
             const uint32_t bits = m_fs[field];
             if (bits < 32) {
                 const uint32_t mask = (1u << bits) - 1;
                 d &= mask;
-                if ((w & 0xFDE0) == 0x0500) d = (d ^ (1u << (bits - 1))) - (1u << (bits - 1));
+                if ((Form & 0xFDE0) == 0x0500) d = (d ^ (1u << (bits - 1))) - (1u << (bits - 1));
             }
             set_nz(d);
             m_states += states::kRegister;
@@ -153,15 +150,15 @@ void Tms34010::exec_0(uint16_t w) {
         default:
             break;
     }
-    if ((w & 0xFFE0) == 0x0960) {  // RETS N
+    if (Form == 0x0960) {  // RETS N
         pay_queue();
-        m_pc = read_field(m_sp, 32) & ~15u;
-        m_sp += 32 + 16 * (w & 31);
+        m_pc = read_field(sp(), 32) & ~15u;
+        sp() += 32 + 16 * (w & 31);
         m_states += states::kRets + 2 * m_timing.cycle_states;
         return;
     }
-    if ((w & 0xFFC0) == 0x0980) {  // MMTM Rp,list / MMFM Rp,list
-        const bool to_memory = (w & 0x0020) == 0;
+    if ((Form & 0xFFC0) == 0x0980) {  // MMTM Rp,list / MMFM Rp,list
+        constexpr bool to_memory = (Form & 0x0020) == 0;
         const uint16_t mask = fetch();
         uint32_t& p = r(file, rd);
         uint32_t n = 0;
@@ -188,34 +185,20 @@ void Tms34010::exec_0(uint16_t w) {
     }
     if (w == 0x0D5F) {  // CALLA address
         const uint32_t to = fetch_long();
-        m_sp -= 32;
+        sp() -= 32;
         pay_queue();
-        write_field(m_sp, 32, m_pc);
+        write_field(sp(), 32, m_pc);
         m_pc = to;
         m_states += states::kCall;
         return;
     }
     if (w == 0x0D3F) {  // CALLR address
         const int32_t disp = sext16(fetch());
-        m_sp -= 32;
+        sp() -= 32;
         pay_queue();
-        write_field(m_sp, 32, m_pc);
+        write_field(sp(), 32, m_pc);
         m_pc = static_cast<uint32_t>(int64_t{m_pc} + int64_t{disp} * 16);
         m_states += states::kCallr;
-        return;
-    }
-    if ((w & 0xFF80) == 0x0D80) {  // DSJ, DSJEQ, DSJNE Rd,address
-        const int32_t disp = sext16(fetch());
-        bool go = true;
-        if (form == 0x0DA0) go = m_z;
-        if (form == 0x0DC0) go = !m_z;
-        bool taken = false;
-        if (go) {
-            d -= 1;
-            taken = d != 0;
-        }
-        if (taken) m_pc = static_cast<uint32_t>(int64_t{m_pc} + int64_t{disp} * 16);
-        m_states += taken ? states::kDsjTaken : states::kDsjNot;
         return;
     }
     if (w == 0x0FC0 || w == 0x0FE0) {
@@ -225,12 +208,28 @@ void Tms34010::exec_0(uint16_t w) {
     fault(fmt::format("word {:04X}h: not an instruction fb89's GSP executes", w));
 }
 
+template <uint16_t Form>
+void Tms34010::exec_dsj(uint16_t w) {
+    uint32_t& d = rd_of(w);
+    const int32_t disp = sext16(fetch());
+    bool go = true;
+    if constexpr (Form == 0x0DA0) go = m_z;
+    if constexpr (Form == 0x0DC0) go = !m_z;
+    bool taken = false;
+    if (go) {
+        d -= 1;
+        taken = d != 0;
+    }
+    if (taken) m_pc = static_cast<uint32_t>(int64_t{m_pc} + int64_t{disp} * 16);
+    m_states += taken ? states::kDsjTaken : states::kDsjNot;
+}
+
+template <uint16_t Form>
 void Tms34010::exec_immediate(uint16_t w) {
-    const int file = (w >> 4) & 1, rd = w & 15;
-    uint32_t& d = r(file, rd);
-    const uint16_t form = w & 0xFFE0;
-    const bool is_long = form == 0x09E0 || form == 0x0B20 || form == 0x0B60 || form == 0x0B80 ||
-                         form == 0x0BA0 || form == 0x0BC0 || form == 0x0D00;
+    uint32_t& d = rd_of(w);
+    constexpr uint16_t form = Form;
+    constexpr bool is_long = form == 0x09E0 || form == 0x0B20 || form == 0x0B60 || form == 0x0B80 ||
+                             form == 0x0BA0 || form == 0x0BC0 || form == 0x0D00;
     const uint32_t raw = is_long ? fetch_long() : static_cast<uint32_t>(sext16(fetch()));
     m_states += is_long ? states::kImmediateLong : states::kImmediateWord;
     const auto add = [&](uint32_t a, uint32_t b, bool store) {
@@ -285,13 +284,13 @@ void Tms34010::exec_immediate(uint16_t w) {
 }
 
 // ADDK, SUBK, MOVK, BTST K, the shifts by K, and DSJS
+template <uint16_t Form>
 void Tms34010::exec_k(uint16_t w) {
-    const int file = (w >> 4) & 1, rd = w & 15;
-    uint32_t& d = r(file, rd);
+    uint32_t& d = rd_of(w);
     const uint32_t k5 = (w >> 5) & 31;
     const uint32_t k = k5 ? k5 : 32;
     m_states += states::kRegister;
-    switch (w & 0xFC00) {
+    switch (Form) {
         case 0x1000: {  // ADDK
             const uint32_t a = d;
             const uint64_t sum = uint64_t{a} + k;
@@ -321,7 +320,7 @@ void Tms34010::exec_k(uint16_t w) {
             d = k5 ? v << k5 : v;
             m_c = k5 ? ((v >> (32 - k5)) & 1) : false;
             m_z = d == 0;
-            if ((w & 0xFC00) == 0x2000) {
+            if (Form == 0x2000) {
                 m_n = d >> 31;
                 // V: a bit unlike the sign shifted through it
                 const uint32_t top = k5 ? (v >> (31 - k5)) : 0;
@@ -338,11 +337,10 @@ void Tms34010::exec_k(uint16_t w) {
                 m_c = false;
             } else {
                 m_c = (v >> (n - 1)) & 1;
-                d = (w & 0xFC00) == 0x2800 ? static_cast<uint32_t>(static_cast<int32_t>(v) >> n)
-                                           : v >> n;
+                d = Form == 0x2800 ? static_cast<uint32_t>(static_cast<int32_t>(v) >> n) : v >> n;
             }
             m_z = d == 0;
-            if ((w & 0xFC00) == 0x2800) m_n = d >> 31;
+            if (Form == 0x2800) m_n = d >> 31;
             return;
         }
         case 0x3000: {  // RL by K
@@ -357,7 +355,7 @@ void Tms34010::exec_k(uint16_t w) {
             m_states -= states::kRegister;
             d -= 1;
             if (d != 0) {
-                const int64_t words = (w & 0x0400) ? -int64_t{k5} : int64_t{k5};
+                const int64_t words = (Form & 0x0400) ? -int64_t{k5} : int64_t{k5};
                 m_pc = static_cast<uint32_t>(int64_t{m_pc} + words * 16);
                 m_states += states::kDsjsTaken;
             } else {
@@ -370,15 +368,16 @@ void Tms34010::exec_k(uint16_t w) {
     }
 }
 
+template <uint16_t Form>
 void Tms34010::exec_alu(uint16_t w) {
-    const int file = (w >> 4) & 1, rd = w & 15, rs = (w >> 5) & 15;
-    uint32_t& d = r(file, rd);
-    const uint32_t s = reg(file, rs);
+    const int file = (w >> 4) & 1, rd = w & 15;
+    uint32_t& d = rd_of(w);
+    const uint32_t s = rs_of(w);
     m_states += states::kRegister;
-    switch (w & 0xFE00) {
+    switch (Form) {
         case 0x4000:
         case 0x4200: {  // ADD, ADDC
-            const uint32_t carry = (w & 0x0200) && m_c ? 1 : 0;
+            const uint32_t carry = (Form & 0x0200) && m_c ? 1 : 0;
             const uint64_t sum = uint64_t{d} + s + carry;
             const uint32_t res = static_cast<uint32_t>(sum);
             m_c = (sum >> 32) != 0;
@@ -390,13 +389,13 @@ void Tms34010::exec_alu(uint16_t w) {
         case 0x4400:
         case 0x4600:
         case 0x4800: {  // SUB, SUBB, CMP
-            const uint32_t borrow = (w & 0xFE00) == 0x4600 && m_c ? 1 : 0;
+            const uint32_t borrow = Form == 0x4600 && m_c ? 1 : 0;
             const uint64_t take = uint64_t{s} + borrow;
             const uint32_t res = static_cast<uint32_t>(uint64_t{d} - take);
             m_c = uint64_t{d} < take;
             m_v = ((d ^ s) & (d ^ res)) >> 31;
             set_nz(res);
-            if ((w & 0xFE00) != 0x4800) d = res;
+            if (Form != 0x4800) d = res;
             return;
         }
         case 0x4A00:  // BTST Rs,Rd
@@ -447,10 +446,10 @@ void Tms34010::exec_alu(uint16_t w) {
         case 0x6400:
         case 0x6600:
         case 0x6800: {  // SLA, SLL, SRA, SRL, RL by Rs: as by K, the count from Rs
-            const uint32_t base = 0x2000 + ((w & 0x0E00) << 1);  // 0x2000 ... 0x3000
+            constexpr uint16_t base = 0x2000 + ((Form & 0x0E00) << 1);  // 0x2000 ... 0x3000
             const uint16_t as_k = static_cast<uint16_t>(base | ((s & 31) << 5) | (w & 0x1F));
             m_states -= states::kRegister;
-            exec_k(as_k);
+            exec_k<base>(as_k);
             return;
         }
         case 0x6A00: {  // LMO Rs,Rd: the leftmost one's bit number, counted from the left
@@ -541,6 +540,55 @@ void Tms34010::divide(uint16_t w, bool is_signed, bool modulo) {
         m_z = result == 0;
         if (is_signed) m_n = result >> 31;
     }
+}
+
+// The handlers of the 0xxxh words (the immediates and DSJ apart from the rest, as exec_0 once
+// told them), the constant forms and the register pairs.
+void Tms34010::install_instructions(std::array<Handler, 65536>& table) {
+    using std::index_sequence, std::make_index_sequence;
+    const auto k = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_k<static_cast<uint16_t>(0x1000 + 0x400 * I)>>...};
+    }
+    (make_index_sequence<12>());
+    const auto alu = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_alu<static_cast<uint16_t>(0x4000 + 0x200 * I)>>...};
+    }
+    (make_index_sequence<24>());
+    const auto movi = []<std::size_t... I>(index_sequence<I...>) {  // MOVI IW, IL
+        return std::array{
+            &call<&Tms34010::exec_immediate<static_cast<uint16_t>(0x09C0 + 0x20 * I)>>...};
+    }
+    (make_index_sequence<2>());
+    const auto immediate = []<std::size_t... I>(index_sequence<I...>) {  // 0B00h-0BE0h
+        return std::array{
+            &call<&Tms34010::exec_immediate<static_cast<uint16_t>(0x0B00 + 0x20 * I)>>...};
+    }
+    (make_index_sequence<8>());
+    const auto group_0 = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_0<static_cast<uint16_t>(0x20 * I)>>...};
+    }
+    (make_index_sequence<128>());
+    const auto dsj = []<std::size_t... I>(index_sequence<I...>) {
+        return std::array{&call<&Tms34010::exec_dsj<static_cast<uint16_t>(0x0D80 + 0x20 * I)>>...};
+    }
+    (make_index_sequence<3>());
+    for (uint32_t w = 0; w < 0x1000; ++w) {
+        const uint32_t form = w & 0xFFE0;
+        if ((w & 0xFFC0) == 0x09C0)
+            table[w] = movi[(form - 0x09C0) >> 5];
+        else if ((w & 0xFF00) == 0x0B00)
+            table[w] = immediate[(form - 0x0B00) >> 5];
+        else if (form == 0x0D00)  // SUBI IL
+            table[w] = &call<&Tms34010::exec_immediate<0x0D00>>;
+        else if (form == 0x0D80 || form == 0x0DA0 || form == 0x0DC0)
+            table[w] = dsj[(form - 0x0D80) >> 5];
+        else
+            table[w] = group_0[w >> 5];
+    }
+    for (uint32_t w = 0x1000; w < 0x4000; ++w)
+        table[w] = k[(w - 0x1000) >> 10];
+    for (uint32_t w = 0x4000; w < 0x7000; ++w)
+        table[w] = alu[(w - 0x4000) >> 9];
 }
 
 }  // namespace fb89::controller::gsp
