@@ -67,6 +67,11 @@ int main(int argc, char** argv) {
         return 2;
     }
     const int rounds = argc > 4 ? std::atoi(argv[4]) : 9;
+    if (rounds < 1 || rounds > 1000) {
+        std::fprintf(stderr, "fb89_gsp_bench: ROUNDS \"%s\": a whole number from 1 to 1000\n",
+                     argv[4]);
+        return 2;
+    }
     try {
         const auto depth = read_all(argv[1]);
         const auto zbuffer = read_all(argv[3]);
