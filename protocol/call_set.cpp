@@ -20,8 +20,10 @@ namespace {
 constexpr int kMaxFileDepth = 8;  // @file inside @file, to stop cycles
 constexpr std::size_t kMaxFileBytes = 1 << 20;
 
+// The opcode's bit in a range's set; none for a byte that is no command's opcode.
 uint8_t bit(Opcode op) {
-    return static_cast<uint8_t>(1u << opcode_index(op));
+    const int i = opcode_index(op);
+    return static_cast<uint8_t>(i < 0 ? 0u : 1u << i);
 }
 
 struct Filter {

@@ -36,8 +36,10 @@ void check_bounds(const CallSet& set) {
         0,         1,    2,        3,         7,        100,         first,
         first + 1, last, last - 1, first - 1, last + 1, kNoLastCall, kNoLastCall - 1};
     for (uint64_t n : probes)
-        for (int op = 1; op <= fb89::protocol::kOpcodeCount; ++op) {
+        for (int op = 0; op <= 0x0B; ++op) {  // every command's opcode, and bytes that are none
             const bool in = set.contains(n, static_cast<Opcode>(op));
+            if (in && !fb89::protocol::command_row(static_cast<uint8_t>(op)))
+                finding("contains() a byte that is no command's opcode");
             if (in && !set.contains_number(n)) finding("contains() without contains_number()");
             if (in && (n < first || n > last)) finding("a contained number outside first..last");
         }
