@@ -192,6 +192,15 @@ void Tms34010::fetch_fault() const {
 // --- execution ----------------------------------------------------------------------------
 
 // (always inlined: step() and the loops share it, and a call per instruction costs)
+// An instruction of `own` states that touches no memory runs beside the queued write, on
+// both clocks: what it overlaps is taken off the queue.
+[[gnu::always_inline]] inline void Tms34010::run_beside_queue(uint32_t own) {
+    const uint32_t overlap = std::min(m_warm_queued, own);
+    m_warm_queued -= overlap;
+    m_count.queue_overlap_states += overlap;
+    m_queued -= std::min(m_queued, own);
+}
+
 [[gnu::always_inline]] inline uint32_t Tms34010::execute_one() {
     m_instruction_pc = m_pc;
     m_states = 0;
@@ -202,12 +211,7 @@ void Tms34010::fetch_fault() const {
     // most instructions: the same on both clocks, and beside the queued write, if any (as
     // finish() would settle them)
     const uint32_t own = m_states;
-    if ((m_warm_queued | m_queued) != 0) {
-        const uint32_t overlap = std::min(m_warm_queued, own);
-        m_warm_queued -= overlap;
-        m_count.queue_overlap_states += overlap;
-        m_queued -= std::min(m_queued, own);
-    }
+    if ((m_warm_queued | m_queued) != 0) run_beside_queue(own);
     ++m_count.instructions;
     m_count.states += own;
     m_count.warm_states += own;
@@ -246,10 +250,7 @@ uint32_t Tms34010::finish() {
         m_queued = m_new_queue;
         m_warm_queued = m_new_queue;
     } else if (!touched) {
-        const uint32_t overlap = std::min(m_warm_queued, own);
-        m_warm_queued -= overlap;
-        m_count.queue_overlap_states += overlap;
-        m_queued -= std::min(m_queued, own);
+        run_beside_queue(own);
     }
     ++m_count.instructions;
     m_count.states += cold;

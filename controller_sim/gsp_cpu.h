@@ -262,6 +262,7 @@ class Tms34010 {
     // This instruction's states on both clocks from its own (m_states), the queue and the
     // cache's misses; returns the states with the cache.
     uint32_t finish();
+    void run_beside_queue(uint32_t own);
     uint32_t execute_one();  // step(), inlined in the loops
     uint32_t cycle_states(uint32_t address) const {
         return address >= kIoStart ? m_timing.io_cycle_states : m_timing.cycle_states;

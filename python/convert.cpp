@@ -139,22 +139,23 @@ struct RowKind {
     bool depth = false;                         // its z, dzdx and dzdy are beside it
     bool dzdy = false;                          // it steps in y as well
 };
-RowKind kind_of(uint8_t opcode) {
-    RowKind k;
-    k.row = protocol::command_row(opcode);
-    if (!k.row) return k;
+// Each opcode byte's kind, made once: replay_into() and check() ask it of every row.
+constexpr auto kKinds = [] {
+    std::array<RowKind, 256> out{};
     [&]<std::size_t... I>(std::index_sequence<I...>) {
-        ((opcode == static_cast<uint8_t>(
-                        CommandInfo<std::variant_alternative_t<I, protocol::Command>>::opcode)
-              ? void((k.depth = has_column<std::variant_alternative_t<I, protocol::Command>>(
-                          RowColumn::Z),
-                      k.dzdy = has_column<std::variant_alternative_t<I, protocol::Command>>(
-                          RowColumn::Dzdy)))
-              : void()),
+        ((out[static_cast<uint8_t>(
+              CommandInfo<std::variant_alternative_t<I, protocol::Command>>::opcode)] =
+              RowKind{
+                  &protocol::kCommandRows[I],
+                  has_column<std::variant_alternative_t<I, protocol::Command>>(RowColumn::Z),
+                  has_column<std::variant_alternative_t<I, protocol::Command>>(RowColumn::Dzdy)}),
          ...);
     }
     (std::make_index_sequence<protocol::kOpcodeCount>{});
-    return k;
+    return out;
+}();
+const RowKind& kind_of(uint8_t opcode) {
+    return kKinds[opcode];
 }
 
 // By alternative: whether the command carries anything beside its row.
