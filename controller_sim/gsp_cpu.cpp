@@ -227,9 +227,12 @@ uint32_t Tms34010::finish() {
     const bool touched = (m_events & kTouched) != 0, wrote = (m_events & kWrote) != 0;
     const uint32_t misses = m_events / kMiss;
     // the warm clock: every fetch a hit
+    // (its first access's lead runs `beside` states beside the queued write, then waits)
     uint32_t warm = own;
     if (touched) {
-        warm += m_warm_queued;
+        const uint32_t overlap = std::min(m_warm_queued, m_beside);
+        m_count.queue_overlap_states += overlap;
+        warm += m_warm_queued - overlap;
         m_warm_queued = 0;
     }
     // the cache's: a miss fills its sub-segment after the queued write, four memory cycles
@@ -243,8 +246,9 @@ uint32_t Tms34010::finish() {
         m_count.cache_miss_states += fill;
     }
     if (touched) {
-        cold += m_queued;
+        cold += m_queued - std::min(m_queued, m_beside);
         m_queued = 0;
+        m_beside = 0;
     }
     if (wrote) {
         m_queued = m_new_queue;
@@ -347,6 +351,13 @@ void Tms34010::exec_move(uint16_t w) {
     constexpr uint32_t mode = Form >> 12;        // 8 *R, 9 *R+, A -*R, B *R(disp)
     if constexpr (kind == 3)
         fault(fmt::format("word {:04X}h: MOVB is not executed by fb89's GSP", w));
+    constexpr states::Access read_form = mode == 0x8   ? states::kReadIndirect
+                                         : mode == 0x9 ? states::kReadPostIncrement
+                                         : mode == 0xA ? states::kReadPreDecrement
+                                                       : states::kReadDisplacement;
+    constexpr states::Access write_form = mode == 0x8 || mode == 0x9 ? states::kWriteIndirect
+                                          : mode == 0xA              ? states::kWritePreDecrement
+                                                                     : states::kWriteDisplacement;
     const auto address = [&](int n, int32_t disp) -> uint32_t {
         uint32_t& p = r(file, n);
         switch (mode) {
@@ -367,18 +378,18 @@ void Tms34010::exec_move(uint16_t w) {
     if constexpr (kind == 0) {
         const int32_t disp = mode == 0xB ? sext16(fetch()) : 0;
         const uint32_t v = reg(file, rs);
-        memory_write(address(rd, disp), field, v);
+        memory_write(address(rd, disp), field, v, write_form);
     } else if constexpr (kind == 1) {
         const int32_t disp = mode == 0xB ? sext16(fetch()) : 0;
-        const uint32_t v = memory_read(address(rs, disp), field);
+        const uint32_t v = memory_read(address(rs, disp), field, read_form);
         r(file, rd) = v;
         set_nz(v);
         m_v = false;
     } else {
         const int32_t ds = mode == 0xB ? sext16(fetch()) : 0;
         const int32_t dd = mode == 0xB ? sext16(fetch()) : 0;
-        const uint32_t v = memory_read(address(rs, ds), field);
-        memory_write(address(rd, dd), field, v);
+        const uint32_t v = memory_read(address(rs, ds), field, read_form);
+        memory_write(address(rd, dd), field, v, write_form);
     }
 }
 

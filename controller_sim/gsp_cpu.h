@@ -228,20 +228,22 @@ class Tms34010 {
     uint32_t read_field_slow(uint32_t address, uint32_t bits) const;
     void write_field_slow(uint32_t address, uint32_t bits, uint32_t value);
     void write_io(uint32_t address, uint16_t v);
-    [[gnu::always_inline]] uint32_t memory_read(uint32_t address,
-                                                int field) {  // a MOVE's read, states counted
+    // A MOVE's read and write, states counted by the form's access (gsp_states.h)
+    [[gnu::always_inline]] uint32_t memory_read(uint32_t address, int field, states::Access form) {
         const uint32_t bits = m_fs[field];
-        pay_queue();
         const uint32_t words = (address % 16 + bits + 15) / 16;
-        m_states += states::kMemoryIssue + words * cycle_states(address);
+        access(form);
+        m_states += form.lead + words * cycle_states(address) + form.tail;
         return extend(read_field(address, bits), field);
     }
-    [[gnu::always_inline]] void memory_write(uint32_t address, int field, uint32_t value) {
+    [[gnu::always_inline]] void memory_write(uint32_t address, int field, uint32_t value,
+                                             states::Access form) {
         const uint32_t bits = m_fs[field];
-        pay_queue();
         const uint32_t words = (address % 16 + bits + 15) / 16;
-        m_states += states::kMemoryIssue;
-        queue_write(words * cycle_states(address));
+        access(form);
+        m_states += form.lead + form.tail;
+        const uint32_t cycles = words * cycle_states(address);
+        queue_write(cycles - std::min(cycles, form.tail));
         write_field(address, bits, value);
     }
     uint32_t extend(uint32_t v, int field) const {
@@ -255,6 +257,12 @@ class Tms34010 {
     // takes the read's 4 states and the write's 2 only). The wait is settled at the end of
     // the instruction (finish()), on two clocks: the cache's and a warm one.
     void pay_queue() { m_events |= kTouched; }
+    // the same, for an access whose first `beside` states run beside the queued write (the
+    // instruction's first access says)
+    void access(states::Access form) {
+        if (!(m_events & kTouched)) m_beside = form.beside;
+        m_events |= kTouched;
+    }
     void queue_write(uint32_t states) {
         m_new_queue = states;
         m_events |= kWrote;
@@ -318,6 +326,7 @@ class Tms34010 {
     uint32_t m_fs[2] = {32, 32};
     bool m_fe[2] = {false, false};
     uint32_t m_states = 0;       // this instruction's own, before the queue and the cache
+    uint32_t m_beside = 0;       // of them, those before its first access, beside the queue
     uint32_t m_queued = 0;       // the write queue's states, not yet paid
     uint32_t m_warm_queued = 0;  // the same on the warm clock
     uint32_t m_new_queue = 0;    // this instruction's write

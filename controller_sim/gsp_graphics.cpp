@@ -239,14 +239,15 @@ void Tms34010::exec_pixt(uint16_t w) {
     const uint32_t s = reg(file, rs), d = reg(file, rd);
     const uint32_t mask = pixel_size() == 32 ? ~0u : (1u << pixel_size()) - 1;
     const auto write = [&](uint32_t address, uint32_t pixel) {
-        pay_queue();
-        m_states += states::kPixtWriteIssue;
-        queue_write(m_timing.pixel_write_states);
+        access(states::kPixtWrite);
+        m_states += states::kPixtWrite.lead + states::kPixtWrite.tail;
+        queue_write(m_timing.pixel_write_states -
+                    std::min(m_timing.pixel_write_states, states::kPixtWrite.tail));
         write_pixel(address, pixel & mask);
     };
     const auto read = [&](uint32_t address) {
-        pay_queue();
-        m_states += states::kPixtReadFixed + m_timing.cycle_states;
+        access(states::kPixtRead);
+        m_states += states::kPixtRead.lead + m_timing.cycle_states + states::kPixtRead.tail;
         return read_pixel(address);
     };
     const auto xy_ok = [&](uint32_t xy) {
@@ -266,7 +267,7 @@ void Tms34010::exec_pixt(uint16_t w) {
             if (xy_ok(d))
                 write(xy_address(d), s);
             else
-                m_states += states::kPixtWriteIssue;
+                m_states += states::kPixtWrite.lead + states::kPixtWrite.tail;
             return;
         case 0xF200:
             set_reg(file, rd, read(xy_address(s)));

@@ -132,19 +132,20 @@ void Tms34010::exec_0(uint16_t w) {
             return;
         case 0x0580: {  // MOVE Rs,@address,F
             const uint32_t a = fetch_long();
-            memory_write(a, field, d);
+            memory_write(a, field, d, states::kWriteAbsolute);
             return;
         }
         case 0x05A0: {  // MOVE @address,Rd,F
             const uint32_t a = fetch_long();
-            d = memory_read(a, field);
+            d = memory_read(a, field, states::kReadAbsolute);
             set_nz(d);
             m_v = false;
             return;
         }
         case 0x05C0: {  // MOVE @address,@address,F
             const uint32_t from = fetch_long(), to = fetch_long();
-            memory_write(to, field, memory_read(from, field));
+            memory_write(to, field, memory_read(from, field, states::kReadAbsolute),
+                         states::kWriteAbsolute);
             return;
         }
         default:

@@ -49,6 +49,7 @@ struct Price {
     uint32_t cycles = 0;            // taken, for a branch
     uint32_t cycles_not_taken = 0;  // a branch only
     uint32_t queued = 0;            // a write's memory states, which overlap what follows
+    uint32_t beside = 0;            // a memory access's first states that overlap a queued write
     std::string source;
     std::string target;  // a jump's label
     std::string graphics;
@@ -225,30 +226,43 @@ class Pricer {
         }
         if (m == "PIXT" && n == 2 && reg(0) && ops[1].starts_with("*") &&
             is_register(std::string_view(ops[1]).substr(1))) {
-            // PIXT Rs,*Rd: the data sheet defers it to the User's Guide (p. 11, "T"); priced
-            // as a memory write of one pixel, queued like a MOVE's
-            const uint32_t issue = m_end == TimingEnd::High ? 2 : 1;
-            Price p =
-                simple(1, issue,
-                       fmt::format("[EST] PIXT Rs,*Rd: {} state{} to issue (band 1-2; DS p. "
-                                   "11 defers it to the User's Guide) + the pixel's write, "
-                                   "{} states (DS p. 19; a read and a write for a pixel "
-                                   "narrower than the word, no byte strobes)",
-                                   issue, issue == 1 ? "" : "s", m_memory.pixel_write_states));
+            // PIXT Rs,*Rd: the data sheet defers it to the User's Guide (p. 11, "T"); GSPSIM's
+            // states around the pixel's write, queued like a MOVE's [SIM]; the band's cheap end
+            // a state to issue, the write whole
+            const bool low = m_end == TimingEnd::Low;
+            const gsp::states::Access a =
+                low ? gsp::states::kDataSheetMinimum : gsp::states::kPixtWrite;
+            const uint32_t own = a.lead + a.tail;
+            const std::string write = fmt::format(
+                "the pixel's write, {} states (DS p. 19; a read and a write for a pixel narrower "
+                "than the word, no byte strobes)",
+                m_memory.pixel_write_states);
+            Price p = simple(1, own,
+                             low ? fmt::format("[EST] PIXT Rs,*Rd: 1 state to issue (the band's "
+                                               "cheap end; DS p. 11 defers it to the User's "
+                                               "Guide) + {}",
+                                               write)
+                                 : fmt::format("[SIM] PIXT Rs,*Rd: {} states (GSPSIM 1.04) + {}, "
+                                               "{} of them beside its last state",
+                                               own, write, a.tail));
             p.kind = Kind::MemoryWrite;
-            p.queued = m_memory.pixel_write_states;
+            p.beside = a.beside;
+            p.queued = m_memory.pixel_write_states - std::min(m_memory.pixel_write_states, a.tail);
             return p;
         }
         if (m == "PIXT" && n == 2 && reg(1) && ops[0].starts_with("*") &&
             is_register(std::string_view(ops[0]).substr(1))) {
-            // PIXT *Rs,Rd: a pixel read, 4 states with its read cycle (SPVS002C p. 11); with
-            // DPYCTL's SRT set the read is the VRAMs' memory-to-register cycle (the clear)
+            // PIXT *Rs,Rd: a pixel read, 4 states with its read cycle (SPVS002C p. 11; GSPSIM
+            // the same, a state of it beside a queued write); with DPYCTL's SRT set the read is
+            // the VRAMs' memory-to-register cycle (the clear)
             one_file(in, std::string_view(ops[0]).substr(1), ops[1]);
-            Price p = simple(1, 2 + m_memory.cycle_states,
-                             fmt::format("[DS] p. 11, PIXT *Rs,Rd: 4 (2 + its read cycle, {} "
+            const gsp::states::Access a = gsp::states::kPixtRead;
+            Price p = simple(1, a.lead + m_memory.cycle_states + a.tail,
+                             fmt::format("[DS] p. 11, PIXT *Rs,Rd: 4 ({} + its read cycle, {} "
                                          "states here)",
-                                         m_memory.cycle_states));
+                                         a.lead + a.tail, m_memory.cycle_states));
             p.kind = Kind::MemoryRead;
+            p.beside = m_end == TimingEnd::Low ? 0 : a.beside;
             return p;
         }
         if ((m == "MMTM" || m == "MMFM") && n >= 2 && reg(0) && upper(ops[0]) == "SP") {
@@ -412,9 +426,11 @@ class Pricer {
     }
 
     // MOVE with a memory operand: the data sheet's tables give no figure ("depends on field
-    // size and alignment", p. 12), so the price is one state to issue it [EST, band 1-2] plus
-    // the memory cycles of its field, word-aligned: a read waits for them; a write is queued
-    // (p. 10) and overlaps the instructions after it until the next memory access.
+    // size and alignment", p. 12); the price is its form's states around the memory cycles of
+    // its field, word-aligned, as TI's simulator GSPSIM 1.04 gives them (gsp_states.h) [SIM]:
+    // a read waits for its cycles, a write queues them (p. 10) to overlap the instructions
+    // after it until the next memory access. The band's cheap end is the data sheet's reading
+    // fb89 followed before GSPSIM was measured: a state to issue, the cycles waited for whole.
     Price memory_move(const Instruction& in) const {
         const auto [field, read, where] = move_operands(in);
         if (where.starts_with("*")) indirect(in, where);
@@ -426,21 +442,43 @@ class Pricer {
         }
         const uint32_t field_words = kFieldBits[field] / 16;
         const uint32_t per_word = io ? m_memory.io_cycle_states : m_memory.cycle_states;
-        const uint32_t issue = m_end == TimingEnd::High ? 2 : 1;
+        namespace st = gsp::states;
+        const bool absolute = where.starts_with("@"), displaced = where.ends_with(")");
+        const bool pre = where.starts_with("-*") || where.starts_with("*-"),
+                   post = where.ends_with("+");
+        std::string_view form = absolute    ? "@a"
+                                : displaced ? "*R(d)"
+                                : pre       ? "-*R"
+                                : post      ? "*R+"
+                                            : "*R";
+        st::Access a = read ? (absolute    ? st::kReadAbsolute
+                               : displaced ? st::kReadDisplacement
+                               : pre       ? st::kReadPreDecrement
+                               : post      ? st::kReadPostIncrement
+                                           : st::kReadIndirect)
+                            : (absolute    ? st::kWriteAbsolute
+                               : displaced ? st::kWriteDisplacement
+                               : pre       ? st::kWritePreDecrement
+                                           : st::kWriteIndirect);
+        if (m_end == TimingEnd::Low) a = st::kDataSheetMinimum;
         Price p;
-        p.words = where.starts_with("@") ? 3 : where.ends_with(")") ? 2 : 1;
+        p.words = absolute ? 3 : displaced ? 2 : 1;
         p.kind = read ? Kind::MemoryRead : Kind::MemoryWrite;
-        const std::string what = fmt::format(
-            "[EST] {} state{} to issue (band 1-2; DS p. 12: 'depends on field size and alignment') "
-            "+ {} {}-bit {} cycle{} of {} states (DS p. 19{})",
-            issue, issue == 1 ? "" : "s", field_words, 16, io ? "I/O" : "memory",
-            field_words == 1 ? "" : "s", per_word, read ? "" : "; a write is queued, p. 10");
-        p.source = what;
+        p.source = fmt::format(
+            "{} {}{} {}: {} + {} {}-bit {} cycle{} of {} states (DS p. 19{}){}",
+            m_end == TimingEnd::Low ? "[EST]" : "[SIM]", read ? "MOVE " : "MOVE Rs,", form,
+            read ? ",Rd" : "", a.lead + a.tail, field_words, 16, io ? "I/O" : "memory",
+            field_words == 1 ? "" : "s", per_word, read ? "" : "; a write is queued, p. 10",
+            m_end == TimingEnd::Low
+                ? " (the band's cheap end: a state to issue)"
+                : fmt::format(" (GSPSIM 1.04; {} beside a queued write)", a.beside));
+        p.beside = a.beside;
+        const uint32_t cycles = field_words * per_word;
         if (read) {
-            p.cycles = issue + field_words * per_word;
+            p.cycles = a.lead + cycles + a.tail;
         } else {
-            p.cycles = issue;
-            p.queued = field_words * per_word;
+            p.cycles = a.lead + a.tail;
+            p.queued = cycles - std::min(cycles, a.tail);
         }
         return p;
     }
@@ -522,6 +560,19 @@ class Pricer {
     std::map<int, std::vector<uint16_t>> m_words;  // each instruction's words, by line
 };
 
+// The states the instructions from `pc` run beside a queued write: those that touch no
+// memory, up to the first that jumps, and then the first memory access's `beside`.
+uint32_t beside_at(const Parsed& parsed, const Pricer& pricer, std::size_t pc) {
+    uint32_t states = 0;
+    for (; pc < parsed.code.size(); ++pc) {
+        const Price p = pricer.price(parsed.code[pc]);
+        if (p.kind == Kind::MemoryRead || p.kind == Kind::MemoryWrite) return states + p.beside;
+        if (p.kind != Kind::Register) return states;
+        states += p.cycles;
+    }
+    return states;
+}
+
 // Walks one path from its label, pricing each instruction and applying the write queue:
 // a queued write's states overlap the register instructions after it and are waited for
 // by the next memory access, the graphics instruction, or the path's end.
@@ -544,9 +595,12 @@ CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pri
         (void)label(t);
     uint32_t queued = 0;
     for (int step = 0;; ++step) {
-        if (step > 0 && pc == end) {  // reached its end: a queued write is paid by it
-            path.cycles += queued;
-            if (!path.lines.empty()) path.lines.back().cycles += queued;
+        if (step > 0 && pc == end) {
+            // reached its end: a queued write is paid by it, less what the next path's first
+            // instructions run beside it (the next path is priced from an empty queue)
+            const uint32_t paid = queued - std::min(queued, beside_at(parsed, pricer, pc));
+            path.cycles += paid;
+            if (!path.lines.empty()) path.lines.back().cycles += paid;
             break;
         }
         if (step > kMaxPathSteps || pc >= parsed.code.size())
@@ -559,7 +613,7 @@ CountedPath walk(const Listing& listing, const Parsed& parsed, const Pricer& pri
         const bool touches_memory =
             p.kind == Kind::MemoryRead || p.kind == Kind::MemoryWrite || p.kind == Kind::Graphics;
         if (touches_memory) {
-            cycles += queued;  // wait for the queued write
+            cycles += queued - std::min(queued, p.beside);  // wait for the queued write
             queued = 0;
         }
         bool taken = p.kind == Kind::Jump;

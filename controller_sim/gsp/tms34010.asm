@@ -4,8 +4,8 @@
 ;
 ; This listing is what the controller's per-command cycles are counted from
 ; (controller_sim/gsp_listing.h): every instruction is priced from the data sheet's
-; minimum-cycle tables (SPVS002C pp. 11-14) and the memory cycles its fields need
-; (p. 19: two states a cycle, plus the profile's wait states); `fb89 controller-validate
+; minimum-cycle tables (SPVS002C pp. 11-14), a memory access by GSPSIM's states around the
+; cycles its field needs (p. 19: two states a cycle, plus wait states); `fb89 controller-validate
 ; --listing` prints it with each line's cycles and source. The counted paths are named
 ; by the ";@path" lines; a conditional jump on a path says in its comment which way the
 ; path goes ("taken" or "not taken"). A path ends where it jumps back to `next` (the

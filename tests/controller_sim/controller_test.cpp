@@ -127,12 +127,12 @@ TEST(Controller, WithAListingAnOutsideCommandStillPaysItsSetUpAndHostWords) {
     c.draw_span(DrawSpan{8, 0, 15, kRed});
     c.frame_end(FrameEnd{});
     EXPECT_EQ(totals(c, Opcode::FillRect).cycles, outside_cycles(p, Opcode::FillRect));
-    EXPECT_EQ(totals(c, Opcode::FillRect).cycles, 18u + 29u + 6u * 2u);
-    EXPECT_EQ(totals(c, Opcode::DrawSpan).cycles, 18u + 34u + 5u * 2u);  // its FILL's set-up
-    EXPECT_EQ(totals(c, Opcode::FrameEnd).cycles, 18u + 6u + 2u);
+    EXPECT_EQ(totals(c, Opcode::FillRect).cycles, 21u + 35u + 6u * 2u);
+    EXPECT_EQ(totals(c, Opcode::DrawSpan).cycles, 21u + 40u + 5u * 2u);  // its FILL's set-up
+    EXPECT_EQ(totals(c, Opcode::FrameEnd).cycles, 21u + 8u + 2u);
     EXPECT_EQ(totals(c, Opcode::FrameBegin).cycles, frame_begin_cycles(p, 16, 8));
     EXPECT_NEAR(c.stats().controller_busy_us,
-                static_cast<double>(frame_begin_cycles(p, 16, 8) + 59 + 62 + 26) * us_per_cycle(p),
+                static_cast<double>(frame_begin_cycles(p, 16, 8) + 68 + 71 + 31) * us_per_cycle(p),
                 1e-9);
 }
 

@@ -32,30 +32,30 @@ constexpr double kState = 8 / 50.35e6;
 // TI's clear_page (TDB10/OEMPRIMS/CLEARPAG.ASM): a VRAM row of 1,024 16-bit words, its
 // memory-to-register cycle (in the set-up's PIXT), then one register-to-memory cycle for
 // each of the frame's other 389 VRAM rows (780 lines of 8,192 bits, 16,384 bits a row).
-TEST(CostModel, TheFramesClearThroughTheSerialRegistersIs3338StatesOfAboutHalfAMillisecond) {
+TEST(CostModel, TheFramesClearThroughTheSerialRegistersIs3363StatesOfAboutHalfAMillisecond) {
     const CostProfile p = tms34010();
     ASSERT_EQ(p.clear_as, ClearAs::SerialRegister);
     EXPECT_EQ(vram_rows(1024, 780, 8), 390u);
     EXPECT_EQ(srt_clear_cycles(p, 390), (1u + 1024u * 2u) + 389u * (1u + 2u));
     const uint64_t cycles = frame_begin_cycles(p, 1024, 780);
-    EXPECT_EQ(cycles, 18u + 94u + 5u * 2u + 2049u + 1167u);
-    EXPECT_EQ(cycles, 3'338u);
+    EXPECT_EQ(cycles, 21u + 116u + 5u * 2u + 2049u + 1167u);
+    EXPECT_EQ(cycles, 3'363u);
     // refresh takes 2/64 of the states and the display 46,800 x 2 a second
     EXPECT_NEAR(p.stolen_share, 2.0 / 64 + 46'800.0 * 2 * kState, 1e-15);
-    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 3'338 * kState / (1 - p.stolen_share) * 1e3,
+    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 3'363 * kState / (1 - p.stolen_share) * 1e3,
                 1e-9);
-    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 0.556, 0.001);
+    EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 0.560, 0.001);
     // the whole VRAM, as TI's clear_frame_buffer: 512 rows
     EXPECT_EQ(srt_clear_cycles(p, kVramRows), 2049u + 511u * 3u);
 }
 
 // TI's clear_screen (CLEARSCR.ASM), the profile's other choice: one FILL XY over the frame.
-TEST(CostModel, TheFramesClearByFillIs799563StatesOf133Milliseconds) {
+TEST(CostModel, TheFramesClearByFillIs799573StatesOf133Milliseconds) {
     CostProfile p = tms34010();
     p.clear_as = ClearAs::Fill;
     const uint64_t cycles = frame_begin_cycles(p, 1024, 780);
-    EXPECT_EQ(cycles, 18u + 35u + 5u * 2u + 780u * (1u + 512u * 2u));
-    EXPECT_EQ(cycles, 799'563u);
+    EXPECT_EQ(cycles, 21u + 42u + 5u * 2u + 780u * (1u + 512u * 2u));
+    EXPECT_EQ(cycles, 799'573u);
     EXPECT_NEAR(cycles_to_seconds(p, cycles) * 1e3, 133.2, 0.05);
 }
 
@@ -64,9 +64,9 @@ TEST(CostModel, TheFramesClearByFillIs799563StatesOf133Milliseconds) {
 TEST(CostModel, AFrameLargerThanTheVramIsClearedByFill) {
     const CostProfile p = tms34010();
     EXPECT_EQ(vram_rows(2048, 1560, 8), 1560u);
-    EXPECT_EQ(frame_begin_cycles(p, 2048, 1560), 18u + 48u + 10u + 1560u * (1u + 1024u * 2u));
+    EXPECT_EQ(frame_begin_cycles(p, 2048, 1560), 21u + 58u + 10u + 1560u * (1u + 1024u * 2u));
     EXPECT_EQ(vram_rows(1024, 1024, 8), 512u);  // the whole VRAM: still serial
-    EXPECT_EQ(frame_begin_cycles(p, 1024, 1024), 18u + 94u + 10u + srt_clear_cycles(p, 512));
+    EXPECT_EQ(frame_begin_cycles(p, 1024, 1024), 21u + 116u + 10u + srt_clear_cycles(p, 512));
     // a narrow frame's rows at its own pitch: 256 wide, 2,048 bits a line, 8 lines a row
     EXPECT_EQ(vram_rows(256, 195, 8), 25u);
     EXPECT_EQ(vram_rows(200, 195, 8), 25u);  // the pitch a power of two
@@ -74,16 +74,16 @@ TEST(CostModel, AFrameLargerThanTheVramIsClearedByFill) {
 
 TEST(CostModel, OnePixelFillIsTheLoopItsSetUpItsHostWordsAndOnePartialWord) {
     const CostProfile p = tms34010();
-    EXPECT_EQ(fill_rect_cycles(p, PixelRect{17, 3, 1, 1}), 18u + 29u + 6u * 2u + 1u + 4u);
-    EXPECT_EQ(fill_rect_cycles(p, PixelRect{16, 3, 2, 1}), 18u + 29u + 12u + 1u + 2u);  // a word
-    EXPECT_EQ(fill_rect_cycles(p, PixelRect{17, 3, 2, 1}), 18u + 29u + 12u + 1u + 2u * 4u);
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{17, 3, 1, 1}), 21u + 35u + 6u * 2u + 1u + 4u);
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{16, 3, 2, 1}), 21u + 35u + 12u + 1u + 2u);  // a word
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{17, 3, 2, 1}), 21u + 35u + 12u + 1u + 2u * 4u);
 }
 
-TEST(CostModel, HundredPixelSpanAsLineIs461States) {
+TEST(CostModel, HundredPixelSpanAsLineIs470States) {
     CostProfile p = tms34010();
     p.span_as = SpanAs::Line;
-    EXPECT_EQ(draw_span_cycles(p, 0, 100), 18u + 33u + 5u * 2u + 100u * 4u);
-    EXPECT_EQ(draw_span_cycles(p, 1, 100), 461u);  // a line does not care about alignment
+    EXPECT_EQ(draw_span_cycles(p, 0, 100), 21u + 39u + 5u * 2u + 100u * 4u);
+    EXPECT_EQ(draw_span_cycles(p, 1, 100), 470u);  // a line does not care about alignment
 }
 
 TEST(CostModel, ALinePixelAt16BppIsOneWriteCycle) {
@@ -92,9 +92,9 @@ TEST(CostModel, ALinePixelAt16BppIsOneWriteCycle) {
     p.span_as = SpanAs::Line;
     derive_figures(p);
     EXPECT_EQ(p.c_line_pix, 2u);
-    EXPECT_EQ(draw_span_cycles(p, 0, 100), 18u + 33u + 10u + 100u * 2u);
+    EXPECT_EQ(draw_span_cycles(p, 0, 100), 21u + 39u + 10u + 100u * 2u);
     // and a fill has no partial words: every pixel is a word
-    EXPECT_EQ(fill_rect_cycles(p, PixelRect{1, 0, 3, 1}), 18u + 29u + 12u + 1u + 3u * 2u);
+    EXPECT_EQ(fill_rect_cycles(p, PixelRect{1, 0, 3, 1}), 21u + 35u + 12u + 1u + 3u * 2u);
 }
 
 TEST(CostModel, WaitStatesLengthenEveryMemoryCycleButNotAnIoRegistersCycle) {
@@ -105,8 +105,8 @@ TEST(CostModel, WaitStatesLengthenEveryMemoryCycleButNotAnIoRegistersCycle) {
     EXPECT_EQ(p.c_op_partial, 6u);
     EXPECT_EQ(p.c_line_pix, 6u);
     EXPECT_EQ(p.c_host_word, 3u);
-    EXPECT_EQ(p.c_cmd, 18u + 3u);        // its two reads: one word and two
-    EXPECT_EQ(p.c_frame_end_setup, 6u);  // its one write is to HSTCTL, an I/O register
+    EXPECT_EQ(p.c_cmd, 21u + 3u);        // its two reads: one word and two
+    EXPECT_EQ(p.c_frame_end_setup, 8u);  // its one write is to HSTCTL, an I/O register
     // and the host port waits for the longer cycle: 2 bytes per 3 states
     EXPECT_NEAR(p.host_port_bytes_per_s, 2 / (3 * kState), 1);
 }
@@ -115,9 +115,9 @@ TEST(CostModel, WaitStatesLengthenEveryMemoryCycleButNotAnIoRegistersCycle) {
 TEST(CostModel, ASpanIsAOneRowFillAfterItsOwnSetUp) {
     const CostProfile p = tms34010();
     ASSERT_EQ(p.span_as, SpanAs::Fill);
-    EXPECT_EQ(draw_span_cycles(p, 0, 100), 18u + 34u + 10u + 1u + 2u * 50u);  // 50 aligned words
-    EXPECT_EQ(draw_span_cycles(p, 1, 100), 18u + 34u + 10u + 1u + 2u * 49u + 4u * 2u);
-    EXPECT_EQ(draw_span_cycles(p, 0, 100), 163u);  // against LINE's 461
+    EXPECT_EQ(draw_span_cycles(p, 0, 100), 21u + 40u + 10u + 1u + 2u * 50u);  // 50 aligned words
+    EXPECT_EQ(draw_span_cycles(p, 1, 100), 21u + 40u + 10u + 1u + 2u * 49u + 4u * 2u);
+    EXPECT_EQ(draw_span_cycles(p, 0, 100), 172u);  // against LINE's 470
 }
 
 TEST(CostModel, FirstModelKeepsMamesFigures) {
@@ -177,19 +177,19 @@ TEST(CostModel, WordsMatchesMameLeftFullRightDecomposition) {
 TEST(CostModel, FrameBeginIsItsSetUpAndAFullScreenClear) {
     CostProfile p = tms34010();
     // 640 x 480 at a pitch of 1,024 pixels: 240 VRAM rows
-    EXPECT_EQ(frame_begin_cycles(p, 640, 480), 18u + 94u + 10u + srt_clear_cycles(p, 240));
-    EXPECT_EQ(frame_begin_cycles(p, 0, 780), 18u + 94u + 10u);  // nothing to clear
+    EXPECT_EQ(frame_begin_cycles(p, 640, 480), 21u + 116u + 10u + srt_clear_cycles(p, 240));
+    EXPECT_EQ(frame_begin_cycles(p, 0, 780), 21u + 116u + 10u);  // nothing to clear
     p.clear_as = ClearAs::Fill;
     EXPECT_EQ(frame_begin_cycles(p, 640, 480),
-              fill_rect_cycles(p, PixelRect{0, 0, 640, 480}) - 29u - 12u + 35u + 10u);
-    EXPECT_EQ(frame_begin_cycles(p, 0, 780), 18u + 35u + 10u);
+              fill_rect_cycles(p, PixelRect{0, 0, 640, 480}) - 35u - 12u + 42u + 10u);
+    EXPECT_EQ(frame_begin_cycles(p, 0, 780), 21u + 42u + 10u);
 }
 
 TEST(CostModel, ACommandWithNothingToDrawStillLoadsAndRunsItsInstruction) {
     const CostProfile p = tms34010();
-    EXPECT_EQ(outside_cycles(p, protocol::Opcode::FillRect), 18u + 29u + 12u);
-    EXPECT_EQ(outside_cycles(p, protocol::Opcode::DrawSpan), 18u + 34u + 10u);
-    EXPECT_EQ(frame_end_cycles(p), 18u + 6u + 2u);
+    EXPECT_EQ(outside_cycles(p, protocol::Opcode::FillRect), 21u + 35u + 12u);
+    EXPECT_EQ(outside_cycles(p, protocol::Opcode::DrawSpan), 21u + 40u + 10u);
+    EXPECT_EQ(frame_end_cycles(p), 21u + 8u + 2u);
 }
 
 TEST(CostModel, BusTimeIsBytesOverTheChipsPortPlusHandshake) {

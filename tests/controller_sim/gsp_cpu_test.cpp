@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "controller_sim/gsp_assembler.h"
 
@@ -165,8 +168,9 @@ TEST(GspCpu, SerialRegisterTransfersCopyWholeVramRows) {
 TEST(GspCpu, StatesAreTheDataSheetsAndAQueuedWriteRunsBesideRegisterWork) {
     GspTiming warm;
     warm.cache = false;
-    // MOVE Rs,*Rd issues in 1 and queues its 2; a NOP runs beside the queue; the read then
-    // waits 1 more and takes its 3: TI's simulator's "write 16, NOP, read 16" in 6
+    // MOVE Rs,*Rd issues in 1 and queues its 2; a NOP runs beside the queue; the read's first
+    // state runs beside what is left, and it takes its 4: TI's simulator's "write 16, NOP,
+    // read 16" in 6
     Executed r(
         "      MOVI 20000h,A0\nm0:   MOVE A1,*A0,0\n      NOP\n      MOVE *A0,A2,0\n"
         "done: JRUC done\n",
@@ -176,6 +180,79 @@ TEST(GspCpu, StatesAreTheDataSheetsAndAQueuedWriteRunsBesideRegisterWork) {
     // its MOVI IW's 2)
     Executed loop("      MOVI 100,A1\nl:    DSJS A1,l\ndone: JRUC done\n", warm);
     EXPECT_EQ(loop.cpu.counters().states, 2u + 99u * 2u + 3u);
+}
+
+// Each memory MOVE and PIXT form the executive runs, alone, after a queued write and before a
+// read: the warm states TI's simulator GSPSIM 1.04 gives for each block of
+// tests/ti-gsp/moves.asm (its second pass), in the same order. The blocks are written here
+// as the file writes them; the emulator must take the same states for each.
+TEST(GspCpu, MemoryAccessesTakeTheStatesOfTisSimulator) {
+    const std::vector<std::string> reads = {
+        "*A1,A2,0",    "*A1,A2,1",     "*A1+,A2,0",       "*A1+,A2,1",     "-*A1,A2,0",
+        "-*A1,A2,1",   "*A1(32),A2,0", "*A1(32),A2,1",    "@100040h,A2,0", "@100040h,A2,1",
+        "*A1(8),A2,0", "*A1(8),A2,1",  "@0C0000150h,A2,0"};
+    const std::vector<std::string> writes = {"A2,*A1,0",      "A2,*A1,1",        "A2,*A1+,0",
+                                             "A2,*A1+,1",     "A2,-*A1,0",       "A2,-*A1,1",
+                                             "A2,*A1(32),0",  "A2,*A1(32),1",    "A2,@100080h,0",
+                                             "A2,@100080h,1", "A2,@0C0000150h,0"};
+    const std::string nops6 = "NOP\nNOP\nNOP\nNOP\nNOP\nNOP\n";
+    std::vector<std::string> blocks;
+    for (const auto& f : reads)
+        blocks.push_back("MOVE " + f + "\nNOP\n");
+    for (const auto& f : reads)
+        blocks.push_back("MOVE A4,*A5,0\nMOVE " + f + "\nNOP\n");
+    for (std::size_t i = 0; i < 4; ++i)
+        blocks.push_back("MOVE A4,*A5,1\nMOVE " + reads[i] + "\nNOP\n");
+    for (const auto& f : writes)
+        blocks.push_back("MOVE " + f + "\n" + nops6);
+    for (const auto& f : writes)
+        blocks.push_back("MOVE " + f + "\nMOVE *A5,A4,0\nNOP\n");
+    for (const auto& f : writes)
+        blocks.push_back("MOVE A4,*A5,0\nMOVE " + f + "\nMOVE *A5,A4,0\nNOP\n");
+    const std::vector<std::string> pixt = {"PIXT A2,*A1\n" + nops6,
+                                           "PIXT A2,*A1\nMOVE *A5,A4,0\nNOP\n",
+                                           "MOVE A4,*A5,0\nPIXT A2,*A1\nMOVE *A5,A4,0\nNOP\n",
+                                           "PIXT *A1,A2\nNOP\n",
+                                           "MOVE A4,*A5,0\nPIXT *A1,A2\nNOP\n",
+                                           "PIXT *A1,A2\nPIXT A2,*A1\n" + nops6};
+    const std::size_t moves = blocks.size();
+    blocks.insert(blocks.end(), pixt.begin(), pixt.end());  // at 8 bits a pixel
+    blocks.insert(blocks.end(), pixt.begin(), pixt.end());  // at 16
+    // GSPSIM 1.04, tests/ti-gsp/moves.asm, each block's second pass
+    const std::vector<uint64_t> gspsim = {
+        5,  7,  6,  8,  4, 6,  6, 8,  7,  9,  8,  10, 7,  // reads alone (and a NOP)
+        7,  9,  8,  10, 7, 9,  7, 9,  8,  10, 9,  11, 8,  // after a 16-bit write
+        9,  11, 10, 12,                                   // after a 32-bit write
+        7,  7,  7,  7,  7, 7,  9, 9,  9,  9,  9,          // writes alone (and six NOPs)
+        7,  9,  7,  9,  7, 9,  8, 10, 9,  11, 9,          // writes, then a read
+        10, 12, 10, 12, 9, 11, 9, 11, 10, 12, 10,         // after a 16-bit write, then a read
+        8,  9,  11, 5,  7, 12,                            // PIXT at 8 bits a pixel
+        8,  7,  9,  5,  7, 12};                           // and at 16
+    ASSERT_EQ(blocks.size(), gspsim.size());
+    GspTiming warm;
+    warm.cache = false;
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+        const bool wide = i >= moves + pixt.size();
+        GspTiming timing = warm;
+        timing.pixel_write_states =
+            wide ? 2 : 4;  // a whole word at 16 bits; a read and a write at 8
+        // the set-up (PSIZE, A2 the pixel size as PSIZE may be written with it, the pointers)
+        // is taken off by running it alone
+        const std::string setup = fmt::format(
+            "      MOVK {},A0\n      MOVE A0,@0C0000150h,0\n      MOVE A0,A2\n      MOVI "
+            "100000h,A5\n"
+            "      MOVI 100000h,A1\n",
+            wide ? 16 : 8);
+        const Executed alone(setup + "done: JRUC done\n", timing);
+        std::string block;  // each instruction indented, as the assembler reads it
+        for (std::size_t at = 0, end; (end = blocks[i].find('\n', at)) != std::string::npos;
+             at = end + 1)
+            block += "      " + blocks[i].substr(at, end + 1 - at);
+        const Executed with(setup + block + "done: JRUC done\n", timing);
+        EXPECT_EQ(with.cpu.counters().states - alone.cpu.counters().states, gspsim[i])
+            << "block " << i << ":\n"
+            << blocks[i];
+    }
 }
 
 TEST(GspCpu, AnInstructionCacheMissCostsItsSubSegmentsFetch) {
