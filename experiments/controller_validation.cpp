@@ -130,9 +130,10 @@ void add_ti_rows(std::vector<ValidationRow>& out, const CostProfile& after,
          "115 to 140", kNone, static_cast<double>(after.c_tiga_call), true,
          after.c_tiga_call >= 100 && after.c_tiga_call <= 160, true});
     // PIXT: the simulator timed the XY form (PIXT Rs,*Rd.XY: 6 states warm, 7 cold, at
-    // 8 bpp); the listing's depth loop uses the linear form, priced as one state to issue
-    // and the pixel's write (a read-modify-write at 8 bpp): set beside it, not checked, the
-    // forms differing by the XY conversion
+    // 8 bpp); the listing's depth loop uses the linear form, priced as GSPSIM prices it
+    // (tests/ti-gsp/moves.asm): a state before the pixel's write (a read-modify-write at 8
+    // bpp), its last state beside the write: set beside it, not checked, the forms differing
+    // by the XY conversion
     add(
         {"PIXT of one pixel, 8 bpp (the simulator: the XY form; the model: the linear form "
          "the depth loop uses, its write included)",
