@@ -74,6 +74,37 @@ void HierarchicalZBuffer::setup(const ScreenScene& scene) {
 
     m_width = scene.width;
     m_height = scene.height;
+    // each band's cover: the pixels of its faces' rectangles in it over its own, the most
+    // depth complexity it can have
+    m_band_cover.assign(static_cast<std::size_t>((m_height + kBandRows - 1) / kBandRows), 0.0);
+    for (uint32_t f : m_order) {
+        const PixelRect& r = m_face_box[f].rect;
+        for (int y0 = r.y0 / kBandRows * kBandRows; y0 < r.y1; y0 += kBandRows) {
+            const int rows = std::min(r.y1, y0 + kBandRows) - std::max(r.y0, y0);
+            m_band_cover[static_cast<std::size_t>(y0 / kBandRows)] +=
+                static_cast<double>(rows) * (r.x1 - r.x0);
+        }
+    }
+    for (std::size_t b = 0; b < m_band_cover.size(); ++b) {
+        const int rows = std::min(kBandRows, m_height - static_cast<int>(b) * kBandRows);
+        m_band_cover[b] /= static_cast<double>(rows) * std::max(1, m_width);
+    }
+    // and its faces, nearest first, for a band worked without the pyramid
+    m_band_first.assign(m_band_cover.size() + 1, 0);
+    for (uint32_t f : m_order) {
+        const PixelRect& r = m_face_box[f].rect;
+        for (int b = r.y0 / kBandRows; b * kBandRows < r.y1; ++b)
+            ++m_band_first[static_cast<std::size_t>(b) + 1];
+    }
+    for (std::size_t b = 1; b < m_band_first.size(); ++b)
+        m_band_first[b] += m_band_first[b - 1];
+    m_band_faces.assign(m_band_first.back(), 0);
+    std::vector<uint32_t> at(m_band_first.begin(), m_band_first.end() - 1);
+    for (uint32_t f : m_order) {
+        const PixelRect& r = m_face_box[f].rect;
+        for (int b = r.y0 / kBandRows; b * kBandRows < r.y1; ++b)
+            m_band_faces[at[static_cast<std::size_t>(b)]++] = f;
+    }
     const std::size_t pixels = static_cast<std::size_t>(m_width) * kBandRows;
     m_depth.assign(pixels + kDepthRowPad, 0.0);  // the kernels' padding past the last row
     m_face.assign(pixels + kDepthRowPad, 0);
@@ -286,7 +317,7 @@ namespace {
 // Z-buffer's kernel (depth_rows.h) with the shared rule's tie to the lower index, since faces
 // arrive front to back, not in id order; the tiles of a run that won a centre are marked for
 // mark_levels(). The wrappers below compile it once per kernel, as zbuffer.cpp does.
-template <class DepthRow>
+template <class DepthRow, bool Mark>
 uint64_t draw_face(const ScreenScene& scene, uint32_t index, int band_y0, int band_rows,
                    double* depth_buffer, uint32_t* face_buffer, int width, int tiles_w,
                    uint8_t* dirty, std::vector<uint32_t>& dirty_list, uint64_t& tests) {
@@ -305,6 +336,7 @@ uint64_t draw_face(const ScreenScene& scene, uint32_t index, int band_y0, int ba
                                                            depth_buffer + row, face_buffer + row);
         if (won == 0) continue;
         written += won;
+        if constexpr (!Mark) continue;
         const uint32_t tile_row =
             static_cast<uint32_t>(local >> shift) * static_cast<uint32_t>(tiles_w);
         for (int tx = xb >> shift; tx <= (xe - 1) >> shift; ++tx) {
@@ -324,42 +356,45 @@ using HzbRowBaseline = DepthRowSse2;
 using HzbRowBaseline = DepthRowScalar;
 #endif
 
+template <bool Mark>
 [[gnu::flatten]] uint64_t draw_face_baseline(const ScreenScene& scene, uint32_t index, int band_y0,
                                              int band_rows, double* depth, uint32_t* face,
                                              int width, int tiles_w, uint8_t* dirty,
                                              std::vector<uint32_t>& dirty_list, uint64_t& tests) {
-    return draw_face<HzbRowBaseline>(scene, index, band_y0, band_rows, depth, face, width, tiles_w,
-                                     dirty, dirty_list, tests);
+    return draw_face<HzbRowBaseline, Mark>(scene, index, band_y0, band_rows, depth, face, width,
+                                           tiles_w, dirty, dirty_list, tests);
 }
 
 #if defined(FB89_HAS_AVX2_KERNEL)
+template <bool Mark>
 [[gnu::target("avx2"), gnu::flatten]] uint64_t draw_face_avx2(
     const ScreenScene& scene, uint32_t index, int band_y0, int band_rows, double* depth,
     uint32_t* face, int width, int tiles_w, uint8_t* dirty, std::vector<uint32_t>& dirty_list,
     uint64_t& tests) {
-    return draw_face<DepthRowAvx2>(scene, index, band_y0, band_rows, depth, face, width, tiles_w,
-                                   dirty, dirty_list, tests);
+    return draw_face<DepthRowAvx2, Mark>(scene, index, band_y0, band_rows, depth, face, width,
+                                         tiles_w, dirty, dirty_list, tests);
 }
 #endif
 
 }  // namespace
 
+template <bool Mark>
 void HierarchicalZBuffer::draw(const ScreenScene& scene, uint32_t index) {
     uint64_t tests = 0, written = 0;
 #if defined(FB89_HAS_AVX2_KERNEL)
     if (has_avx2())
-        written =
-            draw_face_avx2(scene, index, m_band_y0, m_band_rows, m_depth.data(), m_face.data(),
-                           m_width, m_levels[0].w, m_levels[0].dirty.data(), m_dirty_list, tests);
+        written = draw_face_avx2<Mark>(scene, index, m_band_y0, m_band_rows, m_depth.data(),
+                                       m_face.data(), m_width, m_levels[0].w,
+                                       m_levels[0].dirty.data(), m_dirty_list, tests);
     else
 #endif
-        written = draw_face_baseline(scene, index, m_band_y0, m_band_rows, m_depth.data(),
-                                     m_face.data(), m_width, m_levels[0].w,
-                                     m_levels[0].dirty.data(), m_dirty_list, tests);
+        written = draw_face_baseline<Mark>(scene, index, m_band_y0, m_band_rows, m_depth.data(),
+                                           m_face.data(), m_width, m_levels[0].w,
+                                           m_levels[0].dirty.data(), m_dirty_list, tests);
     m_counts.depth_tests += tests;
     m_counts.pixels_written += written;
     m_drawn[index] = 1;
-    mark_levels();
+    if constexpr (Mark) mark_levels();
 }
 
 // A rectangle's part in the band, in the band buffers' rows (empty when it misses the band).
@@ -387,10 +422,17 @@ void HierarchicalZBuffer::walk(const ScreenScene& scene, uint32_t index) {
             ++m_counts.faces_culled;
             continue;
         }
-        draw(scene, f);
+        draw<true>(scene, f);
     }
     for (uint32_t c = node.first_child; c < node.first_child + node.child_count; ++c)
         walk(scene, c);
+}
+
+// A band where the hierarchy would not pay: every face that meets it drawn, nearest first
+// (the octree's order), with no test of the pyramid and no tile marked.
+void HierarchicalZBuffer::draw_band(const ScreenScene& scene, std::size_t band) {
+    for (uint32_t i = m_band_first[band]; i < m_band_first[band + 1]; ++i)
+        draw<false>(scene, m_band_faces[i]);
 }
 
 void HierarchicalZBuffer::render(const ScreenScene& scene, protocol::CommandSink& sink,
@@ -407,8 +449,14 @@ void HierarchicalZBuffer::render(const ScreenScene& scene, protocol::CommandSink
     // its rows zeroed for the next)
     for (m_band_y0 = 0; m_band_y0 < m_height; m_band_y0 += kBandRows) {
         m_band_rows = std::min(kBandRows, m_height - m_band_y0);
-        reset_pyramid();
-        if (!m_nodes.empty()) walk(scene, 0);
+        const bool hierarchy =
+            m_band_cover[static_cast<std::size_t>(m_band_y0 / kBandRows)] >= kHierarchyFromCover;
+        (hierarchy ? m_counts.bands_hierarchical : m_counts.bands_direct) += 1;
+        if (hierarchy) reset_pyramid();
+        if (hierarchy && !m_nodes.empty())
+            walk(scene, 0);
+        else if (!hierarchy)
+            draw_band(scene, static_cast<std::size_t>(m_band_y0 / kBandRows));
         for (int y = 0; y < m_band_rows; ++y)
             m_counts.spans += emit_band_row(m_face.data() + static_cast<std::size_t>(y) * m_width,
                                             m_band_y0 + y, 0, m_width, m_color.data(), sink);
@@ -424,6 +472,8 @@ void HierarchicalZBuffer::render(const ScreenScene& scene, protocol::CommandSink
     stats.counters.add("depth_tests", m_counts.depth_tests);
     stats.counters.add("pixels_written", m_counts.pixels_written);
     stats.counters.add("hzb_tiles_updated", m_counts.tiles_updated);
+    stats.counters.add("hzb_bands_hierarchical", m_counts.bands_hierarchical);
+    stats.counters.add("hzb_bands_direct", m_counts.bands_direct);
     stats.counters.add("spans", m_counts.spans);
 }
 

@@ -9,7 +9,7 @@
 // skipped whole; each face of a node that survives is tested the same way before it is
 // scan-converted, and the pixels of the faces drawn bring the pyramid's cells nearer.
 //
-// Ours differs from the paper's in five ways, each keeping the face-id buffer identical to the
+// Ours differs from the paper's in six ways, each keeping the face-id buffer identical to the
 // Z-buffer's (zbuffer.h) on every scene:
 // - The octree is built in screen space (pixels in x and y, the depth plane's z), over the
 //   ScreenScene every raster method shares, so that "front to back" is an order by depth and
@@ -31,6 +31,12 @@
 //   The whole screen's buffers, met in the octree's order, cost the first version twice the
 //   Z-buffer's time on scene A; banded, the culling is finer too (a face hidden in one band
 //   and not in another is drawn only where it may be seen).
+// - A band uses the hierarchy only where it can pay: where its faces' rectangles cover it at
+//   least kHierarchyFromCover times over (the most depth complexity the band can have, from
+//   set-up). Elsewhere every face that meets the band is drawn, nearest first, with no
+//   pyramid test and no tile marked: on the paper's scenes (depth complexity 1.5-3.2) that
+//   is every band, and the octree and pyramid cost nothing (counters hzb_bands_hierarchical
+//   and hzb_bands_direct say which way the bands went; docs/RESULTS.md, "After the paper").
 // Spans leave as the Z-buffer's do (band_spans.h), band by band, so the stream is the same.
 #pragma once
 
@@ -44,15 +50,17 @@ namespace fb89::host {
 struct HzbCounts {
     uint64_t nodes_visited =
         0;  // octree nodes reached by the walk (counter hzb_nodes_visited, and so on)
-    uint64_t nodes_culled = 0;    // of those, hidden in the pyramid with all they hold
-    uint64_t face_tests = 0;      // a face of a surviving node tested in a band
-    uint64_t faces_culled = 0;    // of those, hidden in the pyramid
-    uint64_t faces_drawn = 0;     // faces scan-converted and depth-tested in some band
-    uint64_t pyramid_tests = 0;   // pyramid cells compared with a nearest depth
-    uint64_t depth_tests = 0;     // pixel centres a drawn face covered and tested
-    uint64_t pixels_written = 0;  // tests that won
-    uint64_t tiles_updated = 0;   // finest pyramid cells taken again for a test
-    uint64_t spans = 0;           // DRAW_SPAN commands sent
+    uint64_t nodes_culled = 0;        // of those, hidden in the pyramid with all they hold
+    uint64_t face_tests = 0;          // a face of a surviving node tested in a band
+    uint64_t faces_culled = 0;        // of those, hidden in the pyramid
+    uint64_t faces_drawn = 0;         // faces scan-converted and depth-tested in some band
+    uint64_t pyramid_tests = 0;       // pyramid cells compared with a nearest depth
+    uint64_t depth_tests = 0;         // pixel centres a drawn face covered and tested
+    uint64_t pixels_written = 0;      // tests that won
+    uint64_t tiles_updated = 0;       // finest pyramid cells taken again for a test
+    uint64_t spans = 0;               // DRAW_SPAN commands sent
+    uint64_t bands_hierarchical = 0;  // bands worked with the pyramid's tests
+    uint64_t bands_direct = 0;        // bands whose faces were all drawn, untested
 };
 
 class HierarchicalZBuffer final : public Renderer {
@@ -69,6 +77,9 @@ class HierarchicalZBuffer final : public Renderer {
     static constexpr int kBandRows = 32;  // a band of the screen, worked as one
     static constexpr uint32_t kLeafFaces = 8;
     static constexpr int kMaxDepth = 16;
+    // A band is worked with the pyramid when its faces' rectangles cover it this many times
+    // over (the most depth complexity it can have); below, every face meeting it is drawn.
+    static constexpr double kHierarchyFromCover = 8.0;
 
   private:
     struct Box {
@@ -83,9 +94,11 @@ class HierarchicalZBuffer final : public Renderer {
 
     void build(uint32_t index, std::vector<uint32_t>& faces, const Box& cube, int depth);
     void walk(const ScreenScene& scene, uint32_t node);
+    void draw_band(const ScreenScene& scene, std::size_t band);
     PixelRect in_band(const PixelRect& r) const;
     bool hidden(const PixelRect& r, double z);
     bool cell_hidden(int level, int cx, int cy, const PixelRect& r, double z);
+    template <bool Mark>
     void draw(const ScreenScene& scene, uint32_t index);
     void mark_levels();
     void refresh(int level, int cx, int cy);
@@ -95,6 +108,8 @@ class HierarchicalZBuffer final : public Renderer {
     std::vector<Box> m_face_box;  // each face's pixel rectangle and conservative depth range
     std::vector<Node> m_nodes;    // m_nodes[0] the root, when there are faces
     std::vector<uint32_t> m_order;
+    std::vector<double> m_band_cover;  // each band's faces' rectangles over its pixels
+    std::vector<uint32_t> m_band_first, m_band_faces;  // each band's faces, nearest first
 
     int m_width = 0, m_height = 0;
     std::vector<double> m_depth;   // the band's; meaningful only where m_face is not 0

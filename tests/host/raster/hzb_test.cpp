@@ -58,10 +58,11 @@ TEST(Hzb, TheIdealSceneAtDepthComplexity16IsCulledToItsFrontLayer) {
     EXPECT_EQ(h.counters.get("spans"), z.counters.get("spans"));
 }
 
-// Where it loses (depth complexity 1: nothing to cull), the loss is bounded: every depth test
-// the Z-buffer makes and no more, about one pyramid cell compared a node or face tested, and
-// the same commands.
-TEST(Hzb, AtDepthComplexityOneItsExtraWorkIsBoundedAndItsResultExact) {
+// Where it would lose (depth complexity 1: nothing to cull), it does not use the hierarchy:
+// every band's faces' rectangles cover it less than kHierarchyFromCover times, so each band
+// is drawn as the Z-buffer draws it, with no pyramid test, every depth test the Z-buffer makes
+// and no more, and the same commands.
+TEST(Hzb, AtDepthComplexityOneEveryBandIsDrawnWithoutThePyramidAndExactly) {
     Counters setup;
     const ScreenScene s =
         project_scene(ideal_scene(256, 256, 1, 16, 16, 0.5), ColorMode::FaceId, setup);
@@ -69,11 +70,27 @@ TEST(Hzb, AtDepthComplexityOneItsExtraWorkIsBoundedAndItsResultExact) {
     EXPECT_EQ(h.commands, z.commands);
     EXPECT_EQ(h.counters.get("depth_tests"), z.counters.get("depth_tests"));
     EXPECT_EQ(h.counters.get("faces_rasterised"), s.faces.size());
-    EXPECT_EQ(h.counters.get("hzb_faces_culled"), 0u);
-    EXPECT_EQ(h.counters.get("hzb_nodes_culled"), 0u);
-    const uint64_t tested = h.counters.get("hzb_face_tests") + h.counters.get("hzb_nodes_visited");
-    EXPECT_GE(h.counters.get("hzb_pyramid_tests"), tested);
-    EXPECT_LE(h.counters.get("hzb_pyramid_tests"), 2 * tested);
+    const uint64_t bands =
+        (256 + HierarchicalZBuffer::kBandRows - 1) / HierarchicalZBuffer::kBandRows;
+    EXPECT_EQ(h.counters.get("hzb_bands_direct"), bands);
+    EXPECT_EQ(h.counters.get("hzb_bands_hierarchical"), 0u);
+    EXPECT_EQ(h.counters.get("hzb_pyramid_tests"), 0u);
+    EXPECT_EQ(h.counters.get("hzb_face_tests"), 0u);
+}
+
+// Where the hierarchy pays, every band uses it: at depth complexity 16 each band's faces
+// cover it 16 times over.
+TEST(Hzb, AtDepthComplexity16EveryBandUsesThePyramid) {
+    Counters setup;
+    const ScreenScene s =
+        project_scene(ideal_scene(256, 256, 16, 16, 16, 0.5), ColorMode::FaceId, setup);
+    const auto [z, h] = both(s);
+    EXPECT_EQ(h.commands, z.commands);
+    const uint64_t bands =
+        (256 + HierarchicalZBuffer::kBandRows - 1) / HierarchicalZBuffer::kBandRows;
+    EXPECT_EQ(h.counters.get("hzb_bands_hierarchical"), bands);
+    EXPECT_EQ(h.counters.get("hzb_bands_direct"), 0u);
+    EXPECT_GT(h.counters.get("hzb_faces_culled") + h.counters.get("hzb_nodes_culled"), 0u);
 }
 
 TEST(Hzb, ExactTiesGoToTheLowerIdWhateverOrderTheOctreeTakesThem) {
