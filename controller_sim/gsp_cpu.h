@@ -232,18 +232,14 @@ class Tms34010 {
     [[gnu::always_inline]] uint32_t memory_read(uint32_t address, int field, states::Access form) {
         const uint32_t bits = m_fs[field];
         const uint32_t words = (address % 16 + bits + 15) / 16;
-        access(form);
-        m_states += form.lead + words * cycle_states(address) + form.tail;
+        read_access(form, words * cycle_states(address));
         return extend(read_field(address, bits), field);
     }
     [[gnu::always_inline]] void memory_write(uint32_t address, int field, uint32_t value,
                                              states::Access form) {
         const uint32_t bits = m_fs[field];
         const uint32_t words = (address % 16 + bits + 15) / 16;
-        access(form);
-        m_states += form.lead + form.tail;
-        const uint32_t cycles = words * cycle_states(address);
-        queue_write(cycles - std::min(cycles, form.tail));
+        write_access(form, words * cycle_states(address));
         write_field(address, bits, value);
     }
     uint32_t extend(uint32_t v, int field) const {
@@ -262,6 +258,16 @@ class Tms34010 {
     void access(states::Access form) {
         if (!(m_events & kTouched)) m_beside = form.beside;
         m_events |= kTouched;
+    }
+    // a read's states, its cycles in them; a write's, its cycles queued less its tail
+    void read_access(states::Access form, uint32_t cycles) {
+        access(form);
+        m_states += form.lead + cycles + form.tail;
+    }
+    void write_access(states::Access form, uint32_t cycles) {
+        access(form);
+        m_states += form.lead + form.tail;
+        queue_write(cycles - std::min(cycles, form.tail));
     }
     void queue_write(uint32_t states) {
         m_new_queue = states;

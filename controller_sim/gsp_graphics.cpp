@@ -239,15 +239,11 @@ void Tms34010::exec_pixt(uint16_t w) {
     const uint32_t s = reg(file, rs), d = reg(file, rd);
     const uint32_t mask = pixel_size() == 32 ? ~0u : (1u << pixel_size()) - 1;
     const auto write = [&](uint32_t address, uint32_t pixel) {
-        access(states::kPixtWrite);
-        m_states += states::kPixtWrite.lead + states::kPixtWrite.tail;
-        queue_write(m_timing.pixel_write_states -
-                    std::min(m_timing.pixel_write_states, states::kPixtWrite.tail));
+        write_access(states::kPixtWrite, m_timing.pixel_write_states);
         write_pixel(address, pixel & mask);
     };
     const auto read = [&](uint32_t address) {
-        access(states::kPixtRead);
-        m_states += states::kPixtRead.lead + m_timing.cycle_states + states::kPixtRead.tail;
+        read_access(states::kPixtRead, m_timing.cycle_states);
         return read_pixel(address);
     };
     const auto xy_ok = [&](uint32_t xy) {

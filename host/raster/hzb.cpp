@@ -75,27 +75,24 @@ void HierarchicalZBuffer::setup(const ScreenScene& scene) {
     m_width = scene.width;
     m_height = scene.height;
     // each band's cover: the pixels of its faces' rectangles in it over its own, the most
-    // depth complexity it can have
-    m_band_cover.assign(static_cast<std::size_t>((m_height + kBandRows - 1) / kBandRows), 0.0);
+    // depth complexity it can have; and how many faces meet it, for its bin below
+    const std::size_t bands = static_cast<std::size_t>((m_height + kBandRows - 1) / kBandRows);
+    m_band_cover.assign(bands, 0.0);
+    m_band_first.assign(bands + 1, 0);
     for (uint32_t f : m_order) {
         const PixelRect& r = m_face_box[f].rect;
         for (int y0 = r.y0 / kBandRows * kBandRows; y0 < r.y1; y0 += kBandRows) {
+            const auto b = static_cast<std::size_t>(y0 / kBandRows);
             const int rows = std::min(r.y1, y0 + kBandRows) - std::max(r.y0, y0);
-            m_band_cover[static_cast<std::size_t>(y0 / kBandRows)] +=
-                static_cast<double>(rows) * (r.x1 - r.x0);
+            m_band_cover[b] += static_cast<double>(rows) * (r.x1 - r.x0);
+            ++m_band_first[b + 1];
         }
     }
-    for (std::size_t b = 0; b < m_band_cover.size(); ++b) {
+    for (std::size_t b = 0; b < bands; ++b) {
         const int rows = std::min(kBandRows, m_height - static_cast<int>(b) * kBandRows);
         m_band_cover[b] /= static_cast<double>(rows) * std::max(1, m_width);
     }
     // and its faces, nearest first, for a band worked without the pyramid
-    m_band_first.assign(m_band_cover.size() + 1, 0);
-    for (uint32_t f : m_order) {
-        const PixelRect& r = m_face_box[f].rect;
-        for (int b = r.y0 / kBandRows; b * kBandRows < r.y1; ++b)
-            ++m_band_first[static_cast<std::size_t>(b) + 1];
-    }
     for (std::size_t b = 1; b < m_band_first.size(); ++b)
         m_band_first[b] += m_band_first[b - 1];
     m_band_faces.assign(m_band_first.back(), 0);
