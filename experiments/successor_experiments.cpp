@@ -162,7 +162,8 @@ Table experiment_successors_rays(const ExperimentSettings& s, const std::vector<
                 const ControllerFigures ctl = controller_figures(r[k].commands, profile);
                 const double ms = r[k].median.cpu_ms;
                 const uint64_t nodes = c.get("bvh_nodes_visited") + c.get("kd_nodes_visited") +
-                                       c.get("cells_visited") + c.get("beam_nodes_visited");
+                                       c.get("cells_visited") + c.get("beam_nodes_visited") +
+                                       c.get("packet_nodes_visited");
                 const uint64_t entries = c.get("entry_points");
                 // the beam method fills windows where the others send spans: the frames compared
                 const bool same = frame_checksum(r[k].commands) == reference;

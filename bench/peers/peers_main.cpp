@@ -128,13 +128,13 @@ int run_rays(const Args& args) {
     if (!args.rounds_csv.empty())
         fb89::protocol::write_output(args.rounds_csv, ray_rounds_csv(rows));
     // exit 1 when our ray tracer and Embree's robust mode disagree inside a face, or when
-    // the beam hybrid's ids differ from the ray tracer's
+    // the beam hybrid's or the multi-level ray tracer's ids differ from the ray tracer's
     int status = 0;
     for (const RayRow& r : rows) {
         if (r.vs_robust.interior)
             std::cerr << r.scene << ": first interior disagreement with Embree robust "
                       << r.vs_robust.first_interior << "\n";
-        if (r.vs_robust.interior || r.beam_vs_raytrace) {
+        if (r.vs_robust.interior || r.beam_vs_raytrace || r.mlrta_vs_raytrace) {
             std::cerr << "fb89_peers: " << r.scene << " disagrees off id boundaries\n";
             status = 1;
         }

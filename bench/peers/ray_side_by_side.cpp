@@ -1,4 +1,5 @@
-// Interleaved timing of Embree against our ray tracer and beam-ray hybrid, face-id
+// Interleaved timing of Embree against our ray tracer, beam-ray hybrid and multi-level ray
+// tracer, face-id
 // agreement, and the CSV and human table of the results (see ray_side_by_side.h).
 #include "bench/peers/ray_side_by_side.h"
 
@@ -125,11 +126,12 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         options.levels.empty() ? std::vector<host::KernelLevel>{host::kernel_level()}
                                : options.levels;
     const host::KernelLevel was = host::kernel_level();
-    std::vector<std::unique_ptr<Ours>> raytrace, beam;
+    std::vector<std::unique_ptr<Ours>> raytrace, beam, mlrta;
     for (host::KernelLevel level : levels) {
         host::set_kernel_level(level);
         raytrace.push_back(std::make_unique<Ours>(s, primary("raytrace", options.beam_threshold)));
         beam.push_back(std::make_unique<Ours>(s, primary("beam", options.beam_threshold)));
+        mlrta.push_back(std::make_unique<Ours>(s, primary("mlrta", options.beam_threshold)));
     }
     host::set_kernel_level(was);
 
@@ -160,6 +162,9 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         for (auto& b : beam)
             t_beam.push_back(b->render(s));
         const double t_robust = time_embree([&] { robust.trace_single(robust_ids); });
+        std::vector<double> t_ml;
+        for (auto& m : mlrta)
+            t_ml.push_back(m->render(s));
         t_canary = canary.time();
         if (!timed) continue;
         // a round the core ran it slower, before or after, is done again (up to a limit)
@@ -177,6 +182,7 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         for (size_t l = 0; l < levels.size(); ++l) {
             raytrace[l]->samples.push_back(t_ray[l]);
             beam[l]->samples.push_back(t_beam[l]);
+            mlrta[l]->samples.push_back(t_ml[l]);
         }
     }
 
@@ -195,11 +201,13 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         row.embree_robust_ms = median_of(robust_t);
         row.raytrace_ms = median_of(raytrace[l]->samples);
         row.beam_ms = median_of(beam[l]->samples);
+        row.mlrta_ms = median_of(mlrta[l]->samples);
         row.discarded = discarded;
         row.canary_ms = median_of(canary_t);
         for (size_t i = 0; i < single_t.size(); ++i)
             row.rounds.push_back({single_t[i], raytrace[l]->samples[i], packet_t[i],
-                                  beam[l]->samples[i], robust_t[i], canary_t[i]});
+                                  beam[l]->samples[i], robust_t[i], mlrta[l]->samples[i],
+                                  canary_t[i]});
 
         // agreement, off the clock, from the last frames
         const std::vector<uint32_t> ours = controller_face_ids(raytrace[l]->frame);
@@ -207,10 +215,12 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         row.vs_default = compare_with_boundaries(s.width, s.height, ours, single_ids);
         row.packets_vs_single = differing_pixels(packet_ids, single_ids);
         row.beam_vs_raytrace = differing_pixels(controller_face_ids(beam[l]->frame), ours);
+        row.mlrta_vs_raytrace = differing_pixels(controller_face_ids(mlrta[l]->frame), ours);
         // every level makes the same frame, to the byte
         auto bytes = [](const Ours& o) { return protocol::encode_stream(o.frame.commands()); };
-        row.level_vs_first =
-            bytes(*raytrace[l]) != bytes(*raytrace[0]) || bytes(*beam[l]) != bytes(*beam[0]);
+        row.level_vs_first = bytes(*raytrace[l]) != bytes(*raytrace[0]) ||
+                             bytes(*beam[l]) != bytes(*beam[0]) ||
+                             bytes(*mlrta[l]) != bytes(*mlrta[0]);
 
         // our counters, from the last frames
         const host::Counters& rc = raytrace[l]->stats.counters;
@@ -219,6 +229,8 @@ std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
         row.face_tests = rc.get("ray_face_tests");
         row.beam_rays = beam[l]->stats.counters.get("rays");
         row.pixels_by_beams = beam[l]->stats.counters.get("pixels_by_beams");
+        row.mlrta_rays = mlrta[l]->stats.counters.get("rays");
+        row.mlrta_packets = mlrta[l]->stats.counters.get("packets");
         row.level_vs_first =
             row.level_vs_first ||
             rc.get("bvh_nodes_visited") != raytrace[0]->stats.counters.get("bvh_nodes_visited");
@@ -239,7 +251,9 @@ std::string ray_csv_header() {
            "beam_rays,pixels_by_beams,rounds,raytrace_over_embree_single_q1,"
            "raytrace_over_embree_single_q3,beam_over_embree_packets_q1,"
            "beam_over_embree_packets_q3,embree_single_min_ms,raytrace_min_ms,beam_min_ms,canary_ms,"
-           "discarded_rounds,measured_again";
+           "discarded_rounds,measured_again,mlrta_ms,mlrta_mpixels,mlrta_over_raytrace,"
+           "embree_packets_over_mlrta,embree_packets_over_mlrta_q1,embree_packets_over_mlrta_q3,"
+           "mlrta_vs_raytrace,mlrta_rays,mlrta_packets";
 }
 
 std::string ray_csv_row(const RayRow& r) {
@@ -248,7 +262,8 @@ std::string ray_csv_row(const RayRow& r) {
     const IdAgreement &a = r.vs_robust, &b = r.vs_default;
     const double rays = r.rays ? double(r.rays) : 1.0;
     const RayRow::Spread rt = r.ratio(&R::embree_single, &R::raytrace),
-                         bm = r.ratio(&R::embree_packets, &R::beam);
+                         bm = r.ratio(&R::embree_packets, &R::beam),
+                         ml = r.ratio(&R::embree_packets, &R::mlrta);
     auto least = [&](double R::*field) {
         double m = INFINITY;
         for (const R& round : r.rounds)
@@ -259,7 +274,8 @@ std::string ray_csv_row(const RayRow& r) {
         "\"{}\",{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f},{:.2f},{:.2f},{:.2f},{:."
         "2f},"
         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{:.2f},{},{},"
-        "{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{}",
+        "{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{:.3f},{:.2f},{},{},"
+        "{:.3f},{:.3f},{},{},{}",
         r.scene, r.isa, r.width, r.height, r.faces, r.triangles, r.embree_single_ms,
         r.embree_packets_ms, r.embree_robust_ms, r.raytrace_ms, r.beam_ms,
         mrays(px, r.embree_single_ms), mrays(px, r.embree_packets_ms),
@@ -270,19 +286,22 @@ std::string ray_csv_row(const RayRow& r) {
         b.diagonal, b.interior, r.packets_vs_single, r.beam_vs_raytrace, r.rays,
         double(r.nodes) / rays, double(r.face_tests) / rays, r.beam_rays, r.pixels_by_beams,
         r.rounds.size(), rt.low, rt.high, bm.low, bm.high, least(&R::embree_single),
-        least(&R::raytrace), least(&R::beam), r.canary_ms, r.discarded, r.measured_again);
+        least(&R::raytrace), least(&R::beam), r.canary_ms, r.discarded, r.measured_again,
+        r.mlrta_ms, mrays(px, r.mlrta_ms), paired(r, &R::raytrace, &R::mlrta),
+        paired(r, &R::embree_packets, &R::mlrta), ml.low, ml.high, r.mlrta_vs_raytrace,
+        r.mlrta_rays, r.mlrta_packets);
 }
 
 std::string ray_rounds_csv(const std::vector<RayRow>& rows) {
     std::string out =
         "scene,isa,round,embree_single_ms,raytrace_ms,embree_packets_ms,beam_ms,"
-        "embree_robust_ms,canary_ms\n";
+        "embree_robust_ms,mlrta_ms,canary_ms\n";
     for (const RayRow& r : rows)
         for (size_t i = 0; i < r.rounds.size(); ++i) {
             const RayRow::Round& t = r.rounds[i];
-            out += fmt::format("\"{}\",{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n", r.scene,
-                               r.isa, i + 1, t.embree_single, t.raytrace, t.embree_packets, t.beam,
-                               t.embree_robust, t.canary);
+            out += fmt::format("\"{}\",{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n",
+                               r.scene, r.isa, i + 1, t.embree_single, t.raytrace, t.embree_packets,
+                               t.beam, t.embree_robust, t.mlrta, t.canary);
         }
     return out;
 }
@@ -307,7 +326,18 @@ std::string ray_human_table(const std::vector<RayRow>& rows) {
     out +=
         "ms: median wall-clock per frame; ratios: Embree time / ours (> 1: ours is faster), the\n"
         "median of each round's ratio; ±%: half their interquartile range, in % of the median;\n"
-        "bm/rt: our beam hybrid's time over our ray tracer's (< 1: the beams pay)\n";
+        "bm/rt: our beam hybrid's time over our ray tracer's (< 1: the beams pay)\n\n";
+    out += fmt::format("{:<32} {:<8} {:>8} {:>8} {:>6} {:>6} {:>5} {:>9} {:>9}\n", "mlrta", "isa",
+                       "ms", "embree16", "rt/ml", "e16/ml", "±%", "rays", "packets");
+    for (const RayRow& r : rows)
+        out += fmt::format(
+            "{:<32} {:<8} {:>8.2f} {:>8.2f} {:>6} {:>6} {:>5} {:>9} {:>9}\n", r.scene, r.isa,
+            r.mlrta_ms, r.embree_packets_ms, paired(r, &R::raytrace, &R::mlrta),
+            paired(r, &R::embree_packets, &R::mlrta), spread_cell(r, &R::embree_packets, &R::mlrta),
+            r.mlrta_rays, r.mlrta_packets);
+    out +=
+        "mlrta: the multi-level ray tracer (its beams, then packets of 8 rays); rt/ml: our ray\n"
+        "tracer's time over it, e16/ml: Embree's 16-ray packets' (> 1: mlrta is faster)\n";
     // the canary per scene (its rounds are shared by the scene's rows)
     std::string last;
     for (const RayRow& r : rows) {
@@ -339,13 +369,13 @@ std::string ray_human_table(const std::vector<RayRow>& rows) {
         "beam*: Mpixels/s (it traces fewer rays than pixels); nodes/r, tests/r: our raytrace's\n"
         "BVH nodes visited and ray-face tests per ray\n\n";
 
-    out += fmt::format("{:<32} {:<8} {:<46} {:<46} {:>9} {:>9} {:>9}\n", "agreement (our raytrace)",
-                       "isa", "vs Embree robust", "vs Embree default", "e16!=e1", "beam!=rt",
-                       "levels");
+    out += fmt::format("{:<32} {:<8} {:<46} {:<46} {:>9} {:>9} {:>9} {:>9}\n",
+                       "agreement (our raytrace)", "isa", "vs Embree robust", "vs Embree default",
+                       "e16!=e1", "beam!=rt", "mlrta!=rt", "levels");
     for (const RayRow& r : rows)
-        out += fmt::format("{:<32} {:<8} {:<46} {:<46} {:>9} {:>9} {:>9}\n", r.scene, r.isa,
+        out += fmt::format("{:<32} {:<8} {:<46} {:<46} {:>9} {:>9} {:>9} {:>9}\n", r.scene, r.isa,
                            agreement_cell(r.vs_robust), agreement_cell(r.vs_default),
-                           r.packets_vs_single, r.beam_vs_raytrace,
+                           r.packets_vs_single, r.beam_vs_raytrace, r.mlrta_vs_raytrace,
                            r.level_vs_first ? "DIFFER" : "same");
     out +=
         "edge: on an id boundary of ours (a 4-neighbour with another id); diag: another id\n"

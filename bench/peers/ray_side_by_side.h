@@ -1,6 +1,6 @@
 // One row of the Embree comparison: a world scene's primary rays traced by Embree (single
-// rays, 4x4 coherent packets, single rays in robust mode) and by our `raytrace` and `beam`
-// methods (no reflections) in one process, timed in interleaved rounds after a warm-up
+// rays, 4x4 coherent packets, single rays in robust mode) and by our `raytrace`, `beam` and
+// `mlrta` methods (no reflections) in one process, timed in interleaved rounds after a warm-up
 // (DESIGN.md "Measuring"), and the face-id buffers compared pixel for pixel.
 //
 // What is timed differs on purpose (docs/BENCHMARKS.md): Embree fills an id buffer and
@@ -21,7 +21,7 @@
 
 namespace fb89::peers {
 
-// Our face-id buffer of one frame by `method` ("raytrace" or "beam") with no reflections,
+// Our face-id buffer of one frame by `method` ("raytrace", "beam" or "mlrta") with no reflections,
 // through the command stream and the controller.
 std::vector<uint32_t> our_ray_face_ids(const RayScene& scene, const std::string& method,
                                        double beam_threshold = 0.5);
@@ -63,11 +63,12 @@ struct RayRow {
     uint64_t faces = 0, triangles = 0;
     // medians of wall-clock ms per frame
     double embree_single_ms = 0, embree_packets_ms = 0, embree_robust_ms = 0;
-    double raytrace_ms = 0, beam_ms = 0;
+    double raytrace_ms = 0, beam_ms = 0, mlrta_ms = 0;
     // every timed round's wall-clock ms, in order: a round runs each of them once, within a
-    // fraction of a second, so what slows the machine for a while slows a round's five alike
+    // fraction of a second, so what slows the machine for a while slows a round's six alike
     struct Round {
         double embree_single = 0, raytrace = 0, embree_packets = 0, beam = 0, embree_robust = 0;
+        double mlrta = 0;
         double canary = 0;  // a fixed scalar load timed after them (ray_side_by_side.cpp)
     };
     std::vector<Round> rounds;
@@ -84,11 +85,13 @@ struct RayRow {
     Spread ratio(double Round::*num, double Round::*den) const;
     IdAgreement vs_robust, vs_default;  // our raytrace against Embree's single rays
     uint64_t packets_vs_single = 0;     // pixels where the packets' ids differ from rtcIntersect1's
-    uint64_t beam_vs_raytrace = 0;      // pixels where our two methods' ids differ
+    uint64_t beam_vs_raytrace = 0;      // pixels where our beam hybrid's ids differ from raytrace's
+    uint64_t mlrta_vs_raytrace = 0;     // and mlrta's
     bool level_vs_first = false;        // our frames or counts differ from the first level's
     // our counters in one frame
     uint64_t rays = 0, nodes = 0, face_tests = 0;  // raytrace: rays, BVH nodes visited, tests
     uint64_t beam_rays = 0, pixels_by_beams = 0;   // beam
+    uint64_t mlrta_rays = 0, mlrta_packets = 0;    // mlrta: rays traced, packets of 8
     std::string embree;                            // Embree's description
 
     double pixels() const { return double(width) * height; }
@@ -103,14 +106,14 @@ bool measured_in_a_spell(const RayRow& row, double best, double tolerance);
 
 // One row per level in options.levels (the current level when empty), Embree's times shared:
 // every round runs Embree single, each level's raytrace, Embree packets, each level's beam,
-// Embree robust.
+// Embree robust, each level's mlrta.
 std::vector<RayRow> measure_ray_side_by_side(const RayScene& scene,
                                              const RaySideBySideOptions& options);
 
 std::string ray_csv_header();
 std::string ray_csv_row(const RayRow& row);
 std::string ray_human_table(const std::vector<RayRow>& rows);
-// Every timed round of every row, one line each: scene, isa, round, and its five times.
+// Every timed round of every row, one line each: scene, isa, round, and its six times.
 std::string ray_rounds_csv(const std::vector<RayRow>& rows);
 
 }  // namespace fb89::peers

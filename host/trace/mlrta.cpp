@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "host/trace/nearest.h"
+#include "host/trace/ray_packet.h"
 
 namespace fb89::host {
 
@@ -108,9 +109,12 @@ struct Frame {
     Mailbox& mailbox;                  // a piece listed in several leaves is tested once a ray
     double far;                        // no pixel ray meets a piece beyond it
     uint32_t hint = kNoFace;           // the piece the last primary ray hit
-    std::vector<uint32_t> candidates;  // a settled beam's pieces
+    std::vector<uint32_t> candidates;  // the entry leaf's pieces the beam may meet
+    PacketTracer packet_tracer;        // the kernel level's
+    PacketMailbox& packet_mailbox;
     TraceCounts rays;
     MlrtaBeamCounts beams;
+    PacketCounts packets;
     RayTrace scratch;
 
     enum class Found { Leaf, Unordered, Nothing };
@@ -193,15 +197,58 @@ struct Frame {
         return nearest.best;
     }
 
-    void trace_rays(int x0, int y0, int x1, int y1, const Entry& e) {
+    // The tile's rays in packets (ray_packet.h), each a 4 x 2 block of its pixels, from
+    // `query`'s cells; a ray whose watertight space differs from its packet's goes alone.
+    template <class Alone>
+    void trace_packets(int x0, int y0, int x1, int y1, PacketQuery query, Alone&& alone) {
         const int width = scene.width();
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                const Ray ray = scene.pixel_ray(x, y);
-                pixels[static_cast<size_t>(y) * width + x] =
-                    tracer.color_of(ray, nearest_from(ray, e), scratch, rays);
+        for (int by = y0; by < y1; by += 2)
+            for (int bx = x0; bx < x1; bx += 4) {
+                RayPacket packet;
+                Ray lane_ray[kPacketRays];
+                uint32_t lanes = 0;
+                for (int i = 0; i < kPacketRays; ++i) {
+                    const int x = bx + i % 4, y = by + i / 4;
+                    if (x >= x1 || y >= y1) continue;
+                    lane_ray[i] = scene.pixel_ray(x, y);
+                    lanes |= 1u << i;
+                    packet.set(i, lane_ray[i]);
+                }
+                PacketHits hits;
+                if (packet.lanes != 0) {
+                    packet.fill_empty_lanes();
+                    query.hint = hint;
+                    packet_tracer(scene, kd, packet, query, packet_mailbox, hits, packets);
+                }
+                for (int i = 0; i < kPacketRays; ++i) {
+                    if (!(lanes >> i & 1)) continue;
+                    const bool packed = packet.lanes >> i & 1;
+                    rays.rays += packed;
+                    const Hit hit = packed ? Hit{hits.t[i], static_cast<uint32_t>(hits.piece[i])}
+                                           : alone(lane_ray[i]);
+                    hint = hit.piece;
+                    const int x = bx + i % 4, y = by + i / 4;
+                    pixels[static_cast<size_t>(y) * width + x] =
+                        tracer.color_of(lane_ray[i], hit, scratch, rays);
+                }
             }
         beams.pixels_by_rays += static_cast<uint64_t>(x1 - x0) * (y1 - y0);
+    }
+
+    // The tile's rays from the beam's entry point on (its pieces `culled` when it is a leaf).
+    void trace_rays(int x0, int y0, int x1, int y1, const Entry& e, bool culled) {
+        std::array<PacketCell, KdTree::kMaxDepth + 2> cells;
+        int count = 0;
+        cells[count++] = {e.at.node, e.at.box};
+        for (int k = e.pending - 1; k >= 0; --k)
+            cells[count++] = {e.later[k].node, e.later[k].box};
+        PacketQuery query;
+        query.cells = {cells.data(), static_cast<size_t>(count)};
+        if (culled) {
+            query.entry_leaf = e.at.node;
+            query.entry_pieces = candidates;
+        }
+        trace_packets(x0, y0, x1, y1, query, [&](const Ray& ray) { return nearest_from(ray, e); });
     }
 
     // Whether every ray of the tile hits `piece` first, inside `leaf`: the entry leaf, of
@@ -270,25 +317,21 @@ struct Frame {
 
     // A settled tile's rays, each testing the beam's candidates only: no walk.
     void trace_candidates(int x0, int y0, int x1, int y1) {
-        const int width = scene.width();
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                const Ray ray = scene.pixel_ray(x, y);
-                ++rays.rays;
-                const RaySpace space(ray);
-                Nearest nearest{scene, ray, space, 0, scene.primary_length()};
-                if (hint != kNoFace &&
-                    std::find(candidates.begin(), candidates.end(), hint) != candidates.end())
-                    nearest.test(hint);
-                for (uint32_t piece : candidates)
-                    if (piece != hint) nearest.test(piece);
-                rays.face_tests += nearest.tests;
-                rays.ties += nearest.ties;
-                hint = nearest.best.piece;
-                pixels[static_cast<size_t>(y) * width + x] =
-                    tracer.color_of(ray, nearest.best, scratch, rays);
-            }
-        beams.pixels_by_rays += static_cast<uint64_t>(x1 - x0) * (y1 - y0);
+        PacketQuery query;
+        query.entry_pieces = candidates;
+        trace_packets(x0, y0, x1, y1, query, [&](const Ray& ray) {
+            ++rays.rays;
+            const RaySpace space(ray);
+            Nearest nearest{scene, ray, space, 0, scene.primary_length()};
+            if (hint != kNoFace &&
+                std::find(candidates.begin(), candidates.end(), hint) != candidates.end())
+                nearest.test(hint);
+            for (uint32_t piece : candidates)
+                if (piece != hint) nearest.test(piece);
+            rays.face_tests += nearest.tests;
+            rays.ties += nearest.ties;
+            return nearest.best;
+        });
     }
 
     // The tile [x0, x1) x [y0, y1), its rays starting from `parent` or from further in.
@@ -335,7 +378,7 @@ struct Frame {
             }
         }
         if (std::max(w, h) <= kMlrtaMinBeam) {
-            trace_rays(x0, y0, x1, y1, e);
+            trace_rays(x0, y0, x1, y1, e, found == Found::Leaf);
             return;
         }
         // four quarters (two halves of a strip one pixel wide or high)
@@ -354,6 +397,7 @@ void MultiLevelRayTracer::setup(const ScreenScene& scene) {
     m_kd = std::make_unique<KdTree>(*m_trace.scene);
     m_pixels.assign(static_cast<size_t>(scene.width) * std::max(scene.height, 0), 0);
     m_mailbox = Mailbox(m_trace.scene->faces().size());
+    m_packet_mailbox = PacketMailbox(m_trace.scene->faces().size());
 }
 
 void MultiLevelRayTracer::render(const ScreenScene& scene, protocol::CommandSink& sink,
@@ -368,7 +412,20 @@ void MultiLevelRayTracer::render(const ScreenScene& scene, protocol::CommandSink
                                           k & 4 ? b.hi.z : b.lo.z}));
     }
     far = std::min(far * (1 + 1e-9) + ts.tolerance(), ts.primary_length());
-    Frame frame{ts, *m_trace.tracer, kd, m_pixels, m_mailbox, far, kNoFace, {}, {}, {}, {}};
+    Frame frame{ts,
+                *m_trace.tracer,
+                kd,
+                m_pixels,
+                m_mailbox,
+                far,
+                kNoFace,
+                {},
+                packet_tracer(m_trace.tracer->kernel_level()),
+                m_packet_mailbox,
+                {},
+                {},
+                {},
+                {}};
     Entry root;
     root.at = {0, 0, kd.bounds()};
     for (int y = 0; y < scene.height; y += kMlrtaBeam)
@@ -379,6 +436,8 @@ void MultiLevelRayTracer::render(const ScreenScene& scene, protocol::CommandSink
     for (int y = 0; y < scene.height; ++y)
         spans += emit_packed_row(&m_pixels[static_cast<size_t>(y) * scene.width], y, 0, scene.width,
                                  sink);
+    frame.rays.face_tests += frame.packets.face_tests;
+    frame.rays.ties += frame.packets.ties;
     frame.rays.publish(stats.counters);
     const MlrtaBeamCounts& b = frame.beams;
     Counters& c = stats.counters;
@@ -392,6 +451,8 @@ void MultiLevelRayTracer::render(const ScreenScene& scene, protocol::CommandSink
     c.add("beams_filled", b.filled);
     c.add("pixels_by_beams", b.pixels_by_beams);
     c.add("pixels_by_rays", b.pixels_by_rays);
+    c.add("packets", frame.packets.packets);
+    c.add("packet_nodes_visited", frame.packets.nodes);
     c.add("spans", spans);
 }
 

@@ -10,6 +10,12 @@
 // piece inside the leaf, well inside its edges (then every ray of the tile does, and nothing
 // can lie nearer). A beam whose entry leaf is the only cell holding pieces it enters
 // (settled) has its rays test that leaf's pieces alone, without a walk.
+// A beam's rays go in packets of eight (ray_packet.h, a 4 x 2 block of pixels each): a packet
+// walks the kd-tree from the beam's entry point with each lane's own interval, and tests a
+// leaf's pieces on all its lanes at once, as many lanes an instruction as the CPU holds
+// doubles (8 with AVX-512, 4 with AVX2, 2 with SSE2; kernel_level.h picks the level). The
+// entry leaf's pieces are culled against the beam first (inverse frustum culling): a piece
+// whose box lies outside the beam's hull is never tested by its rays.
 // Mirrors are followed as the ray tracer follows them: a reflected ray is one ray, not a
 // beam's, and goes through the ray tracer's own structure (its BVH, or with `--accel kd` the
 // kd-tree from its root). Every pixel shows what `raytrace` shows
@@ -27,10 +33,10 @@
 // asked with a margin far above the rounding of the watertight test.
 //
 // How ours differs from the paper's: beams are tiles that split in four (the paper's beams
-// split where they must, and its kd-tree walk for beams uses the rays' own intervals); the
-// entry point is the first leaf holding pieces, never an inner node except where a plane cuts
-// the tile's starts; no inverse frustum culling, no SIMD packets of rays (each ray is scalar,
-// in double, with the watertight test); only primary rays go by beams.
+// split where they must); the entry point is the first leaf holding pieces, never an inner
+// node except where a plane cuts the tile's starts; a packet is eight rays in double, with the
+// watertight test on every lane (the paper's are four rays in float); only primary rays go by
+// beams and packets (a reflected ray goes alone).
 #pragma once
 
 #include <cstdint>
@@ -38,6 +44,7 @@
 #include <vector>
 
 #include "host/raster/renderer.h"
+#include "host/trace/ray_packet.h"
 #include "host/trace/ray_tracer.h"
 
 namespace fb89::host {
@@ -58,6 +65,7 @@ class MultiLevelRayTracer final : public Renderer {
     std::unique_ptr<KdTree> m_kd;    // the beams' and primary rays' tree
     std::vector<uint32_t> m_pixels;  // packed_pixel() per pixel, row by row
     Mailbox m_mailbox;
+    PacketMailbox m_packet_mailbox;
 };
 
 }  // namespace fb89::host

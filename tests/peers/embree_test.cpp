@@ -105,7 +105,7 @@ TEST(EmbreePeerHarness, TakesItsRatiosRoundByRound) {
     const double embree[] = {10, 10, 10, 10, 10, 20, 20, 20, 20};
     const double ours[] = {8, 8, 8, 8, 16, 16, 16, 16, 16};
     for (int i = 0; i < 9; ++i)
-        row.rounds.push_back({embree[i], ours[i], 1.0, 0.5 * (i + 1), 0.0});
+        row.rounds.push_back({embree[i], ours[i], 1.0, 0.5 * (i + 1), 0.0, 0.25 * (i + 1)});
     using R = RayRow::Round;
     const RayRow::Spread rt = row.ratio(&R::embree_single, &R::raytrace);
     EXPECT_DOUBLE_EQ(rt.median, 1.25);
@@ -117,6 +117,8 @@ TEST(EmbreePeerHarness, TakesItsRatiosRoundByRound) {
     EXPECT_DOUBLE_EQ(bm.median, 1 / 2.5);
     EXPECT_DOUBLE_EQ(bm.low, 1 / 3.5);
     EXPECT_DOUBLE_EQ(bm.high, 1 / 1.5);
+    // Embree's packets over mlrta: 1/0.25, ..., 1/2.25
+    EXPECT_DOUBLE_EQ(row.ratio(&R::embree_packets, &R::mlrta).median, 1 / 1.25);
     // a side that took no time has no ratio
     EXPECT_DOUBLE_EQ(row.ratio(&R::embree_single, &R::embree_robust).median, 0.0);
     // one line a round, and the header
@@ -124,7 +126,8 @@ TEST(EmbreePeerHarness, TakesItsRatiosRoundByRound) {
     row.isa = "v3";
     const std::string csv = ray_rounds_csv({row});
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 10);
-    EXPECT_NE(csv.find("\n\"s\",v3,9,20.000,16.000,1.000,4.500,0.000,0.000\n"), std::string::npos)
+    EXPECT_NE(csv.find("\n\"s\",v3,9,20.000,16.000,1.000,4.500,0.000,2.250,0.000\n"),
+              std::string::npos)
         << csv;
 }
 

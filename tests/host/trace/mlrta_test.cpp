@@ -162,13 +162,48 @@ TEST(Mlrta, OnIncoherentRaysItsLossIsBoundedAndItsFrameExact) {
     const auto ml = render_trace(s, trace_options("mlrta"));
     const Counters& c = ml.stats.counters;
     const uint64_t root_nodes = from_root.stats.counters.get("kd_nodes_visited");
-    const uint64_t ml_nodes = c.get("kd_nodes_visited") + c.get("beam_nodes_visited");
+    const uint64_t ml_nodes =
+        c.get("kd_nodes_visited") + c.get("beam_nodes_visited") + c.get("packet_nodes_visited");
     EXPECT_EQ(ml.ids, kd.ids);
     EXPECT_LE(ml_nodes, root_nodes * 3 / 2) << "the beams' walk and the rays' from entry points";
     EXPECT_LE(c.get("ray_face_tests"), from_root.stats.counters.get("ray_face_tests") * 3 / 2);
     // the beams split down to the smallest where rays part
     const uint64_t pixels = 128u * 128u;
     EXPECT_GE(c.get("beams"), pixels / (kMlrtaMinBeam * kMlrtaMinBeam));
+}
+
+// Packets of rays (ray_packet.h) whose lanes part: the eye looks along a diagonal with a wide
+// view, so that the axis a ray runs along most changes inside packets (those rays go alone),
+// and the random triangles' planes fall between the starts of a packet's rays (each side's
+// lanes walk on their own). The frame is the ray tracer's at every kernel level, and every
+// count but the packets' node visits (a packet of 8 lanes visits a node once, of 2 lanes four
+// times) is the same at every level.
+TEST(Mlrta, PacketsWhoseRaysPartStayExactAtEveryKernelLevel) {
+    Scene s = random_screen_triangles(96, 80, 1500, 0.3, 7);
+    s.camera.eye = {-4.5, 0.5, 4.5};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.fovy_degrees = 100;
+    const KernelLevel was = kernel_level();
+    set_kernel_level(KernelLevel::Baseline);
+    const auto rays = render_trace(s, trace_options("raytrace"));
+    const auto base = render_trace(s, trace_options("mlrta"));
+    EXPECT_EQ(base.ids, rays.ids);
+    EXPECT_EQ(base.pixels, rays.pixels);
+    Counters base_counts = base.stats.counters;
+    EXPECT_GT(base_counts.get("packets"), 0u);
+    EXPECT_GT(base_counts.get("kd_nodes_visited"), 0u) << "some rays go alone";
+    for (KernelLevel level : supported_kernel_levels()) {
+        SCOPED_TRACE(std::string(kernel_level_name(level)));
+        set_kernel_level(level);
+        const auto ml = render_trace(s, trace_options("mlrta"));
+        EXPECT_EQ(ml.ids, rays.ids);
+        EXPECT_EQ(ml.pixels, rays.pixels);
+        for (const auto& [name, value] : base_counts.items()) {
+            if (name == "packet_nodes_visited") continue;
+            EXPECT_EQ(ml.stats.counters.get(name), value) << name;
+        }
+    }
+    set_kernel_level(was);
 }
 
 TEST(Mlrta, RefusesTheGrid) {
