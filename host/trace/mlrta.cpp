@@ -197,6 +197,72 @@ struct Frame {
         return nearest.best;
     }
 
+    // Whether the ray tracer follows a reflection from `hit`.
+    bool reflects(Hit hit) const {
+        return hit.piece != kNoFace && scene.faces()[hit.piece].mirror > 0 &&
+               scene.max_reflections() > 0;
+    }
+
+    // A packet lane's path on from a mirror, as RayTracer::follow records it.
+    struct Path {
+        Ray ray;
+        Hit hit;
+        int count = 0;
+        PathHit hits[kMaxReflections + 1];
+    };
+    std::array<Path, kPacketRays> paths;
+
+    // RayTracer::follow for the lanes `lanes` of `paths`, each first hit a mirror: their
+    // reflected rays go on together, a packet from the kd-tree's root (each lane with its own
+    // tmin and its mirror left out, as the ray tracer's reflected rays), as long as their ray
+    // spaces agree; a lane whose space differs goes alone through the ray tracer's structure.
+    void follow(uint32_t lanes) {
+        const PacketCell root{0, kd.bounds()};
+        PacketQuery query;
+        query.cells = {&root, 1};
+        for (int depth = 0; lanes != 0; ++depth) {
+            RayPacket packet;
+            for (int i = 0; i < kPacketRays; ++i) {
+                if (!(lanes >> i & 1)) continue;
+                Path& q = paths[i];
+                if (q.hit.piece == kNoFace) {  // it escaped
+                    lanes &= ~(1u << i);
+                    continue;
+                }
+                const TraceFace& f = scene.faces()[q.hit.piece];
+                const glm::dvec3 p = q.ray.origin + q.hit.t * q.ray.dir;
+                const double facing = glm::dot(f.normal, q.ray.dir);
+                q.hits[q.count++] = {q.hit.piece, facing > 0};
+                if (!(f.mirror > 0) || depth == scene.max_reflections()) {
+                    lanes &= ~(1u << i);
+                    continue;
+                }
+                const uint32_t mirror = q.hit.piece;
+                q.ray = {p, q.ray.dir - 2.0 * facing * f.normal};
+                ++rays.rays;
+                const double least = scene.tolerance() / glm::length(q.ray.dir);
+                if (!packet.set(i, q.ray, least, mirror))
+                    q.hit = tracer.closest_hit(q.ray, least, mirror, rays);
+            }
+            if (packet.lanes == 0) continue;
+            packet.fill_empty_lanes();
+            PacketHits hits;
+            packet_tracer(scene, kd, packet, query, packet_mailbox, hits, packets);
+            for (int i = 0; i < kPacketRays; ++i)
+                if (packet.lanes >> i & 1)
+                    paths[i].hit = {hits.t[i], static_cast<uint32_t>(hits.piece[i])};
+        }
+    }
+
+    // RayTracer::color_of, its common case (nothing hit, or a face that ends the path) here
+    uint32_t color_of(const Ray& ray, Hit hit) {
+        if (hit.piece == kNoFace) return 0;
+        const TraceFace& f = scene.faces()[hit.piece];
+        if (!(f.mirror > 0) || scene.max_reflections() == 0)
+            return packed_pixel(f.end_color[glm::dot(f.normal, ray.dir) > 0 ? 1 : 0]);
+        return tracer.color_of(ray, hit, scratch, rays);
+    }
+
     // The tile's rays in packets (ray_packet.h), each a 4 x 2 block of its pixels, from
     // `query`'s cells; a ray whose watertight space differs from its packet's goes alone.
     template <class Alone>
@@ -220,6 +286,7 @@ struct Frame {
                     query.hint = hint;
                     packet_tracer(scene, kd, packet, query, packet_mailbox, hits, packets);
                 }
+                uint32_t mirrored = 0;  // the packed lanes whose first hit is a mirror
                 for (int i = 0; i < kPacketRays; ++i) {
                     if (!(lanes >> i & 1)) continue;
                     const bool packed = packet.lanes >> i & 1;
@@ -228,9 +295,26 @@ struct Frame {
                                            : alone(lane_ray[i]);
                     hint = hit.piece;
                     const int x = bx + i % 4, y = by + i / 4;
-                    pixels[static_cast<size_t>(y) * width + x] =
-                        tracer.color_of(lane_ray[i], hit, scratch, rays);
+                    if (packed && reflects(hit)) {
+                        paths[i].ray = lane_ray[i];
+                        paths[i].hit = hit;
+                        paths[i].count = 0;
+                        mirrored |= 1u << i;
+                        continue;
+                    }
+                    pixels[static_cast<size_t>(y) * width + x] = color_of(lane_ray[i], hit);
                 }
+                if (mirrored == 0) continue;
+                follow(mirrored);
+                for (int i = 0; i < kPacketRays; ++i)
+                    if (mirrored >> i & 1) {
+                        const Path& q = paths[i];
+                        const int x = bx + i % 4, y = by + i / 4;
+                        pixels[static_cast<size_t>(y) * width + x] = packed_pixel(
+                            q.count == 1
+                                ? scene.faces()[q.hits[0].piece].end_color[q.hits[0].back ? 1 : 0]
+                                : path_color(scene, q.hits, q.count));
+                    }
             }
         beams.pixels_by_rays += static_cast<uint64_t>(x1 - x0) * (y1 - y0);
     }
@@ -244,6 +328,7 @@ struct Frame {
             cells[count++] = {e.later[k].node, e.later[k].box};
         PacketQuery query;
         query.cells = {cells.data(), static_cast<size_t>(count)};
+        query.tmax = scene.primary_length();
         if (culled) {
             query.entry_leaf = e.at.node;
             query.entry_pieces = candidates;
@@ -318,6 +403,7 @@ struct Frame {
     // A settled tile's rays, each testing the beam's candidates only: no walk.
     void trace_candidates(int x0, int y0, int x1, int y1) {
         PacketQuery query;
+        query.tmax = scene.primary_length();
         query.entry_pieces = candidates;
         trace_packets(x0, y0, x1, y1, query, [&](const Ray& ray) {
             ++rays.rays;
@@ -422,6 +508,7 @@ void MultiLevelRayTracer::render(const ScreenScene& scene, protocol::CommandSink
                 {},
                 packet_tracer(m_trace.tracer->kernel_level()),
                 m_packet_mailbox,
+                {},
                 {},
                 {},
                 {},

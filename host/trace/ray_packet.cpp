@@ -14,36 +14,17 @@
 
 namespace fb89::host {
 
-bool RayPacket::set(int i, const Ray& ray) {
-    // RaySpace's axes, as its constructor picks them
-    const glm::dvec3& d = ray.dir;
-    const glm::dvec3 a = glm::abs(d);
-    const int z = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-    int x = (z + 1) % 3, y = (x + 1) % 3;
-    if (d[z] < 0) std::swap(x, y);
-    if (lanes == 0) {
-        kx = x;
-        ky = y;
-        kz = z;
-    } else if (x != kx || y != ky || z != kz) {
-        return false;
-    }
-    for (int k = 0; k < 3; ++k) {
-        origin[k][i] = ray.origin[k];
-        dir[k][i] = ray.dir[k];
-    }
-    lanes |= 1u << i;
-    return true;
-}
-
 void RayPacket::fill_empty_lanes() {
     const int from = std::countr_zero(lanes);
     for (int i = 0; i < kPacketRays; ++i)
-        if (!(lanes >> i & 1))
+        if (!(lanes >> i & 1)) {
             for (int k = 0; k < 3; ++k) {
                 origin[k][i] = origin[k][from];
                 dir[k][i] = dir[k][from];
             }
+            tmin[i] = tmin[from];
+            skip[i] = skip[from];
+        }
 }
 
 void PacketMailbox::begin() {

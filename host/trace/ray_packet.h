@@ -24,7 +24,10 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
+
+#include <glm/common.hpp>
 
 #include "host/trace/kd_tree.h"
 #include "host/trace/kernel_level.h"
@@ -38,17 +41,43 @@ inline constexpr int kPacketRays = 8;
 struct RayPacket {
     alignas(64) double origin[3][kPacketRays];
     alignas(64) double dir[3][kPacketRays];
+    alignas(64) double tmin[kPacketRays];  // a hit counts at t > tmin
+    alignas(64) double skip[kPacketRays];  // a piece the ray never sees, or kNoFace
     int kx = 0, ky = 1, kz = 2;  // RaySpace's axes, the same for every lane (the kernel works
                                  // out each lane's shear and 1 / d, eight at a time)
     uint32_t lanes = 0;
 
     // Puts `ray` in lane i; false (the lane left empty) when its RaySpace's axes differ from
     // those of the lanes already set.
-    bool set(int i, const Ray& ray);
+    bool set(int i, const Ray& ray, double least = 0, uint32_t never = kNoFace);
     // Gives each empty lane a copy of a set lane's ray (at least one must be set): the kernel
     // works on every lane, and a lane left unset might hold a denormal that slows the others.
     void fill_empty_lanes();
 };
+
+inline bool RayPacket::set(int i, const Ray& ray, double least, uint32_t never) {
+    // RaySpace's axes, as its constructor picks them
+    const glm::dvec3& d = ray.dir;
+    const glm::dvec3 a = glm::abs(d);
+    const int z = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    int x = (z + 1) % 3, y = (x + 1) % 3;
+    if (d[z] < 0) std::swap(x, y);
+    if (lanes == 0) {
+        kx = x;
+        ky = y;
+        kz = z;
+    } else if (x != kx || y != ky || z != kz) {
+        return false;
+    }
+    for (int k = 0; k < 3; ++k) {
+        origin[k][i] = ray.origin[k];
+        dir[k][i] = ray.dir[k];
+    }
+    tmin[i] = least;
+    skip[i] = never;
+    lanes |= 1u << i;
+    return true;
+}
 
 // A cell the packet's rays start from: the beam's entry point, or a cell it put off.
 struct PacketCell {
@@ -96,7 +125,7 @@ class PacketMailbox {
 };
 
 // Traces a packet's lanes from `cells` (the walk's order: the entry point first, then the
-// cells put off, nearest first), each lane from t = 0 to the far plane (primary_length).
+// cells put off, nearest first), each lane from its tmin to `tmax`.
 // `hint`, when set, is tested first on every lane (it only orders the tests). The entry
 // leaf's pieces are `entry_pieces` when `entry_leaf` is that leaf's node (the beam has culled
 // them: a piece no ray of the beam can meet is left out); with `cells` empty the lanes test
@@ -106,6 +135,7 @@ struct PacketQuery {
     uint32_t entry_leaf = UINT32_MAX;
     std::span<const uint32_t> entry_pieces;
     uint32_t hint = kNoFace;
+    double tmax = INFINITY;  // the lanes' greatest t (a primary ray's: the far plane)
 };
 using PacketTracer = void (*)(const TraceScene& scene, const KdTree& kd, const RayPacket& packet,
                               const PacketQuery& query, PacketMailbox& mailbox, PacketHits& hits,

@@ -174,12 +174,15 @@ TEST(Mlrta, OnIncoherentRaysItsLossIsBoundedAndItsFrameExact) {
 
 // Packets of rays (ray_packet.h) whose lanes part: the eye looks along a diagonal with a wide
 // view, so that the axis a ray runs along most changes inside packets (those rays go alone),
-// and the random triangles' planes fall between the starts of a packet's rays (each side's
-// lanes walk on their own). The frame is the ray tracer's at every kernel level, and every
+// the random triangles' planes fall between the starts of a packet's rays (each side's lanes
+// walk on their own), and a third of them are mirrors, whose reflected rays go on in packets
+// that part again. The frame is the ray tracer's at every kernel level, and every
 // count but the packets' node visits (a packet of 8 lanes visits a node once, of 2 lanes four
 // times) is the same at every level.
 TEST(Mlrta, PacketsWhoseRaysPartStayExactAtEveryKernelLevel) {
     Scene s = random_screen_triangles(96, 80, 1500, 0.3, 7);
+    for (size_t i = 0; i < s.faces.size(); i += 3)
+        s.faces[i].material.mirror = 0.7;  // reflected rays go in packets too, and part
     s.camera.eye = {-4.5, 0.5, 4.5};
     s.camera.look_at = {0, 0, 0};
     s.camera.fovy_degrees = 100;
@@ -191,7 +194,9 @@ TEST(Mlrta, PacketsWhoseRaysPartStayExactAtEveryKernelLevel) {
     EXPECT_EQ(base.pixels, rays.pixels);
     Counters base_counts = base.stats.counters;
     EXPECT_GT(base_counts.get("packets"), 0u);
-    EXPECT_GT(base_counts.get("kd_nodes_visited"), 0u) << "some rays go alone";
+    EXPECT_GT(base_counts.get("kd_nodes_visited") + base_counts.get("bvh_nodes_visited"), 0u)
+        << "some rays go alone";
+    EXPECT_GT(base_counts.get("rays"), base_counts.get("pixels_by_rays")) << "mirrors reflect";
     for (KernelLevel level : supported_kernel_levels()) {
         SCOPED_TRACE(std::string(kernel_level_name(level)));
         set_kernel_level(level);
