@@ -49,6 +49,7 @@ struct RenderArgs {
     int reflections = host::TraceOptions{}.max_reflections;
     double grid_density = host::BeamOptions{}.grid_density;
     std::string accel = "bvh";
+    std::string packets = "on";
     std::string mask;
     int approx_min_side = 0;
     double approx_epsilon = 0;
@@ -246,6 +247,7 @@ nlohmann::json stats_json(const RenderArgs& args, const experiments::RenderResul
         const double t = resolve_beam_threshold(args.beam_threshold, nullptr, args.host);
         j["beam_threshold"] = std::isinf(t) ? nlohmann::json("inf") : nlohmann::json(t);
     }
+    if (args.method == "mlrta") j["packets"] = args.packets;
     if (args.method == "beam" || args.method == "raytrace") {
         j["reflections"] = args.reflections;
         j["kernels"] = std::string(host::kernel_level_name(host::kernel_level()));
@@ -291,6 +293,7 @@ int run_render(const RenderArgs& args) {
         options.trace.max_reflections = args.reflections;
         options.beam.grid_density = args.grid_density;
         options.trace.accel = host::parse_accel(args.accel);
+        options.trace.packets = args.packets == "on";
         host::make_renderer(options);  // refuses options no renderer can take
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
@@ -432,6 +435,12 @@ void register_render(CLI::App& app, int& exit_code) {
                     "and mlrta only); the same frame every way")
         ->check(CLI::IsMember({"bvh", "grid", "kd"}))
         ->capture_default_str();
+    sub->add_option("--packets", args->packets,
+                    "Mlrta: its rays in packets of eight, as many lanes an instruction as the "
+                    "CPU holds (on), or one by one (off: what a machine without SIMD does "
+                    "better); the same frame either way")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->capture_default_str();
     sub->add_option("--mask", args->mask,
                     "Beam: write the image with every pixel the ray tracer decided blacked out "
                     "(the paper's Figs. 4.7 and 4.10)");
@@ -487,6 +496,9 @@ void register_render(CLI::App& app, int& exit_code) {
     add_isa_option(sub);
     sub->callback([args, sub, &exit_code] {
         refuse_options_the_method_ignores(*sub, args->method, args->accel);
+        if (sub->get_option("--packets")->count() > 0 && args->method != "mlrta")
+            throw UsageError("--packets: the " + args->method +
+                             " method does not use it (only mlrta does)");
         args->scene = resolve_scene(args->scene);
         exit_code = run_render(*args);
     });

@@ -135,6 +135,7 @@ std::vector<std::string> guest_options(const host::MethodOptions& o, const std::
     // only when not the default, so that the runs kept from before --accel keep their keys
     if (o.trace.accel != host::Accel::Bvh)
         args.insert(args.end(), {"--accel", std::string(host::accel_name(o.trace.accel))});
+    if (!o.trace.packets) args.insert(args.end(), {"--packets", "off"});
     if (!size.empty()) args.insert(args.end(), {"--size", size});
     return args;
 }

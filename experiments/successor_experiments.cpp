@@ -5,7 +5,8 @@
 //     complexities 1 to 64;
 //   successors-rays: multi-level ray tracing (mlrta.h) against the ray tracer and the §4
 //     beam-ray hybrid, on G, H, I and the Cornell boxes at each size; the ray tracer on the
-//     kd-tree as well, so that the tree's share of the gain and the beams' stand apart.
+//     kd-tree as well, so that the tree's share of the gain and the beams' stand apart, and
+//     mlrta with its rays one by one (mlrta-scalar), so that the packets' share does too.
 #include <fmt/format.h>
 
 #include <unistd.h>
@@ -142,12 +143,14 @@ Table experiment_successors_rays(const ExperimentSettings& s, const std::vector<
                  "pixels_by_beams", "beams", "entry_points", "mean_entry_depth", "nodes_visited",
                  "ray_face_tests", "commands", "controller_ms", "frame_ms", "same_frame"});
     const controller::CostProfile profile = controller::load_profile(s.profile);
-    host::MethodOptions kd(host::Method::RayTrace), beam(host::Method::Beam);
+    host::MethodOptions kd(host::Method::RayTrace), beam(host::Method::Beam),
+        scalar(host::Method::Mlrta);
     kd.trace.accel = host::Accel::Kd;
     beam.beam.threshold = beam_threshold;
+    scalar.trace.packets = false;
     const std::vector<host::MethodOptions> settings{host::Method::RayTrace, kd, beam,
-                                                    host::Method::Mlrta};
-    const char* const labels[] = {"raytrace", "raytrace-kd", "beam", "mlrta"};
+                                                    host::Method::Mlrta, scalar};
+    const char* const labels[] = {"raytrace", "raytrace-kd", "beam", "mlrta", "mlrta-scalar"};
     for (const auto& file : s.scenes)
         for (const ImageSize& size : sizes) {
             ExperimentSettings at = s;

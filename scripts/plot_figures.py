@@ -591,12 +591,14 @@ def successors(folder):
 def successors_rays(folder):
     """After the paper, multi-level ray tracing (fb89 experiment successors-rays): FOLDER/
     successors_rays.csv drawn as FOLDER/successors_rays.png -- the speed-up over the ray tracer
-    (its BVH) of the paper's beam-ray hybrid, of multi-level ray tracing and of the ray tracer
-    on mlrta's kd-tree, against image width, one panel per scene."""
+    (its BVH) of the paper's beam-ray hybrid, of multi-level ray tracing (with packets of rays
+    and without) and of the ray tracer on mlrta's kd-tree, against image width, one panel per
+    scene."""
     rows = read(os.path.join(folder, "successors_rays.csv"))
     scenes = list(dict.fromkeys(scene_label(r["scene"]) for r in rows))
     labels = {"beam": "the paper's beam-ray hybrid (§4)",
-              "mlrta": "multi-level ray tracing (Reshetov et al. 2005)",
+              "mlrta": "multi-level ray tracing (Reshetov et al. 2005), packets of 8 rays",
+              "mlrta-scalar": "multi-level ray tracing, its rays one by one",
               "raytrace-kd": "ray tracer on mlrta's kd-tree"}
     fig, axes = plt.subplots(1, len(scenes), figsize=(3.2 * len(scenes), 3.8), sharey=True,
                              squeeze=False)

@@ -110,7 +110,7 @@ struct Frame {
     double far;                        // no pixel ray meets a piece beyond it
     uint32_t hint = kNoFace;           // the piece the last primary ray hit
     std::vector<uint32_t> candidates;  // the entry leaf's pieces the beam may meet
-    PacketTracer packet_tracer;        // the kernel level's
+    PacketTracer packet_tracer;        // the kernel level's; null: every ray goes alone
     PacketMailbox& packet_mailbox;
     TraceCounts rays;
     MlrtaBeamCounts beams;
@@ -278,7 +278,7 @@ struct Frame {
                     if (x >= x1 || y >= y1) continue;
                     lane_ray[i] = scene.pixel_ray(x, y);
                     lanes |= 1u << i;
-                    packet.set(i, lane_ray[i]);
+                    if (packet_tracer) packet.set(i, lane_ray[i]);
                 }
                 PacketHits hits;
                 if (packet.lanes != 0) {
@@ -506,7 +506,7 @@ void MultiLevelRayTracer::render(const ScreenScene& scene, protocol::CommandSink
                 far,
                 kNoFace,
                 {},
-                packet_tracer(m_trace.tracer->kernel_level()),
+                m_trace_options.packets ? packet_tracer(m_trace.tracer->kernel_level()) : nullptr,
                 m_packet_mailbox,
                 {},
                 {},

@@ -15,7 +15,9 @@
 // leaf's pieces on all its lanes at once, as many lanes an instruction as the CPU holds
 // doubles (8 with AVX-512, 4 with AVX2, 2 with SSE2; kernel_level.h picks the level). The
 // entry leaf's pieces are culled against the beam first (inverse frustum culling): a piece
-// whose box lies outside the beam's hull is never tested by its rays.
+// whose box lies outside the beam's hull is never tested by its rays. With
+// TraceOptions::packets off (`--packets off`) every ray goes alone, scalar, from the entry
+// point: what a machine without SIMD does better (docs/RESULTS.md).
 // Mirrors are followed as the ray tracer follows them: a reflected ray is one ray, not a
 // beam's, and goes through the ray tracer's own structure (its BVH, or with `--accel kd` the
 // kd-tree from its root). Every pixel shows what `raytrace` shows

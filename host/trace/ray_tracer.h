@@ -132,6 +132,7 @@ inline constexpr double kMinGridDensity = 0.01, kMaxGridDensity = 1000;
 struct TraceOptions {
     int max_reflections = 8;  // mirror bounces followed (0: primary visibility)
     Accel accel = Accel::Bvh;
+    bool packets = true;  // mlrta: its rays in packets of eight (ray_packet.h), or one by one
 };
 
 // `raytrace`: the ray tracer alone.

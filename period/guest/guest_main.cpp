@@ -49,6 +49,7 @@ struct GuestArgs {
     int reflections = host::TraceOptions{}.max_reflections;
     double grid_density = host::BeamOptions{}.grid_density;
     std::string accel = "bvh";
+    std::string packets = "on";
     int approx_min = 0;
     double approx_eps = 0;
     bool ids = false;
@@ -70,6 +71,7 @@ host::MethodOptions method_options(const GuestArgs& a) {
     o.trace.max_reflections = a.reflections;
     o.beam.grid_density = a.grid_density;
     o.trace.accel = host::parse_accel(a.accel);
+    o.trace.packets = a.packets == "on";
     return o;
 }
 
@@ -169,6 +171,8 @@ int main(int argc, char** argv) {
     app.add_option("--grid-density", a.grid_density, "Beam: grid cells per piece");
     app.add_option("--accel", a.accel, "Raytrace, beam and mlrta: what rays walk, bvh, grid or kd")
         ->check(CLI::IsMember({"bvh", "grid", "kd"}));
+    app.add_option("--packets", a.packets, "mlrta: rays in packets of eight, or one by one")
+        ->check(CLI::IsMember({"on", "off"}));
     app.add_option("--approx-min", a.approx_min, "Approximate fills: smallest side");
     app.add_option("--approx-eps", a.approx_eps, "Approximate fills: centres missed");
     app.add_flag("--ids", a.ids, "Render the face-id pass instead of the shaded frame");

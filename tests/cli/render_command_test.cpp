@@ -308,7 +308,7 @@ TEST(RenderCommand, OptionsTheMethodDoesNotUseAreRefusedNotIgnored) {
     for (const char* args : {"-m zbuffer --threshold 0.1", "-m zbuffer --reflections 2",
                              "-m warnock --beam-threshold 5", "-m scanline --window-test centres",
                              "-m raytrace --depth-estimate scene", "-m hybrid --grid-density 2",
-                             "-m raytrace --grid-density 2"}) {
+                             "-m raytrace --grid-density 2", "-m raytrace --packets off"}) {
         CliRun r = run_fb89("render " + kScenes + "/A.json --size 32x24 -q " + args);
         EXPECT_EQ(r.exit_code, 2) << args;
         EXPECT_NE(r.err.find("method does not use it"), std::string::npos) << args << r.err;

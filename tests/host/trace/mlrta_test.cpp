@@ -178,7 +178,7 @@ TEST(Mlrta, OnIncoherentRaysItsLossIsBoundedAndItsFrameExact) {
 // walk on their own), and a third of them are mirrors, whose reflected rays go on in packets
 // that part again. The frame is the ray tracer's at every kernel level, and every
 // count but the packets' node visits (a packet of 8 lanes visits a node once, of 2 lanes four
-// times) is the same at every level.
+// times) is the same at every level. Its rays one by one (packets off) make the same frame.
 TEST(Mlrta, PacketsWhoseRaysPartStayExactAtEveryKernelLevel) {
     Scene s = random_screen_triangles(96, 80, 1500, 0.3, 7);
     for (size_t i = 0; i < s.faces.size(); i += 3)
@@ -203,6 +203,13 @@ TEST(Mlrta, PacketsWhoseRaysPartStayExactAtEveryKernelLevel) {
         const auto ml = render_trace(s, trace_options("mlrta"));
         EXPECT_EQ(ml.ids, rays.ids);
         EXPECT_EQ(ml.pixels, rays.pixels);
+        MethodOptions one_by_one = trace_options("mlrta");
+        one_by_one.trace.packets = false;
+        const auto scalar = render_trace(s, one_by_one);
+        EXPECT_EQ(scalar.ids, rays.ids);
+        EXPECT_EQ(scalar.pixels, rays.pixels);
+        EXPECT_EQ(scalar.stats.counters.get("packets"), 0u);
+        EXPECT_EQ(scalar.stats.counters.get("rays"), base_counts.get("rays"));
         for (const auto& [name, value] : base_counts.items()) {
             if (name == "packet_nodes_visited") continue;
             EXPECT_EQ(ml.stats.counters.get(name), value) << name;
