@@ -60,20 +60,24 @@ TEST(SuccessorsExperiment, MultiLevelRayTracingShowsTheRayTracersFrameAtEverySiz
     s.repeat = 1;
     const Table table = experiment_successors_rays(s, {{64, 48}, {128, 96}}, INFINITY);
     const auto col = [&](const char* name) { return column(table, name); };
-    ASSERT_EQ(table.rows().size(), 4u * 2 * 2);
+    ASSERT_EQ(table.rows().size(), 5u * 2 * 2);
     std::map<std::string, std::map<std::string, std::vector<std::string>>> by;
     for (const auto& row : table.rows())
         by[row[col("scene")] + " " + row[col("width")]][row[col("method")]] = row;
     ASSERT_EQ(by.size(), 4u);
     for (const auto& [where, methods] : by) {
         SCOPED_TRACE(where);
-        ASSERT_EQ(methods.size(), 4u);
+        ASSERT_EQ(methods.size(), 5u);
         for (const auto& [method, row] : methods)
             EXPECT_EQ(row[col("same_frame")], "yes") << method;
         const auto& rays = methods.at("raytrace");
         const auto& kd = methods.at("raytrace-kd");
         const auto& ml = methods.at("mlrta");
+        const auto& scalar = methods.at("mlrta-scalar");
         EXPECT_EQ(rays[col("speedup")], "1.000");
+        // its rays one by one: the same rays, beams and commands
+        for (const char* same : {"rays", "pixels_by_beams", "beams", "entry_points", "commands"})
+            EXPECT_EQ(scalar[col(same)], ml[col(same)]) << same;
         EXPECT_EQ(ml[col("commands")], rays[col("commands")]);
         EXPECT_EQ(kd[col("commands")], rays[col("commands")]);
         EXPECT_EQ(kd[col("rays")], rays[col("rays")]);
