@@ -92,12 +92,15 @@ void HierarchicalZBuffer::setup(const ScreenScene& scene) {
         const int rows = std::min(kBandRows, m_height - static_cast<int>(b) * kBandRows);
         m_band_cover[b] /= static_cast<double>(rows) * std::max(1, m_width);
     }
-    // and its faces, nearest first, for a band worked without the pyramid
+    // and its faces, in id order as the Z-buffer takes them, for a band worked without the
+    // pyramid
     for (std::size_t b = 1; b < m_band_first.size(); ++b)
         m_band_first[b] += m_band_first[b - 1];
     m_band_faces.assign(m_band_first.back(), 0);
     std::vector<uint32_t> at(m_band_first.begin(), m_band_first.end() - 1);
-    for (uint32_t f : m_order) {
+    std::vector<uint32_t> by_id(m_order);
+    std::sort(by_id.begin(), by_id.end());
+    for (uint32_t f : by_id) {
         const PixelRect& r = m_face_box[f].rect;
         for (int b = r.y0 / kBandRows; b * kBandRows < r.y1; ++b)
             m_band_faces[at[static_cast<std::size_t>(b)]++] = f;
@@ -311,9 +314,11 @@ void HierarchicalZBuffer::refresh(int level, int cx, int cy) {
 namespace {
 
 // One face: its rows' runs of centres by the coverage rule, each run depth-tested by the
-// Z-buffer's kernel (depth_rows.h) with the shared rule's tie to the lower index, since faces
-// arrive front to back, not in id order; the tiles of a run that won a centre are marked for
-// mark_levels(). The wrappers below compile it once per kernel, as zbuffer.cpp does.
+// Z-buffer's kernel (depth_rows.h); the tiles of a run that won a centre are marked for
+// mark_levels() (Mark). Under the pyramid (Mark) faces arrive front to back, not in id order,
+// so a tie goes to the lower index by the test itself; in a direct band they arrive in id
+// order, and the first to reach a depth keeps it, as in the Z-buffer. The wrappers below
+// compile it once per kernel, as zbuffer.cpp does.
 template <class DepthRow, bool Mark>
 uint64_t draw_face(const ScreenScene& scene, uint32_t index, int band_y0, int band_rows,
                    double* depth_buffer, uint32_t* face_buffer, int width, int tiles_w,
@@ -329,7 +334,7 @@ uint64_t draw_face(const ScreenScene& scene, uint32_t index, int band_y0, int ba
         const int local = y - band_y0;  // the band buffers' row
         const std::size_t row = static_cast<std::size_t>(local) * static_cast<std::size_t>(width);
         tests += static_cast<uint64_t>(xe - xb);
-        const uint64_t won = DepthRow::template test<true>(f.depth, y, xb, xe, index + 1,
+        const uint64_t won = DepthRow::template test<Mark>(f.depth, y, xb, xe, index + 1,
                                                            depth_buffer + row, face_buffer + row);
         if (won == 0) continue;
         written += won;
@@ -425,8 +430,8 @@ void HierarchicalZBuffer::walk(const ScreenScene& scene, uint32_t index) {
         walk(scene, c);
 }
 
-// A band where the hierarchy would not pay: every face that meets it drawn, nearest first
-// (the octree's order), with no test of the pyramid and no tile marked.
+// A band where the hierarchy would not pay: every face that meets it drawn in id order, as
+// the Z-buffer draws it, with no test of the pyramid and no tile marked.
 void HierarchicalZBuffer::draw_band(const ScreenScene& scene, std::size_t band) {
     for (uint32_t i = m_band_first[band]; i < m_band_first[band + 1]; ++i)
         draw<false>(scene, m_band_faces[i]);

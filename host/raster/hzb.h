@@ -33,10 +33,11 @@
 //   and not in another is drawn only where it may be seen).
 // - A band uses the hierarchy only where it can pay: where its faces' rectangles cover it at
 //   least kHierarchyFromCover times over (the most depth complexity the band can have, from
-//   set-up). Elsewhere every face that meets the band is drawn, nearest first, with no
-//   pyramid test and no tile marked: on the paper's scenes (depth complexity 1.5-3.2) that
-//   is every band, and the octree and pyramid cost nothing (counters hzb_bands_hierarchical
-//   and hzb_bands_direct say which way the bands went; docs/RESULTS.md, "After the paper").
+//   set-up). Elsewhere every face that meets the band is drawn in id order, as the Z-buffer
+//   draws it (the first to reach a depth keeps it), with no pyramid test and no tile marked: on the
+//   paper's scenes (depth complexity 1.5-3.2) that is every band, and the octree and pyramid cost
+//   nothing (counters hzb_bands_hierarchical and hzb_bands_direct say which way the bands went;
+//   docs/RESULTS.md, "After the paper").
 // Spans leave as the Z-buffer's do (band_spans.h), band by band, so the stream is the same.
 #pragma once
 
@@ -109,7 +110,7 @@ class HierarchicalZBuffer final : public Renderer {
     std::vector<Node> m_nodes;    // m_nodes[0] the root, when there are faces
     std::vector<uint32_t> m_order;
     std::vector<double> m_band_cover;  // each band's faces' rectangles over its pixels
-    std::vector<uint32_t> m_band_first, m_band_faces;  // each band's faces, nearest first
+    std::vector<uint32_t> m_band_first, m_band_faces;  // each band's faces, in id order
 
     int m_width = 0, m_height = 0;
     std::vector<double> m_depth;   // the band's; meaningful only where m_face is not 0
