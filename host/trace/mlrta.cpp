@@ -254,15 +254,6 @@ struct Frame {
         }
     }
 
-    // RayTracer::color_of, its common case (nothing hit, or a face that ends the path) here
-    uint32_t color_of(const Ray& ray, Hit hit) {
-        if (hit.piece == kNoFace) return 0;
-        const TraceFace& f = scene.faces()[hit.piece];
-        if (!(f.mirror > 0) || scene.max_reflections() == 0)
-            return packed_pixel(f.end_color[glm::dot(f.normal, ray.dir) > 0 ? 1 : 0]);
-        return tracer.color_of(ray, hit, scratch, rays);
-    }
-
     // The tile's rays in packets (ray_packet.h), each a 4 x 2 block of its pixels, from
     // `query`'s cells; a ray whose watertight space differs from its packet's goes alone.
     template <class Alone>
@@ -302,7 +293,8 @@ struct Frame {
                         mirrored |= 1u << i;
                         continue;
                     }
-                    pixels[static_cast<size_t>(y) * width + x] = color_of(lane_ray[i], hit);
+                    pixels[static_cast<size_t>(y) * width + x] =
+                        tracer.color_of(lane_ray[i], hit, scratch, rays);
                 }
                 if (mirrored == 0) continue;
                 follow(mirrored);
@@ -310,10 +302,8 @@ struct Frame {
                     if (mirrored >> i & 1) {
                         const Path& q = paths[i];
                         const int x = bx + i % 4, y = by + i / 4;
-                        pixels[static_cast<size_t>(y) * width + x] = packed_pixel(
-                            q.count == 1
-                                ? scene.faces()[q.hits[0].piece].end_color[q.hits[0].back ? 1 : 0]
-                                : path_color(scene, q.hits, q.count));
+                        pixels[static_cast<size_t>(y) * width + x] =
+                            packed_pixel(traced_color(scene, q.hits, q.count));
                     }
             }
         beams.pixels_by_rays += static_cast<uint64_t>(x1 - x0) * (y1 - y0);

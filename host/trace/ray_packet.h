@@ -24,10 +24,7 @@
 
 #include <cstdint>
 #include <span>
-#include <utility>
 #include <vector>
-
-#include <glm/common.hpp>
 
 #include "host/trace/kd_tree.h"
 #include "host/trace/kernel_level.h"
@@ -56,12 +53,8 @@ struct RayPacket {
 };
 
 inline bool RayPacket::set(int i, const Ray& ray, double least, uint32_t never) {
-    // RaySpace's axes, as its constructor picks them
-    const glm::dvec3& d = ray.dir;
-    const glm::dvec3 a = glm::abs(d);
-    const int z = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-    int x = (z + 1) % 3, y = (x + 1) % 3;
-    if (d[z] < 0) std::swap(x, y);
+    int x, y, z;
+    RaySpace::axes(ray.dir, x, y, z);
     if (lanes == 0) {
         kx = x;
         ky = y;

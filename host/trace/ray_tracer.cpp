@@ -164,17 +164,6 @@ uint32_t RayTracer::pixel_color(int x, int y, RayTrace& scratch, TraceCounts& co
     return color_of(ray, primary_hit(ray, counts), scratch, counts);
 }
 
-uint32_t RayTracer::color_of(const Ray& ray, Hit hit, RayTrace& scratch,
-                             TraceCounts& counts) const {
-    if (hit.piece == kNoFace) return 0;
-    const TraceFace& f = m_scene.faces()[hit.piece];
-    // the common path: a face that is no mirror (or no reflection followed) ends it
-    if (!(f.mirror > 0) || m_scene.max_reflections() == 0)
-        return packed_pixel(f.end_color[glm::dot(f.normal, ray.dir) > 0 ? 1 : 0]);
-    follow(ray, hit, scratch, counts);
-    return packed_pixel(scratch.color);
-}
-
 void RayTracer::follow(const Ray& primary, Hit hit, RayTrace& out, TraceCounts& counts) const {
     out.primary = primary;
     out.count = 0;
@@ -199,10 +188,7 @@ void RayTracer::follow(const Ray& primary, Hit hit, RayTrace& out, TraceCounts& 
         ++counts.rays;
         hit = closest_hit(ray, m_scene.tolerance() / glm::length(ray.dir), mirror, counts);
     }
-    if (out.count == 1)  // the common path, its colour worked out in advance
-        out.color = m_scene.faces()[out.hits[0].piece].end_color[out.hits[0].back ? 1 : 0];
-    else if (out.count > 1)
-        out.color = path_color(m_scene, out.hits, out.count);
+    if (out.count > 0) out.color = traced_color(m_scene, out.hits, out.count);
 }
 
 uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::CommandSink& sink) {

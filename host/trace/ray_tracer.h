@@ -112,6 +112,18 @@ class RayTracer {
 inline uint32_t packed_pixel(protocol::Rgb c) {
     return 0x1000000u | (uint32_t{c.r} << 16) | (uint32_t{c.g} << 8) | c.b;
 }
+// Inline: the common path (nothing hit, or a face that ends the path) is taken once a pixel.
+inline uint32_t RayTracer::color_of(const Ray& ray, Hit hit, RayTrace& scratch,
+                                    TraceCounts& counts) const {
+    if (hit.piece == kNoFace) return 0;
+    const TraceFace& f = m_scene.faces()[hit.piece];
+    // the common path: a face that is no mirror (or no reflection followed) ends it
+    if (!(f.mirror > 0) || m_scene.max_reflections() == 0)
+        return packed_pixel(f.end_color[glm::dot(f.normal, ray.dir) > 0 ? 1 : 0]);
+    follow(ray, hit, scratch, counts);
+    return packed_pixel(scratch.color);
+}
+
 // Sends row y's pixels x0..x1-1 as DRAW_SPAN runs of equal colour; returns the spans sent.
 uint64_t emit_packed_row(const uint32_t* row, int y, int x0, int x1, protocol::CommandSink& sink);
 

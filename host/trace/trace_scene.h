@@ -66,6 +66,9 @@ struct RaySpace {
     double sx = 0, sy = 0;
     double ox = 0, oy = 0, oz = 0;
     explicit RaySpace(const Ray& ray);
+    // The axes for a ray along `d`: kz the one it runs along most, kx and ky keeping the
+    // winding (the packets of rays, ray_packet.h, group rays by them).
+    static void axes(const glm::dvec3& d, int& kx, int& ky, int& kz);
 };
 
 class TraceScene {
@@ -139,15 +142,24 @@ struct PathHit {
 };
 
 protocol::Rgb path_color(const TraceScene& scene, const PathHit* hits, int count);
+// The same, a path of one face taken from the colour worked out for it in advance.
+inline protocol::Rgb traced_color(const TraceScene& scene, const PathHit* hits, int count) {
+    return count == 1 ? scene.faces()[hits[0].piece].end_color[hits[0].back ? 1 : 0]
+                      : path_color(scene, hits, count);
+}
 
 // Inline, as the ray tracer calls them once per ray or test.
-inline RaySpace::RaySpace(const Ray& ray) {
-    const glm::dvec3& d = ray.dir;
+inline void RaySpace::axes(const glm::dvec3& d, int& kx, int& ky, int& kz) {
     const glm::dvec3 a = glm::abs(d);
     kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     kx = (kz + 1) % 3;
     ky = (kx + 1) % 3;
     if (d[kz] < 0) std::swap(kx, ky);  // keep the winding
+}
+
+inline RaySpace::RaySpace(const Ray& ray) {
+    const glm::dvec3& d = ray.dir;
+    axes(d, kx, ky, kz);
     sx = d[kx] / d[kz];
     sy = d[ky] / d[kz];
     ox = ray.origin[kx];
